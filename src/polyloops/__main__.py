@@ -1,0 +1,5 @@
+import sys
+
+from polyloops.cli import main
+
+sys.exit(main())

@@ -1,0 +1,173 @@
+"""The ``polyloops`` command line: a thin layer over the Python API.
+
+Exit status: 0 when done or valid, 1 when the input was checked and is
+invalid, 2 for bad input or usage.  Errors are one line naming the file.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from collections.abc import Callable, Sequence
+from typing import Any
+
+from polyloops import __version__
+from polyloops.cli.load import (
+    EXIT_INVALID,
+    EXIT_OK,
+    EXIT_USAGE,
+    CliError,
+    read_document,
+    read_structure,
+    write_output,
+)
+from polyloops.core.duality import DualityError, dualize, primalize
+from polyloops.core.examples import EXAMPLES
+from polyloops.core.polycube import Polycube
+from polyloops.core.structure import LabelError
+from polyloops.info import describe, format_summary
+from polyloops.verify import Report, verify, verify_document
+
+FILE_HELP = "a JSON file, or example:NAME for a bundled example ('polyloops examples' lists them)"
+
+
+def _emit(args: argparse.Namespace, data: Any, text: str) -> None:
+    print(json.dumps(data, indent=2) if getattr(args, "json", False) else text)
+
+
+# -- commands -----------------------------------------------------------------------------
+
+def cmd_examples(args: argparse.Namespace) -> int:
+    rows = [{"name": e.name, "valid": e.valid, "description": e.description} for e in EXAMPLES.values()]
+    width = max(len(r["name"]) for r in rows)
+    text = "\n".join(f"{r['name']:<{width}}  {'valid  ' if r['valid'] else 'invalid'}  {r['description']}"
+                     for r in rows)
+    _emit(args, rows, text)
+    return EXIT_OK
+
+
+def format_report(source: str, report: Report) -> str:
+    verdict = "valid" if report.valid else f"INVALID ({len(report.violations)} violations)"
+    lines = [f"{source}: {report.kind}: {verdict}"]
+    for c in report.checks:
+        note = f" ({c.note})" if c.note else ""
+        lines.append(f"  {c.definition} condition {c.condition:<10} {c.status:<22} {c.statement}{note}")
+    for v in report.violations:
+        lines.append(f"  violation: {v.definition} condition {v.condition}: {v.message}")
+    return "\n".join(lines)
+
+
+def cmd_verify(args: argparse.Namespace) -> int:
+    doc = read_document(args.file)
+    try:
+        report = verify_document(doc)
+    except LabelError as err:
+        raise CliError(f"{args.file}: {err}") from None
+    _emit(args, report.to_json(), format_report(args.file, report))
+    return EXIT_OK if report.valid else EXIT_INVALID
+
+
+def _first_violation(report: Report) -> str:
+    v = report.violations[0]
+    n = len(report.violations)
+    more = f" (and {n - 1} more; see 'polyloops verify')" if n > 1 else ""
+    return f"{v.definition} condition {v.condition}: {v.message}{more}"
+
+
+def cmd_primalize(args: argparse.Namespace) -> int:
+    ls = read_structure(args.file)
+    if isinstance(ls, Polycube):
+        raise CliError(f"{args.file}: is a polycube; primalize takes a loop structure (try dualize)")
+    if not ls.oriented:
+        raise CliError(f"{args.file}: is a labelled loop structure without sides; orient it first")
+    report = verify(ls)
+    if not report.valid:
+        raise CliError(f"{args.file}: not a polycube loop structure: {_first_violation(report)}",
+                       EXIT_INVALID)
+    text = write_output(args.output, primalize(ls))
+    if text is not None:
+        print(text, end="")
+    return EXIT_OK
+
+
+def cmd_dualize(args: argparse.Namespace) -> int:
+    q = read_structure(args.file)
+    if not isinstance(q, Polycube):
+        raise CliError(f"{args.file}: is a loop structure; dualize takes a polycube (try primalize)")
+    report = verify(q)
+    if not report.valid:
+        raise CliError(f"{args.file}: not a polycube: {_first_violation(report)}", EXIT_INVALID)
+    try:
+        ls = dualize(q)
+    except DualityError as err:  # pragma: no cover - Definition 1 rules this out (Lemma 1)
+        raise CliError(f"{args.file}: {err}", EXIT_INVALID) from None
+    text = write_output(args.output, ls)
+    if text is not None:
+        print(text, end="")
+    return EXIT_OK
+
+
+def cmd_info(args: argparse.Namespace) -> int:
+    summary = describe(read_structure(args.file))
+    _emit(args, summary, format_summary(summary))
+    return EXIT_OK
+
+
+# -- parser -------------------------------------------------------------------------------
+
+Command = Callable[[argparse.Namespace], int]
+
+
+class _Parser(argparse.ArgumentParser):
+    """Usage errors as one line and exit status 2."""
+
+    def error(self, message: str) -> None:  # type: ignore[override]
+        self.exit(EXIT_USAGE, f"{self.prog}: {message} (see --help)\n")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(prog="polyloops", description="Polycubes via their dual loops: check, convert, explore.")
+    parser.add_argument("--version", action="version", version=f"polyloops {__version__}")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
+    sub.required = True
+
+    def command(name: str, func: Command, help_text: str, file_arg: bool = True,
+                json_flag: bool = True) -> argparse.ArgumentParser:
+        p = sub.add_parser(name, help=help_text, description=help_text)
+        if file_arg:
+            p.add_argument("file", metavar="FILE", help=FILE_HELP)
+        if json_flag:
+            p.add_argument("--json", action="store_true", help="print one JSON object for scripts")
+        p.set_defaults(func=func)
+        return p
+
+    command("examples", cmd_examples, "list the bundled examples", file_arg=False)
+    command("verify", cmd_verify, "check a file against the paper's definitions "
+            "(Definition 1 for a polycube, Definitions 3 and 4 and Theorem 3 for a loop structure)")
+    p = command("primalize", cmd_primalize, "the polycube of a polycube loop structure (Theorem 2), "
+                "compact coordinates from the level graphs", json_flag=False)
+    p.add_argument("-o", "--output", metavar="OUT", help="write here (.obj for Wavefront OBJ, else JSON)")
+    p = command("dualize", cmd_dualize, "the oriented loop structure of a polycube (Theorem 1)",
+                json_flag=False)
+    p.add_argument("-o", "--output", metavar="OUT", help="write JSON here instead of to standard output")
+    command("info", cmd_info, "corners, faces, loops, genus, zones, level graphs and corner degrees")
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        return args.func(args)
+    except CliError as err:
+        print(f"polyloops {args.command}: {err}", file=sys.stderr)
+        return err.status
+    except BrokenPipeError:  # output piped into head, for example
+        return EXIT_OK
+    except KeyboardInterrupt:
+        print(f"polyloops {args.command}: interrupted", file=sys.stderr)
+        return 130
+
+
+__all__ = ["build_parser", "main"]

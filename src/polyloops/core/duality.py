@@ -1,0 +1,161 @@
+"""Theorems 1 and 2: from a polycube to its loop structure and back.
+
+Both directions keep the map, so corner ids survive a round trip:
+
+>>> from polyloops.core.examples import load_example
+>>> q = load_example("l-shape")
+>>> ls = dualize(q)
+>>> dualize(primalize(ls)) == ls
+True
+>>> is_order_equivalent(primalize(ls), q) is not None
+True
+"""
+
+from __future__ import annotations
+
+from collections import deque
+
+import networkx as nx
+
+from polyloops.core.directions import Axis
+from polyloops.core.polycube import Polycube
+from polyloops.core.structure import LoopStructure
+
+
+class DualityError(ValueError):
+    """The input is not valid enough for the requested construction."""
+
+
+def dualize(q: Polycube) -> LoopStructure:
+    """The oriented loop structure of a polycube (Theorem 1).
+
+    Each loop is labelled with the axis of the edges it crosses, and its ``+``
+    side holds their ends with the higher coordinate.  Raises
+    :class:`DualityError` when the edges of one loop are not parallel or not
+    consistently signed, which happens exactly when some face is not an
+    axis-aligned rectangle.
+    """
+    m = q.map
+    axes: list[Axis] = []
+    signs: list[int] = []
+    for lp in m.loop_system.loops:
+        seen = {q.direction(d) for d in lp.darts}
+        if len(seen) != 1 or None in seen:
+            u, v = m.edge_corners(lp.edges[0])
+            raise DualityError(f"the loop through edge ({u}, {v}) crosses edges that are "
+                               "not parallel and equally directed; some face is not a rectangle")
+        (d,) = seen
+        assert d is not None
+        axes.append(d.axis)
+        signs.append(d.sign)
+    return LoopStructure(m, tuple(axes), tuple(signs))
+
+
+def zone_levels(ls: LoopStructure, axis: Axis) -> list[int]:
+    """Each zone's level: the length of the longest path into it in the level graph.
+
+    Raises :class:`DualityError` naming a cycle if the level graph has one.
+    """
+    g = ls.level_graph(axis)
+    try:
+        order = list(nx.topological_sort(g))
+    except nx.NetworkXUnfeasible:
+        cycle = nx.find_cycle(g)
+        raise DualityError(f"the {axis}-graph has a cycle through zones "
+                           f"{[u for u, *_ in cycle]}") from None
+    level = [0] * g.number_of_nodes()
+    for z in order:
+        for _, w in g.out_edges(z):
+            level[w] = max(level[w], level[z] + 1)
+    return level
+
+
+def primalize(ls: LoopStructure) -> Polycube:
+    """The polycube of Theorem 2, compact: each zone at its longest-path level.
+
+    Corner ``c`` gets position ``(x, y, z)`` from the levels of its X-, Y- and
+    Z-zones, so coordinates start at 0 without gaps.  It needs an oriented
+    structure with quad faces and acyclic level graphs; it does not check the
+    other conditions of Definition 4, so an invalid structure can give a
+    mesh that is not a polycube (the Definition-1 checker will say so).
+    """
+    if not ls.oriented:
+        raise DualityError("a labelled loop structure has no polycube; orient it first")
+    levels = [zone_levels(ls, a) for a in Axis]
+    zone_of = [ls.zones(a).zone_of for a in Axis]
+    positions = tuple(
+        (levels[0][zone_of[0][c]], levels[1][zone_of[1][c]], levels[2][zone_of[2][c]])
+        for c in range(ls.map.num_corners)
+    )
+    return Polycube(ls.map, positions)
+
+
+Relation = tuple[int, int, int]
+
+
+def _dart_relations(q: Polycube) -> list[Relation]:
+    """Per dart, the sign of the coordinate change along each axis: the three orders."""
+    m, pos = q.map, q.positions
+
+    def sgn(a: int) -> int:
+        return (a > 0) - (a < 0)
+
+    out = []
+    for d in range(m.num_darts):
+        a, b = pos[m.origin(d)], pos[m.target(d)]
+        out.append((sgn(b[0] - a[0]), sgn(b[1] - a[1]), sgn(b[2] - a[2])))
+    return out
+
+
+def _extend(p: Polycube, q: Polycube, dp: list[Relation], dq: list[Relation],
+            root_p: int, root_q: int) -> list[int] | None:
+    """Extend ``root_p -> root_q`` to a direction-preserving map isomorphism."""
+    mp, mq = p.map, q.map
+    phi = [-1] * mp.num_darts
+    used = [False] * mq.num_darts
+    phi[root_p], used[root_q] = root_q, True
+    todo = deque([root_p])
+    while todo:
+        a = todo.popleft()
+        b = phi[a]
+        for a2, b2 in ((mp.next[a], mq.next[b]), (mp.twin[a], mq.twin[b])):
+            if phi[a2] < 0:
+                if used[b2] or dp[a2] != dq[b2]:
+                    return None
+                phi[a2], used[b2] = b2, True
+                todo.append(a2)
+            elif phi[a2] != b2:
+                return None
+    corner = [-1] * mp.num_corners
+    for a, b in enumerate(phi):
+        if b < 0:
+            return None
+        u, v = mp.origin(a), mq.origin(b)
+        if corner[u] not in (-1, v):
+            return None
+        corner[u] = v
+    return corner
+
+
+def is_order_equivalent(p: Polycube, q: Polycube) -> list[int] | None:
+    """Definition 2: a mesh isomorphism preserving the order of every edge's ends on each axis.
+
+    Returns the corner map ``f`` as a list (``f[v]`` is the corner of ``q``
+    matched with corner ``v`` of ``p``), or ``None``.  The isomorphism may
+    reverse orientation, so a polycube is order-equivalent to its inverse.
+    The cost is ``O(E)`` per candidate image of one dart, ``O(E^2)`` at worst.
+    """
+    mp, mq = p.map, q.map
+    if (mp.num_corners, mp.num_edges, mp.num_faces) != (mq.num_corners, mq.num_edges, mq.num_faces):
+        return None
+    dp = _dart_relations(p)
+    for target in (q, q.inverse()):
+        dq = _dart_relations(target)
+        # Try the identity first: the common case after a round trip.
+        candidates = [0] + [b for b in range(mq.num_darts) if b != 0 and dq[b] == dp[0]]
+        for b in candidates:
+            if dq[b] == dp[0]:
+                found = _extend(p, target, dp, dq, 0, b)
+                if found is not None:
+                    return found
+    return None

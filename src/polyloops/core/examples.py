@@ -1,0 +1,53 @@
+"""Bundled examples, shipped as JSON files and named ``example:NAME`` on the command line.
+
+>>> sorted(EXAMPLES)[:3]
+['box-2x1x1', 'cube', 'degree-two']
+>>> load_example("cube")
+Polycube(corners=8, faces=6, genus=0)
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from importlib import resources
+
+from polyloops.core import builders
+from polyloops.core.formats import Structure, loads
+from polyloops.core.voxels import polycube_from_voxels
+
+
+@dataclass(frozen=True)
+class Example:
+    name: str
+    description: str
+    valid: bool
+    build: Callable[[], Structure]
+
+
+_ALL = [
+    Example("cube", "the unit cube", True, lambda: builders.box(1, 1, 1)),
+    Example("box-2x1x1", "two unit cubes in a row: two X-loops", True, lambda: builders.box(2, 1, 1)),
+    Example("l-shape", "three unit cubes in an L", True,
+            lambda: polycube_from_voxels([(0, 0, 0), (1, 0, 0), (0, 1, 0)])),
+    Example("ring", "a square ring of eight unit cubes (genus 1)", True, lambda: builders.ring(3)),
+    Example("torus-cycle", "a flat 3x3 torus grid: its X- and Y-graphs are cycles (Condition 5)",
+            False, lambda: builders.torus_grid(3, 3)),
+    Example("degree-two", "two quads glued along their boundary: regions bounded by two segments "
+            "(Condition 2)", False, builders.pillow),
+    Example("double-plus-x", "box-2x1x1 with one X-loop flipped: two +X edges at a corner (Condition 3)",
+            False, builders.double_plus_x),
+    Example("self-crossing", "a loop that crosses itself (Condition 3)", False, builders.self_crossing),
+]
+EXAMPLES: dict[str, Example] = {e.name: e for e in _ALL}
+
+
+def example_text(name: str) -> str:
+    """The shipped JSON text of an example; ``KeyError`` for an unknown name."""
+    if name not in EXAMPLES:
+        raise KeyError(name)
+    return resources.files("polyloops.examples").joinpath(f"{name}.json").read_text(encoding="utf-8")
+
+
+def load_example(name: str) -> Structure:
+    return loads(example_text(name))

@@ -1,0 +1,192 @@
+"""Reading and writing structures: JSON (one structure per file) and Wavefront OBJ.
+
+Polycube::
+
+    {"polyloops": 1, "kind": "polycube",
+     "faces": [[0, 1, 2, 3], ...], "positions": [[x, y, z], ...]}
+
+Loop structure (``"+X"`` on ``[u, v, ...]`` means ``v`` lies on the ``+``
+side of the X-loop crossing edge ``uv``; ``"X"`` without a sign makes a
+labelled structure)::
+
+    {"polyloops": 1, "kind": "loop-structure",
+     "faces": [[0, 1, 2, 3], ...], "edges": [[u, v, "+X"], ...]}
+
+Faces are counter-clockwise seen from outside.  Reading checks the format
+(:class:`FormatError`); building the model can then fail with
+:class:`~polyloops.core.halfedge.MapError` (not a closed oriented surface) or
+:class:`~polyloops.core.structure.LabelError`.
+
+>>> from polyloops.core.examples import load_example
+>>> text = dumps(load_example("cube"))
+>>> loads(text) == load_example("cube")
+True
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import tempfile
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from polyloops.core.directions import Axis, Direction
+from polyloops.core.polycube import Polycube
+from polyloops.core.structure import LoopStructure
+
+FORMAT_VERSION = 1
+KINDS = ("polycube", "loop-structure")
+
+Structure = Polycube | LoopStructure
+
+
+class FormatError(ValueError):
+    """A file that does not follow the polyloops JSON format."""
+
+
+@dataclass(frozen=True)
+class Document:
+    """A parsed file, checked against the format but not yet built into a model."""
+
+    kind: str
+    faces: list[list[int]]
+    positions: list[tuple[int, int, int]] | None = None
+    labels: dict[tuple[int, int], Direction | Axis] | None = None
+
+    def build(self) -> Structure:
+        """The model; raises ``MapError``, ``LabelError`` or ``FaceListError``."""
+        if self.kind == "polycube":
+            assert self.positions is not None
+            return Polycube.from_faces(self.faces, self.positions)
+        assert self.labels is not None
+        return LoopStructure.from_edge_labels(self.faces, self.labels)
+
+
+def _is_int(x: object) -> bool:
+    return isinstance(x, int) and not isinstance(x, bool)
+
+
+def _faces(raw: Any, quads: bool) -> list[list[int]]:
+    if not isinstance(raw, list) or not raw:
+        raise FormatError('"faces" must be a non-empty list of faces')
+    out = []
+    for f, face in enumerate(raw):
+        if not isinstance(face, list) or not all(_is_int(c) and c >= 0 for c in face):
+            raise FormatError(f"face {f} must be a list of non-negative integer corner ids")
+        if quads and len(face) != 4:
+            raise FormatError(f"face {f} has {len(face)} corners; polycube faces are quads")
+        if len(face) < 3:
+            raise FormatError(f"face {f} has {len(face)} corners; a face needs at least 3")
+        out.append(list(face))
+    return out
+
+
+def _positions(raw: Any, n: int) -> list[tuple[int, int, int]]:
+    if not isinstance(raw, list):
+        raise FormatError('"positions" must be a list of [x, y, z]')
+    if len(raw) != n:
+        raise FormatError(f'"positions" has {len(raw)} entries but the faces use {n} corners')
+    out = []
+    for c, p in enumerate(raw):
+        if not isinstance(p, list) or len(p) != 3:
+            raise FormatError(f"position of corner {c} must be [x, y, z]")
+        for x in p:
+            if not _is_int(x):
+                raise FormatError(f"position of corner {c} has a non-integer coordinate {x!r}")
+        out.append((p[0], p[1], p[2]))
+    return out
+
+
+def _label(text: Any, i: int) -> Direction | Axis:
+    if isinstance(text, str):
+        for parse in (Direction.parse, Axis.parse):
+            try:
+                return parse(text)
+            except ValueError:
+                pass
+    raise FormatError(f"edge {i} has unknown label {text!r} (expected +X -X +Y -Y +Z -Z, or X Y Z)")
+
+
+def _labels(raw: Any) -> dict[tuple[int, int], Direction | Axis]:
+    if not isinstance(raw, list):
+        raise FormatError('"edges" must be a list of [u, v, label]')
+    out: dict[tuple[int, int], Direction | Axis] = {}
+    for i, item in enumerate(raw):
+        if not (isinstance(item, list) and len(item) == 3 and _is_int(item[0]) and _is_int(item[1])):
+            raise FormatError(f"edge {i} must be [u, v, label] with integer corners")
+        u, v = item[0], item[1]
+        if (u, v) in out or (v, u) in out:
+            raise FormatError(f"edge ({u}, {v}) is listed twice")
+        out[(u, v)] = _label(item[2], i)
+    return out
+
+
+def parse_document(text: str) -> Document:
+    """Check ``text`` against the format; raise :class:`FormatError` with the reason."""
+    try:
+        data = json.loads(text)
+    except json.JSONDecodeError as err:
+        raise FormatError(f"not valid JSON: {err.msg} at line {err.lineno} column {err.colno}") from None
+    if not isinstance(data, dict):
+        raise FormatError("the top level must be a JSON object")
+    if data.get("polyloops") != FORMAT_VERSION:
+        raise FormatError(f'missing or unsupported "polyloops" version (expected {FORMAT_VERSION})')
+    kind = data.get("kind")
+    if kind not in KINDS:
+        raise FormatError(f'"kind" must be "polycube" or "loop-structure", not {kind!r}')
+    faces = _faces(data.get("faces"), quads=kind == "polycube")
+    if kind == "polycube":
+        n = max(c for face in faces for c in face) + 1
+        return Document(kind, faces, positions=_positions(data.get("positions"), n))
+    return Document(kind, faces, labels=_labels(data.get("edges")))
+
+
+def loads(text: str) -> Structure:
+    """Parse and build; raises ``FormatError``, ``MapError`` or ``LabelError``."""
+    return parse_document(text).build()
+
+
+def to_data(obj: Structure) -> dict[str, Any]:
+    if isinstance(obj, Polycube):
+        return {"polyloops": FORMAT_VERSION, "kind": "polycube",
+                "faces": [list(f) for f in obj.faces],
+                "positions": [list(p) for p in obj.positions]}
+    return {"polyloops": FORMAT_VERSION, "kind": "loop-structure",
+            "faces": [list(f) for f in obj.map.faces],
+            "edges": [list(e) for e in obj.edge_labels()]}
+
+
+def dumps(obj: Structure) -> str:
+    """Compact JSON with one face, position or edge per line."""
+    data = to_data(obj)
+    lines = ["{", f'  "polyloops": {FORMAT_VERSION},', f'  "kind": "{data["kind"]}",']
+    keys = [k for k in ("faces", "positions", "edges") if k in data]
+    for j, key in enumerate(keys):
+        items = ",\n".join("    " + json.dumps(x) for x in data[key])
+        lines.append(f'  "{key}": [\n{items}\n  ]' + ("," if j < len(keys) - 1 else ""))
+    lines.append("}")
+    return "\n".join(lines) + "\n"
+
+
+def to_obj(q: Polycube) -> str:
+    """Wavefront OBJ: ``v`` lines in corner order, ``f`` lines 1-based, counter-clockwise."""
+    out = ["# polyloops polycube"]
+    out += [f"v {x} {y} {z}" for x, y, z in q.positions]
+    out += ["f " + " ".join(str(c + 1) for c in face) for face in q.faces]
+    return "\n".join(out) + "\n"
+
+
+def write_atomic(path: str | os.PathLike[str], text: str) -> None:
+    """Write through a temporary file and rename, so no half-written file is ever left."""
+    target = Path(path)
+    fd, tmp = tempfile.mkstemp(dir=target.parent or ".", prefix=f".{target.name}.", suffix=".tmp")
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as fh:
+            fh.write(text)
+        os.replace(tmp, target)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise

@@ -1,0 +1,305 @@
+"""The half-edge map: one closed, oriented surface shared by every view.
+
+A map is given by its faces, each a cyclic list of corner ids listed
+counter-clockwise as seen from outside.  Face ``f`` with corners
+``(c0, c1, ..., ck-1)`` owns the darts ``c0->c1, c1->c2, ..., ck-1->c0``; dart
+``d`` lies in the face on its left.  Darts are numbered face by face, so the
+numbering is a pure function of the face list.
+
+Edges are named by their two corners, so a map built from a face list has no
+loops and no multiple edges, and no face visits a corner twice.  Everything
+else that can go wrong with a face list (an edge in one or in three faces,
+faces oriented inconsistently, a corner whose faces form two fans, two
+components) is collected into one :class:`MapError` with every witness.
+
+>>> m = HalfEdgeMap.from_faces([[0, 1, 2, 3], [3, 2, 1, 0]])
+>>> m.num_corners, m.num_edges, m.num_faces, m.genus
+(4, 4, 2, 0)
+>>> [m.target(d) for d in m.outgoing(0)]
+[1, 3]
+"""
+
+from __future__ import annotations
+
+from collections import defaultdict
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass, field
+from functools import cached_property
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from polyloops.core.loops import LoopSystem
+
+
+@dataclass(frozen=True)
+class MapProblem:
+    """One reason a face list is not a closed, connected, oriented surface."""
+
+    kind: str  # "boundary-edge", "branching-edge", "orientation", "non-manifold-corner", "disconnected"
+    message: str
+    witness: dict[str, object] = field(default_factory=dict)
+
+
+class MapError(ValueError):
+    """A face list that does not describe a closed, connected, oriented surface."""
+
+    def __init__(self, problems: Sequence[MapProblem]):
+        self.problems = tuple(problems)
+        first = self.problems[0].message if self.problems else "invalid map"
+        more = f" (and {len(self.problems) - 1} more problems)" if len(self.problems) > 1 else ""
+        super().__init__(first + more)
+
+
+class FaceListError(ValueError):
+    """A face list that cannot even be read as polygons over corner ids."""
+
+
+def _validate_faces(faces: Sequence[Sequence[int]]) -> tuple[tuple[int, ...], ...]:
+    out: list[tuple[int, ...]] = []
+    if not faces:
+        raise FaceListError("no faces")
+    for f, face in enumerate(faces):
+        t = tuple(face)
+        if len(t) < 3:
+            raise FaceListError(f"face {f} has {len(t)} corners; a face needs at least 3")
+        if len(set(t)) != len(t):
+            raise FaceListError(f"face {f} visits a corner twice: {list(t)}")
+        if any(not isinstance(c, int) or isinstance(c, bool) or c < 0 for c in t):
+            raise FaceListError(f"face {f} has a corner id that is not a non-negative integer")
+        out.append(t)
+    used = {c for t in out for c in t}
+    n = max(used) + 1
+    if len(used) != n:
+        missing = sorted(set(range(n)) - used)
+        raise FaceListError(f"corner ids must be 0..{n - 1}; corner {missing[0]} is in no face")
+    return tuple(out)
+
+
+@dataclass(frozen=True, eq=False)
+class HalfEdgeMap:
+    """A closed, connected, oriented combinatorial map (immutable).
+
+    Darts are integers ``0..2E-1``.  ``next[d]`` follows ``d`` around its face,
+    ``twin[d]`` is the same edge in the other direction, and
+    ``rotate(d) = twin[prev[d]]`` turns counter-clockwise around ``origin(d)``.
+    """
+
+    faces: tuple[tuple[int, ...], ...]
+    num_corners: int
+    origin_of: tuple[int, ...]
+    face_of: tuple[int, ...]
+    next: tuple[int, ...]
+    prev: tuple[int, ...]
+    twin: tuple[int, ...]
+    face_start: tuple[int, ...]
+
+    # -- construction -----------------------------------------------------------------
+    @classmethod
+    def from_faces(cls, faces: Iterable[Sequence[int]]) -> HalfEdgeMap:
+        """Build the map, or raise :class:`MapError` listing every problem."""
+        fs = _validate_faces(list(faces))
+        origin: list[int] = []
+        face_of: list[int] = []
+        nxt: list[int] = []
+        prv: list[int] = []
+        face_start: list[int] = []
+        for f, face in enumerate(fs):
+            base = len(origin)
+            face_start.append(base)
+            k = len(face)
+            for i, c in enumerate(face):
+                origin.append(c)
+                face_of.append(f)
+                nxt.append(base + (i + 1) % k)
+                prv.append(base + (i - 1) % k)
+        n_darts = len(origin)
+        by_pair: dict[tuple[int, int], list[int]] = defaultdict(list)
+        for d in range(n_darts):
+            by_pair[(origin[d], origin[nxt[d]])].append(d)
+
+        problems: list[MapProblem] = []
+        twin = [-1] * n_darts
+        for (u, v), ds in by_pair.items():
+            back = by_pair.get((v, u), [])
+            if u > v and back:
+                continue  # reported from the other side
+            count = len(ds) + len(back)
+            if count != 2:
+                kind = "boundary-edge" if count == 1 else "branching-edge"
+                problems.append(MapProblem(
+                    kind, f"edge ({min(u, v)}, {max(u, v)}) lies in {count} faces, not 2",
+                    {"edge": [min(u, v), max(u, v)],
+                     "faces": sorted(face_of[d] for d in ds + back)}))
+            elif len(ds) == 2 or len(back) == 2:
+                problems.append(MapProblem(
+                    "orientation",
+                    f"faces {face_of[(ds or back)[0]]} and {face_of[(ds or back)[1]]} "
+                    f"are oriented inconsistently along edge ({u}, {v})",
+                    {"edge": [u, v], "faces": sorted(face_of[d] for d in ds + back)}))
+            else:
+                twin[ds[0]], twin[back[0]] = back[0], ds[0]
+        if problems:
+            raise MapError(problems)
+
+        m = cls(fs, max(origin) + 1, tuple(origin), tuple(face_of), tuple(nxt), tuple(prv),
+                tuple(twin), tuple(face_start))
+        problems.extend(m._fan_problems())
+        problems.extend(m._component_problems())
+        if problems:
+            raise MapError(problems)
+        return m
+
+    def _fan_problems(self) -> list[MapProblem]:
+        seen = [False] * self.num_darts
+        fans: dict[int, list[list[int]]] = defaultdict(list)
+        for d in range(self.num_darts):
+            if seen[d]:
+                continue
+            fan = []
+            e = d
+            while not seen[e]:
+                seen[e] = True
+                fan.append(self.face_of[e])
+                e = self.rotate(e)
+            fans[self.origin_of[d]].append(fan)
+        return [
+            MapProblem("non-manifold-corner",
+                       f"corner {c}: its faces form {len(fl)} fans, not one",
+                       {"corner": c, "fans": [sorted(f) for f in fl]})
+            for c, fl in sorted(fans.items()) if len(fl) > 1
+        ]
+
+    def _component_problems(self) -> list[MapProblem]:
+        # The paper: a mesh is connected if every vertex can be reached from any other along edges.
+        comp = list(range(self.num_corners))
+
+        def find(a: int) -> int:
+            while comp[a] != a:
+                comp[a] = comp[comp[a]]
+                a = comp[a]
+            return a
+
+        for d in range(self.num_darts):
+            a, b = find(self.origin_of[d]), find(self.target(d))
+            if a != b:
+                comp[a] = b
+        parts: dict[int, list[int]] = defaultdict(list)
+        for c in range(self.num_corners):
+            parts[find(c)].append(c)
+        if len(parts) == 1:
+            return []
+        return [MapProblem("disconnected", f"the surface has {len(parts)} components",
+                           {"components": sorted(parts.values())})]
+
+    # -- sizes ------------------------------------------------------------------------
+    @property
+    def num_darts(self) -> int:
+        return len(self.origin_of)
+
+    @property
+    def num_edges(self) -> int:
+        return len(self.origin_of) // 2
+
+    @property
+    def num_faces(self) -> int:
+        return len(self.faces)
+
+    @property
+    def euler_characteristic(self) -> int:
+        return self.num_corners - self.num_edges + self.num_faces
+
+    @property
+    def genus(self) -> int:
+        return (2 - self.euler_characteristic) // 2
+
+    # -- darts ------------------------------------------------------------------------
+    def origin(self, d: int) -> int:
+        return self.origin_of[d]
+
+    def target(self, d: int) -> int:
+        return self.origin_of[self.next[d]]
+
+    def rotate(self, d: int) -> int:
+        """The next dart counter-clockwise around ``origin(d)``."""
+        return self.twin[self.prev[d]]
+
+    def dart(self, u: int, v: int) -> int:
+        """The dart from corner ``u`` to corner ``v``; ``KeyError`` if they are not adjacent."""
+        return self._dart_index[(u, v)]
+
+    @cached_property
+    def _dart_index(self) -> dict[tuple[int, int], int]:
+        return {(self.origin_of[d], self.target(d)): d for d in range(self.num_darts)}
+
+    @cached_property
+    def _corner_dart(self) -> tuple[int, ...]:
+        first = [-1] * self.num_corners
+        for d in range(self.num_darts - 1, -1, -1):
+            first[self.origin_of[d]] = d
+        return tuple(first)
+
+    def outgoing(self, corner: int) -> list[int]:
+        """Darts leaving ``corner`` in counter-clockwise order, from its lowest dart."""
+        start = self._corner_dart[corner]
+        out = [start]
+        d = self.rotate(start)
+        while d != start:
+            out.append(d)
+            d = self.rotate(d)
+        return out
+
+    def degree(self, corner: int) -> int:
+        return len(self.outgoing(corner))
+
+    def face_darts(self, f: int) -> range:
+        return range(self.face_start[f], self.face_start[f] + len(self.faces[f]))
+
+    # -- edges ------------------------------------------------------------------------
+    def edge_id(self, d: int) -> int:
+        """Edges are numbered by their lower dart, in dart order."""
+        return self._edge_ids[d]
+
+    @cached_property
+    def _edge_ids(self) -> tuple[int, ...]:
+        ids = [-1] * self.num_darts
+        k = 0
+        for d in range(self.num_darts):
+            if ids[d] < 0:
+                ids[d] = ids[self.twin[d]] = k
+                k += 1
+        return tuple(ids)
+
+    @cached_property
+    def edge_darts(self) -> tuple[int, ...]:
+        """The lower dart of each edge, indexed by edge id."""
+        out = [-1] * self.num_edges
+        for d in range(self.num_darts - 1, -1, -1):
+            out[self._edge_ids[d]] = d
+        return tuple(out)
+
+    def edge_corners(self, e: int) -> tuple[int, int]:
+        d = self.edge_darts[e]
+        return self.origin_of[d], self.target(d)
+
+    # -- loops ------------------------------------------------------------------------
+    @cached_property
+    def loop_system(self) -> LoopSystem:
+        """The loops (strips) of the map; raises ``OddFaceError`` on an odd face."""
+        from polyloops.core.loops import trace_loops
+
+        return trace_loops(self)
+
+    # -- value semantics --------------------------------------------------------------
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, HalfEdgeMap) and self.faces == other.faces
+
+    def __hash__(self) -> int:
+        return hash(self.faces)
+
+    def __repr__(self) -> str:
+        return (f"HalfEdgeMap(corners={self.num_corners}, edges={self.num_edges}, "
+                f"faces={self.num_faces}, genus={self.genus})")
+
+    def reversed(self) -> HalfEdgeMap:
+        """The same surface with every face's orientation reversed (the inverse)."""
+        return HalfEdgeMap.from_faces([tuple(reversed(f)) for f in self.faces])

@@ -1,0 +1,91 @@
+"""Polycubes: a quad map with an integer position per corner (Definition 1).
+
+>>> from polyloops.core.examples import load_example
+>>> box = load_example("box-2x1x1")
+>>> box.map.num_corners, box.map.num_faces, box.bounding_box()
+(12, 10, ((0, 0, 0), (2, 1, 1)))
+>>> str(box.direction(box.map.dart(0, 1)))
+'+Z'
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+from polyloops.core.directions import Direction
+from polyloops.core.halfedge import FaceListError, HalfEdgeMap
+
+if TYPE_CHECKING:
+    from polyloops.core.structure import LoopStructure
+
+Position = tuple[int, int, int]
+
+
+@dataclass(frozen=True, eq=False)
+class Polycube:
+    """A closed oriented quad map with corner positions in Z^3; immutable.
+
+    The constructor does not check Definition 1; use
+    :func:`polyloops.verify.check_polycube` for that.
+    """
+
+    map: HalfEdgeMap
+    positions: tuple[Position, ...]
+
+    def __post_init__(self) -> None:
+        bad = [f for f, face in enumerate(self.map.faces) if len(face) != 4]
+        if bad:
+            raise FaceListError(f"face {bad[0]} has {len(self.map.faces[bad[0]])} corners; "
+                                "polycube faces are quads")
+        if len(self.positions) != self.map.num_corners:
+            raise FaceListError(f"{len(self.positions)} positions for {self.map.num_corners} corners")
+
+    @classmethod
+    def from_faces(cls, faces: Iterable[Sequence[int]],
+                   positions: Iterable[Sequence[int]]) -> Polycube:
+        pos = tuple((int(p[0]), int(p[1]), int(p[2])) for p in positions)
+        return cls(HalfEdgeMap.from_faces(faces), pos)
+
+    @property
+    def faces(self) -> tuple[tuple[int, ...], ...]:
+        return self.map.faces
+
+    @property
+    def genus(self) -> int:
+        return self.map.genus
+
+    def direction(self, d: int) -> Direction | None:
+        """Direction of dart ``d``, or ``None`` unless its ends differ in exactly one coordinate."""
+        m = self.map
+        return Direction.between(self.positions[m.origin(d)], self.positions[m.target(d)])
+
+    def corner_directions(self, corner: int) -> tuple[Direction | None, ...]:
+        """Directions of the edges at a corner, counter-clockwise seen from outside."""
+        return tuple(self.direction(d) for d in self.map.outgoing(corner))
+
+    def bounding_box(self) -> tuple[Position, Position]:
+        lo = tuple(min(p[i] for p in self.positions) for i in range(3))
+        hi = tuple(max(p[i] for p in self.positions) for i in range(3))
+        return (lo[0], lo[1], lo[2]), (hi[0], hi[1], hi[2])
+
+    def inverse(self) -> Polycube:
+        """Every face reversed; order-equivalent to ``self`` (Definition 2)."""
+        return Polycube(self.map.reversed(), self.positions)
+
+    def dualize(self) -> LoopStructure:
+        """The oriented loop structure of Theorem 1; see :func:`polyloops.core.duality.dualize`."""
+        from polyloops.core.duality import dualize
+
+        return dualize(self)
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, Polycube) and self.map == other.map and self.positions == other.positions
+
+    def __hash__(self) -> int:
+        return hash((self.map, self.positions))
+
+    def __repr__(self) -> str:
+        return (f"Polycube(corners={self.map.num_corners}, faces={self.map.num_faces}, "
+                f"genus={self.genus})")

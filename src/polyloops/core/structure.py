@@ -1,0 +1,246 @@
+"""Loop structures: the loops of a map with axis labels and, optionally, sides.
+
+A :class:`LoopStructure` is a view of a :class:`HalfEdgeMap`.  In the paper's
+words, and in the primal terms of ``MATH.md``:
+
+=====================  ======================================
+loop structure         map
+=====================  ======================================
+loop                   strip of faces (:attr:`loops`)
+loop segment           edge (:attr:`segments`)
+loop region            corner (:attr:`regions`)
+loop intersection      face (:attr:`intersections`)
+=====================  ======================================
+
+Each loop has an axis label.  An *oriented* structure also gives each loop a
+sign: ``+1`` when the loop's ``+`` side is on the right of its stored walk
+(see :mod:`polyloops.core.loops`).  A *labelled* structure has ``signs=None``;
+it is the input of the orientation solvers.
+
+>>> from polyloops.core.examples import load_example
+>>> cube = load_example("cube").dualize()
+>>> [str(a) for a in cube.axes], cube.genus
+(['Y', 'Z', 'X'], 0)
+>>> sorted(str(d) for d in cube.corner_directions(0))
+['+X', '+Y', '+Z']
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import dataclass
+from functools import cached_property
+from typing import TYPE_CHECKING
+
+from polyloops.core.directions import Axis, Direction
+from polyloops.core.halfedge import HalfEdgeMap
+from polyloops.core.loops import Loop, LoopSystem
+
+if TYPE_CHECKING:
+    import networkx as nx
+
+    from polyloops.core.polycube import Polycube
+    from polyloops.core.zones import Zones
+
+
+class LabelError(ValueError):
+    """Edge labels that do not describe a loop structure on the map."""
+
+
+@dataclass(frozen=True, eq=False)
+class LoopStructure:
+    """Axis labels (and optionally signs) on the loops of a map; immutable."""
+
+    map: HalfEdgeMap
+    axes: tuple[Axis, ...]
+    signs: tuple[int, ...] | None = None
+
+    def __post_init__(self) -> None:
+        n = len(self.map.loop_system.loops)
+        if len(self.axes) != n:
+            raise LabelError(f"{len(self.axes)} axis labels for {n} loops")
+        if self.signs is not None and (len(self.signs) != n or any(s not in (1, -1) for s in self.signs)):
+            raise LabelError(f"signs must be {n} values of +1 or -1")
+
+    # -- construction -----------------------------------------------------------------
+    @classmethod
+    def from_edge_labels(cls, faces: Iterable[Sequence[int]],
+                         labels: Mapping[tuple[int, int], Direction | Axis]) -> LoopStructure:
+        """Build from one label per edge: ``{(u, v): Direction}`` or ``{(u, v): Axis}``.
+
+        ``(u, v): +X`` says that ``v`` lies on the ``+`` side of the X-loop
+        crossing edge ``uv``.  Every edge must be labelled exactly once; labels
+        must all be signed or all unsigned, and agree along each loop.
+        """
+        m = HalfEdgeMap.from_faces(faces)
+        system = m.loop_system
+        dart_label: dict[int, Direction | Axis] = {}
+        for (u, v), label in labels.items():
+            try:
+                d = m.dart(u, v)
+            except KeyError:
+                raise LabelError(f"edge ({u}, {v}) is not an edge of the faces") from None
+            if m.twin[d] in dart_label or d in dart_label:
+                raise LabelError(f"edge ({u}, {v}) is labelled twice")
+            dart_label[d] = label
+        for e, d in enumerate(m.edge_darts):
+            if d not in dart_label and m.twin[d] not in dart_label:
+                u, v = m.edge_corners(e)
+                raise LabelError(f"edge ({u}, {v}) is missing from the edge labels")
+        signed = {isinstance(lab, Direction) for lab in dart_label.values()}
+        if len(signed) > 1:
+            raise LabelError("some edges have a signed label (+X) and others an unsigned one (X)")
+        oriented = signed == {True}
+        axes: list[Axis] = []
+        signs: list[int] = []
+        for lp in system.loops:
+            seen: set[tuple[Axis, int]] = set()
+            for d in lp.darts:
+                if d in dart_label:
+                    lab, flip = dart_label[d], 1
+                else:
+                    lab, flip = dart_label[m.twin[d]], -1
+                if isinstance(lab, Direction):
+                    seen.add((lab.axis, lab.sign * flip))
+                else:
+                    seen.add((Axis(lab), 0))
+            if len(seen) > 1:
+                u, v = m.edge_corners(lp.edges[0])
+                what = "signs" if len({a for a, _ in seen}) == 1 else "axis labels"
+                raise LabelError(f"{what} disagree along the loop through edge ({u}, {v})")
+            (axis, sign), = seen
+            axes.append(axis)
+            signs.append(sign)
+        return cls(m, tuple(axes), tuple(signs) if oriented else None)
+
+    # -- the paper's vocabulary ---------------------------------------------------------
+    @property
+    def oriented(self) -> bool:
+        return self.signs is not None
+
+    @property
+    def loop_system(self) -> LoopSystem:
+        return self.map.loop_system
+
+    @property
+    def loops(self) -> tuple[Loop, ...]:
+        return self.map.loop_system.loops
+
+    @property
+    def segments(self) -> range:
+        """Loop segments are the edges of the map."""
+        return range(self.map.num_edges)
+
+    @property
+    def regions(self) -> range:
+        """Loop regions are the corners of the map."""
+        return range(self.map.num_corners)
+
+    @property
+    def intersections(self) -> range:
+        """Loop intersections are the faces of the map."""
+        return range(self.map.num_faces)
+
+    @property
+    def genus(self) -> int:
+        return self.map.genus
+
+    def loop_of_segment(self, e: int) -> int:
+        return self.map.loop_system.loop_of_dart[self.map.edge_darts[e]]
+
+    def region_segments(self, corner: int) -> list[int]:
+        """The segments bounding a region, counter-clockwise."""
+        return [self.map.edge_id(d) for d in self.map.outgoing(corner)]
+
+    def loops_by_axis(self) -> dict[Axis, list[int]]:
+        out: dict[Axis, list[int]] = {a: [] for a in Axis}
+        for i, a in enumerate(self.axes):
+            out[a].append(i)
+        return out
+
+    # -- labels of darts ----------------------------------------------------------------
+    def axis_of_dart(self, d: int) -> Axis:
+        return self.axes[self.map.loop_system.loop_of_dart[d]]
+
+    def direction(self, d: int) -> Direction:
+        """The direction of dart ``d`` (oriented structures only)."""
+        return self._directions[d]
+
+    @cached_property
+    def _directions(self) -> tuple[Direction, ...]:
+        if self.signs is None:
+            raise ValueError("a labelled loop structure has no directions; orient it first")
+        ls = self.map.loop_system
+        return tuple(
+            Direction.of(self.axes[ls.loop_of_dart[d]], self.signs[ls.loop_of_dart[d]] * ls.side_of_dart[d])
+            for d in range(self.map.num_darts)
+        )
+
+    def corner_directions(self, corner: int) -> tuple[Direction, ...]:
+        """Directions of the edges at a corner, counter-clockwise seen from outside."""
+        return tuple(self._directions[d] for d in self.map.outgoing(corner))
+
+    def edge_labels(self) -> list[tuple[int, int, str]]:
+        """One ``(u, v, label)`` per edge, as in the JSON format."""
+        out = []
+        for d in self.map.edge_darts:
+            lab = str(self.direction(d)) if self.oriented else str(self.axis_of_dart(d))
+            out.append((self.map.origin(d), self.map.target(d), lab))
+        return out
+
+    # -- zones and level graphs ---------------------------------------------------------
+    def zones(self, axis: Axis) -> Zones:
+        """The ``axis``-zones: corners joined by edges whose label is not ``axis``."""
+        return self._zones[axis]
+
+    @cached_property
+    def _zones(self) -> tuple[Zones, ...]:
+        from polyloops.core.zones import compute_zones
+
+        return tuple(compute_zones(self, a) for a in Axis)
+
+    def level_graph(self, axis: Axis) -> nx.MultiDiGraph:
+        """A node per ``axis``-zone, an arc per ``axis``-loop from its - side to its + side."""
+        from polyloops.core.zones import level_graph
+
+        return level_graph(self, axis)
+
+    # -- derived structures -------------------------------------------------------------
+    def with_signs(self, signs: Sequence[int] | None) -> LoopStructure:
+        return LoopStructure(self.map, self.axes, None if signs is None else tuple(signs))
+
+    def forget_orientation(self) -> LoopStructure:
+        return self.with_signs(None)
+
+    def flipped(self, loop: int) -> LoopStructure:
+        """The same structure with the sides of one loop exchanged."""
+        if self.signs is None:
+            raise ValueError("a labelled loop structure has no sides to flip")
+        signs = list(self.signs)
+        signs[loop] = -signs[loop]
+        return self.with_signs(signs)
+
+    def relabelled(self, loop: int, axis: Axis) -> LoopStructure:
+        axes = list(self.axes)
+        axes[loop] = axis
+        return LoopStructure(self.map, tuple(axes), self.signs)
+
+    def primalize(self) -> Polycube:
+        """The polycube of Theorem 2; see :func:`polyloops.core.duality.primalize`."""
+        from polyloops.core.duality import primalize
+
+        return primalize(self)
+
+    # -- value semantics ----------------------------------------------------------------
+    def __eq__(self, other: object) -> bool:
+        return (isinstance(other, LoopStructure) and self.map == other.map
+                and self.axes == other.axes and self.signs == other.signs)
+
+    def __hash__(self) -> int:
+        return hash((self.map, self.axes, self.signs))
+
+    def __repr__(self) -> str:
+        counts = {a.name: self.axes.count(a) for a in Axis}
+        kind = "oriented" if self.oriented else "labelled"
+        return (f"LoopStructure({kind}, regions={self.map.num_corners}, "
+                f"loops={counts}, genus={self.genus})")

@@ -1,0 +1,106 @@
+"""Zones, level graphs and zone genera.
+
+The ``Delta``-zones partition the corners: two corners are in one zone when a
+path of edges not crossed by ``Delta``-loops joins them.  The ``Delta``-graph
+(level graph) has a node per zone and an arc per ``Delta``-loop, from the zone
+on its ``-`` side to the zone on its ``+`` side.
+
+A zone, as a piece of the surface cut along the ``Delta``-loops, retracts onto
+its corners, its non-``Delta`` edges and the faces that no ``Delta``-loop
+crosses.  With ``chi = V - E + F`` of that complex and ``b`` the number of
+``Delta``-loop sides on its boundary, its genus is ``(2 - b - chi) / 2``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import networkx as nx
+
+from polyloops.core.directions import Axis
+
+if TYPE_CHECKING:
+    from polyloops.core.structure import LoopStructure
+
+
+@dataclass(frozen=True)
+class Zones:
+    """The zones of one axis: ``zone_of[corner]``, zones numbered by their lowest corner."""
+
+    axis: Axis
+    zone_of: tuple[int, ...]
+    count: int
+    # For each loop of this axis: (zone of its left side, zone of its right side)
+    # with respect to the loop's stored walk.
+    sides: dict[int, tuple[int, int]]
+    genera: tuple[int, ...]
+
+    def members(self) -> list[list[int]]:
+        out: list[list[int]] = [[] for _ in range(self.count)]
+        for c, z in enumerate(self.zone_of):
+            out[z].append(c)
+        return out
+
+    @property
+    def total_genus(self) -> int:
+        """Gamma of Theorem 3: the sum of the genera of the zones."""
+        return sum(self.genera)
+
+
+def compute_zones(ls: LoopStructure, axis: Axis) -> Zones:
+    m = ls.map
+    system = m.loop_system
+    parent = list(range(m.num_corners))
+
+    def find(a: int) -> int:
+        while parent[a] != a:
+            parent[a] = parent[parent[a]]
+            a = parent[a]
+        return a
+
+    for d in m.edge_darts:
+        if ls.axes[system.loop_of_dart[d]] != axis:
+            a, b = find(m.origin(d)), find(m.target(d))
+            if a != b:
+                parent[max(a, b)] = min(a, b)
+    label: dict[int, int] = {}
+    zone_of = []
+    for c in range(m.num_corners):
+        zone_of.append(label.setdefault(find(c), len(label)))
+    count = len(label)
+
+    sides: dict[int, tuple[int, int]] = {}
+    boundary = [0] * count
+    for lp in system.loops:
+        if ls.axes[lp.id] == axis:
+            d = lp.darts[0]
+            left, right = zone_of[m.origin(d)], zone_of[m.target(d)]
+            sides[lp.id] = (left, right)
+            boundary[left] += 1
+            boundary[right] += 1
+
+    chi = [0] * count
+    for c in range(m.num_corners):
+        chi[zone_of[c]] += 1
+    for d in m.edge_darts:
+        if ls.axes[system.loop_of_dart[d]] != axis:
+            chi[zone_of[m.origin(d)]] -= 1
+    for f in range(m.num_faces):
+        if all(ls.axes[i] != axis for i in system.loops_of_face(m, f)):
+            chi[zone_of[m.faces[f][0]]] += 1
+    genera = tuple((2 - boundary[z] - chi[z]) // 2 for z in range(count))
+    return Zones(axis, tuple(zone_of), count, sides, genera)
+
+
+def level_graph(ls: LoopStructure, axis: Axis) -> nx.MultiDiGraph:
+    """The ``axis``-graph: arcs keyed by loop id, from the ``-`` zone to the ``+`` zone."""
+    if ls.signs is None:
+        raise ValueError("a labelled loop structure has no level graphs; orient it first")
+    zones = ls.zones(axis)
+    g = nx.MultiDiGraph(axis=str(axis))
+    g.add_nodes_from(range(zones.count))
+    for loop, (left, right) in zones.sides.items():
+        minus, plus = (left, right) if ls.signs[loop] > 0 else (right, left)
+        g.add_edge(minus, plus, key=loop)
+    return g

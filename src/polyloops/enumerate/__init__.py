@@ -1,0 +1,1 @@
+"""Enumerations: corner configurations, loop moves, catalogs."""

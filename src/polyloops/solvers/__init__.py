@@ -1,0 +1,1 @@
+"""Orientation solvers for labelled loop structures (exhaustive, SAT, SMT)."""

@@ -1,0 +1,81 @@
+"""Definition 1: is a quad mesh with integer corner positions a polycube?
+
+The conditions on positions are checked on the raw faces, so they are reported
+even when the faces do not form a closed surface.
+
+>>> from polyloops.core.examples import load_example
+>>> check_polycube(load_example("l-shape")).valid
+True
+"""
+
+from __future__ import annotations
+
+from collections import defaultdict
+from collections.abc import Sequence
+
+from polyloops.core.directions import Direction
+from polyloops.core.halfedge import HalfEdgeMap, MapError
+from polyloops.core.polycube import Polycube
+from polyloops.verify.report import Report, ReportBuilder
+from polyloops.verify.surface import add_surface_checks
+
+DEF1 = "Definition 1"
+
+
+def _is_int(x: object) -> bool:
+    return isinstance(x, int) and not isinstance(x, bool)
+
+
+def check_polycube_faces(faces: Sequence[Sequence[int]], positions: Sequence[Sequence[int]]) -> Report:
+    """Check raw faces and positions against Definition 1, collecting every violation."""
+    rb = ReportBuilder("polycube", DEF1)
+    rb.condition("quad", "every face is a quadrilateral", [
+        rb.violation("quad", f"face {f} has {len(face)} corners", face=f)
+        for f, face in enumerate(faces) if len(face) != 4])
+    try:
+        HalfEdgeMap.from_faces(faces)
+        problems = None
+    except MapError as err:
+        problems = err.problems
+    add_surface_checks(rb, problems)
+
+    rb.condition("1", "each corner has a position in Z^3", [
+        rb.violation("1", f"corner {c} has position {list(p)}, not three integers", corner=c)
+        for c, p in enumerate(positions) if len(p) != 3 or not all(_is_int(x) for x in p)])
+
+    neighbours: dict[int, set[int]] = defaultdict(set)
+    for face in faces:
+        for i, u in enumerate(face):
+            v = face[(i + 1) % len(face)]
+            neighbours[u].add(v)
+            neighbours[v].add(u)
+    rb.condition("2", "each corner has degree at least 3", [
+        rb.violation("2", f"corner {c} has degree {len(nb)}", corner=c, degree=len(nb))
+        for c, nb in sorted(neighbours.items()) if len(nb) < 3])
+
+    bad_edges = []
+    overlaps = []
+    for u, nb in sorted(neighbours.items()):
+        by_direction: dict[Direction, list[int]] = defaultdict(list)
+        for v in sorted(nb):
+            d = Direction.between(tuple(positions[u]), tuple(positions[v]))
+            if d is None:
+                if u < v:
+                    bad_edges.append(rb.violation(
+                        "3", f"edge ({u}, {v}) joins {list(positions[u])} and {list(positions[v])}, "
+                        "which do not differ in exactly one coordinate", edge=[u, v]))
+            else:
+                by_direction[d].append(v)
+        for d, vs in sorted(by_direction.items()):
+            if len(vs) > 1:
+                overlaps.append(rb.violation(
+                    "4", f"corner {u} has {len(vs)} edges in direction {d} (to corners {vs})",
+                    corner=u, direction=str(d), neighbours=vs))
+    rb.condition("3", "positions of adjacent corners differ in exactly one coordinate", bad_edges)
+    rb.condition("4", "edges incident to the same corner do not overlap", overlaps)
+    return rb.build()
+
+
+def check_polycube(q: Polycube) -> Report:
+    """Check a :class:`Polycube` against Definition 1."""
+    return check_polycube_faces(q.faces, q.positions)

@@ -1,0 +1,179 @@
+"""Definitions 3 and 4 and Theorem 3, on loop structures.
+
+A :class:`~polyloops.core.structure.LoopStructure` is built on a closed
+oriented map, so some conditions hold by construction of the representation;
+the reports say so instead of skipping them.
+
+>>> from polyloops.core.examples import load_example
+>>> r = check_polycube_loop_structure(load_example("torus-cycle"))
+>>> r.valid, sorted({v.condition for v in r.violations})
+(False, ['5'])
+"""
+
+from __future__ import annotations
+
+from collections import defaultdict
+from dataclasses import dataclass
+
+import networkx as nx
+
+from polyloops.core.directions import Axis, Direction
+from polyloops.core.structure import LoopStructure
+from polyloops.verify.report import NOT_APPLICABLE, Report, ReportBuilder, Violation
+
+DEF3 = "Definition 3"
+DEF4 = "Definition 4"
+THM3 = "Theorem 3"
+
+_TRANSVERSAL = "a loop crosses each face it visits through opposite edges"
+_DISK = "the map is built only when the faces at each corner form one fan"
+
+
+def _many_loops(rb: ReportBuilder, ls: LoopStructure, condition: str) -> list[Violation]:
+    m = ls.map
+    return [
+        rb.violation(condition, f"face {f} is a {len(face)}-gon: {len(face) // 2} loops meet in it",
+                     face=f, loops=list(m.loop_system.loops_of_face(m, f)))
+        for f, face in enumerate(m.faces) if len(face) != 4
+    ]
+
+
+def check_quad_loop_structure(ls: LoopStructure) -> Report:
+    """Definition 3 (Campen et al.): the loop structure of some quad mesh."""
+    rb = ReportBuilder("loop-structure", DEF3)
+    rb.given("1", "all loop intersections are transversal", _TRANSVERSAL)
+    rb.condition("2", "no three loops intersect at a single point", _many_loops(rb, ls, "2"))
+    rb.given("3", "each loop region has the topology of a disk", _DISK)
+    rb.given("4", "each loop region is bounded by at least two loop segments",
+             "a face visits distinct corners, so each corner has two distinct neighbours")
+    return rb.build()
+
+
+def crossing_violations(rb: ReportBuilder, ls: LoopStructure, condition: str = "3") -> list[Violation]:
+    """Loops that cross themselves, and crossings of two loops with the same axis.
+
+    Both break Condition 3 for every choice of sides (Theorem 1 of the paper
+    and the remark after it), so they are reported for labelled structures too.
+    """
+    m = ls.map
+    out = []
+    for lp in ls.loops:
+        if lp.self_crossings:
+            out.append(rb.violation(condition, f"loop {lp.id} ({ls.axes[lp.id]}) crosses itself "
+                                    f"in faces {list(lp.self_crossings)}",
+                                    loop=lp.id, faces=list(lp.self_crossings)))
+    for f in range(m.num_faces):
+        loops = sorted(set(m.loop_system.loops_of_face(m, f)))
+        by_axis: dict[Axis, list[int]] = defaultdict(list)
+        for i in loops:
+            by_axis[ls.axes[i]].append(i)
+        for axis, same in sorted(by_axis.items()):
+            if len(same) > 1:
+                out.append(rb.violation(
+                    condition, f"loops {same} both have axis {axis} and cross in face {f}",
+                    face=f, loops=same, axis=str(axis)))
+    return out
+
+
+def repeated_direction_violations(rb: ReportBuilder, ls: LoopStructure) -> list[Violation]:
+    m = ls.map
+    out = []
+    for c in range(m.num_corners):
+        by_direction: dict[Direction, list[int]] = defaultdict(list)
+        for d in m.outgoing(c):
+            by_direction[ls.direction(d)].append(d)
+        for direction, darts in sorted(by_direction.items()):
+            if len(darts) > 1:
+                out.append(rb.violation(
+                    "3", f"region {c} has {len(darts)} segments with axis {direction.axis} "
+                    f"and side {'+' if direction.sign > 0 else '-'} (edges to corners "
+                    f"{[m.target(d) for d in darts]})",
+                    region=c, direction=str(direction), segments=[m.edge_id(d) for d in darts]))
+    return out
+
+
+def cycle_violations(rb: ReportBuilder, ls: LoopStructure) -> list[Violation]:
+    """One witness cycle per strongly connected part of each level graph."""
+    out = []
+    for axis in Axis:
+        g = ls.level_graph(axis)
+        for part in nx.strongly_connected_components(g):
+            sub = g.subgraph(part)
+            if len(part) == 1 and sub.number_of_edges() == 0:
+                continue
+            cycle = nx.find_cycle(sub)
+            zones = [u for u, _, _ in cycle]
+            loops = [k for _, _, k in cycle]
+            out.append(rb.violation("5", f"the {axis}-graph has a cycle through zones {zones} "
+                                    f"along loops {loops}", axis=str(axis), zones=zones, loops=loops))
+    return out
+
+
+def check_polycube_loop_structure(ls: LoopStructure) -> Report:
+    """Definition 4.  For a labelled structure, Conditions 3 and 5 need sides:
+    only the side-independent part of Condition 3 (no loop crosses itself or a
+    loop of its own axis) is checked, and Condition 5 is reported as not applicable."""
+    m = ls.map
+    rb = ReportBuilder("loop-structure", DEF4)
+    rb.condition("1", "no three loops intersect at a single point", _many_loops(rb, ls, "1"))
+    rb.condition("2", "each loop region is bounded by at least three loop segments", [
+        rb.violation("2", f"region {c} is bounded by {m.degree(c)} segments", region=c, segments=m.degree(c))
+        for c in range(m.num_corners) if m.degree(c) < 3])
+    statement3 = "within each region boundary, no two segments have the same axis label and side label"
+    found = crossing_violations(rb, ls)
+    if ls.oriented:
+        found += repeated_direction_violations(rb, ls)
+        rb.condition("3", statement3, found)
+    elif found:
+        rb.condition("3", statement3, found)
+    else:
+        rb.given("3", statement3, "labelled structure: only checked that no loop crosses itself "
+                 "or a loop of its own axis; sides are needed for the rest", status=NOT_APPLICABLE)
+    rb.given("4", "each loop region has the topology of a disk", _DISK)
+    if ls.oriented:
+        rb.condition("5", "the level graphs are acyclic", cycle_violations(rb, ls))
+    else:
+        rb.given("5", "the level graphs are acyclic", "labelled structure: level graphs need sides",
+                 status=NOT_APPLICABLE)
+    return rb.build()
+
+
+@dataclass(frozen=True)
+class GenusBalance:
+    """Both sides of Theorem 3 for one level graph: ``|E| = g + |V| - 1 - Gamma``."""
+
+    axis: Axis
+    edges: int
+    vertices: int
+    genus: int
+    gamma: int
+
+    @property
+    def rhs(self) -> int:
+        return self.genus + self.vertices - 1 - self.gamma
+
+    @property
+    def holds(self) -> bool:
+        return self.edges == self.rhs
+
+    def to_json(self) -> dict[str, object]:
+        return {"axis": str(self.axis), "E": self.edges, "V": self.vertices, "g": self.genus,
+                "Gamma": self.gamma, "rhs": self.rhs, "holds": self.holds}
+
+
+def genus_balance(ls: LoopStructure) -> list[GenusBalance]:
+    """Theorem 3's two sides for the X-, Y- and Z-graphs (labels suffice: no sides needed)."""
+    out = []
+    for axis in Axis:
+        zones = ls.zones(axis)
+        out.append(GenusBalance(axis, ls.axes.count(axis), zones.count, ls.genus, zones.total_genus))
+    return out
+
+
+def check_theorem3(ls: LoopStructure) -> Report:
+    rb = ReportBuilder("loop-structure", THM3)
+    for b in genus_balance(ls):
+        rb.condition(str(b.axis), f"{b.axis}-graph: |E| = g + |V| - 1 - Gamma", [] if b.holds else [
+            rb.violation(str(b.axis), f"{b.axis}-graph: |E| = {b.edges} but g + |V| - 1 - Gamma = "
+                         f"{b.genus} + {b.vertices} - 1 - {b.gamma} = {b.rhs}", **b.to_json())])
+    return rb.build()

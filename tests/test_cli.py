@@ -1,0 +1,162 @@
+"""The command line: exit statuses, one-line errors, JSON output."""
+
+import json
+import subprocess
+import sys
+
+import pytest
+
+from polyloops.cli import main
+from polyloops.core.examples import EXAMPLES, load_example
+from polyloops.core.formats import dumps, loads
+
+COMMANDS = ["examples", "verify", "primalize", "dualize", "info"]
+
+
+def run(capsys, *argv):
+    status = main(list(argv))
+    out, err = capsys.readouterr()
+    return status, out, err
+
+
+@pytest.mark.parametrize("command", [None, *COMMANDS])
+def test_help(capsys, command):
+    with pytest.raises(SystemExit) as exit_:
+        main([command, "--help"] if command else ["--help"])
+    assert exit_.value.code == 0
+    assert "usage" in capsys.readouterr().out
+
+
+def test_usage_errors(capsys):
+    for argv in ([], ["nope"], ["verify"], ["verify", "example:cube", "--bogus"]):
+        with pytest.raises(SystemExit) as exit_:
+            main(argv)
+        assert exit_.value.code == 2
+        err = capsys.readouterr().err
+        assert "Traceback" not in err
+
+
+@pytest.mark.parametrize("name", sorted(EXAMPLES))
+def test_verify_examples(capsys, name):
+    status, out, _ = run(capsys, "verify", f"example:{name}", "--json")
+    data = json.loads(out)
+    assert set(data) >= {"valid", "kind", "checks", "violations"}
+    assert data["valid"] == EXAMPLES[name].valid
+    assert status == (0 if EXAMPLES[name].valid else 1)
+    for v in data["violations"]:
+        assert v["definition"] and v["condition"]
+
+
+def test_verify_text(capsys):
+    status, out, _ = run(capsys, "verify", "example:double-plus-x")
+    assert status == 1
+    assert "Definition 4 condition 3" in out
+
+
+def test_info_json(capsys):
+    status, out, _ = run(capsys, "info", "example:ring", "--json")
+    data = json.loads(out)
+    assert status == 0
+    assert data["genus"] == 1
+    assert set(data["loops"]) == {"X", "Y", "Z"}
+    ring = load_example("ring")
+    assert data["corners"] == ring.map.num_corners and data["faces"] == ring.map.num_faces
+    assert all(data["theorem3"][a]["holds"] for a in "XYZ")
+
+
+def test_info_text_for_loop_structure(capsys):
+    status, out, _ = run(capsys, "info", "example:torus-cycle")
+    assert status == 0 and "HAS A CYCLE" in out
+
+
+def test_dualize_primalize_files(capsys, tmp_path):
+    ls_path = tmp_path / "l.json"
+    assert run(capsys, "dualize", "example:l-shape", "-o", str(ls_path))[0] == 0
+    assert loads(ls_path.read_text()) == load_example("l-shape").dualize()
+    q_path = tmp_path / "q.json"
+    assert run(capsys, "primalize", str(ls_path), "-o", str(q_path))[0] == 0
+    assert loads(q_path.read_text()).dualize() == loads(ls_path.read_text())
+    obj = tmp_path / "q.obj"
+    assert run(capsys, "primalize", str(ls_path), "-o", str(obj))[0] == 0
+    assert obj.read_text().startswith("# polyloops")
+    status, out, _ = run(capsys, "dualize", "example:cube")
+    assert status == 0 and loads(out) == load_example("cube").dualize()
+
+
+def test_primalize_invalid_is_exit_1(capsys):
+    status, _, err = run(capsys, "primalize", "example:torus-cycle")
+    assert status == 1 and "condition 5" in err and err.count("\n") == 1
+
+
+def test_wrong_kind_is_exit_2(capsys):
+    status, _, err = run(capsys, "primalize", "example:cube")
+    assert status == 2 and "example:cube" in err
+    status, _, err = run(capsys, "dualize", "example:ring")
+    assert status == 0
+    status, _, err = run(capsys, "dualize", "example:torus-cycle")
+    assert status == 2
+
+
+def _cube():
+    return json.loads(dumps(load_example("cube")))
+
+
+def _ls():
+    return json.loads(dumps(load_example("cube").dualize()))
+
+
+def _set_label(d, label):
+    d["edges"][0][2] = label
+    return d
+
+
+BAD_FILES = {
+    "bad-json": ("{ nope", "not valid JSON"),
+    "float": ({**_cube(), "positions": [[0.5, 0, 0], *_cube()["positions"][1:]]}, "non-integer"),
+    "hexagon": ({**_cube(), "faces": [[0, 1, 2, 3, 4, 5], *_cube()["faces"][1:]]}, "quads"),
+    "unknown-label": (_set_label(_ls(), "+Q"), "unknown label"),
+    "missing-edge": ({**_ls(), "edges": _ls()["edges"][1:]}, "missing"),
+    "disagree": (_set_label(_ls(), "+Z" if _ls()["edges"][0][2][1] != "Z" else "+X"), "disagree"),
+    "open-surface": ({**_ls(), "faces": _ls()["faces"][:-1]}, "not a closed oriented surface"),
+}
+
+
+@pytest.mark.parametrize("case", sorted(BAD_FILES))
+@pytest.mark.parametrize("command", ["verify", "info", "dualize", "primalize"])
+def test_bad_files_exit_2_with_one_line(capsys, tmp_path, case, command):
+    content, words = BAD_FILES[case]
+    path = tmp_path / f"{case}.json"
+    path.write_text(content if isinstance(content, str) else json.dumps(content))
+    status, _, err = run(capsys, command, str(path))
+    if case == "open-surface" and command == "verify":
+        assert status == 1  # a well-formed file that fails the surface conditions
+        return
+    assert status == 2
+    assert str(path) in err and words in err
+    assert err.count("\n") == 1 and "Traceback" not in err
+
+
+def test_missing_file_and_unknown_example(capsys, tmp_path):
+    status, _, err = run(capsys, "verify", str(tmp_path / "nothing.json"))
+    assert status == 2 and "cannot read" in err
+    status, _, err = run(capsys, "verify", "example:nothing")
+    assert status == 2 and "unknown example" in err
+
+
+def test_unwritable_output(capsys, tmp_path):
+    status, _, err = run(capsys, "dualize", "example:cube", "-o", str(tmp_path / "no" / "such" / "x.json"))
+    assert status == 2 and "cannot write" in err
+    assert not list(tmp_path.rglob("*.tmp"))
+
+
+def test_module_entry_point():
+    res = subprocess.run([sys.executable, "-m", "polyloops", "verify", "example:torus-cycle", "--json"],
+                         capture_output=True, text=True, check=False)
+    assert res.returncode == 1
+    assert json.loads(res.stdout)["valid"] is False
+
+
+def test_examples_listing(capsys):
+    status, out, _ = run(capsys, "examples", "--json")
+    assert status == 0
+    assert {row["name"] for row in json.loads(out)} == set(EXAMPLES)
