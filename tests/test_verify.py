@@ -147,3 +147,13 @@ def test_odd_faces_have_no_loops():
     tetra = [[0, 1, 2], [0, 3, 1], [1, 3, 2], [0, 2, 3]]
     with pytest.raises(OddFaceError):
         _ = HalfEdgeMap.from_faces(tetra).loop_system
+
+
+@pytest.mark.parametrize("kind, genus", [("blob", 0), ("frame1", 1), ("frame2", 2)])
+def test_strategies_cover_genus_0_to_2(kind, genus):
+    from strategies import random_polycube
+
+    for seed in range(10):
+        q = random_polycube(seed, kind, 8)
+        assert q.genus == genus
+        assert check_polycube(q).valid

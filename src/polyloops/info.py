@@ -59,6 +59,7 @@ def describe(obj: Structure) -> dict[str, Any]:
             ls = dualize(obj)
         except DualityError as err:
             out["dual"] = f"none: {err}"
+            out["loops"] = None
     else:
         ls = obj
     if ls is not None:
@@ -77,7 +78,7 @@ def format_summary(s: dict[str, Any]) -> str:
         lines.append(f"box       {s['bounding_box'][0]} .. {s['bounding_box'][1]}")
     if "dual" in s:
         lines.append(f"dual      {s['dual']}")
-    if "loops" in s:
+    if s.get("loops") is not None:
         lines.append("loops     " + "  ".join(f"{a}:{n}" for a, n in s["loops"].items())
                      + ("" if s["oriented"] else "   (labelled, not oriented)"))
         if s["self_crossing_loops"]:

@@ -27,6 +27,8 @@ from dataclasses import dataclass, field
 from functools import cached_property
 from typing import TYPE_CHECKING
 
+from networkx.utils import UnionFind
+
 if TYPE_CHECKING:
     from polyloops.core.loops import LoopSystem
 
@@ -171,25 +173,14 @@ class HalfEdgeMap:
 
     def _component_problems(self) -> list[MapProblem]:
         # The paper: a mesh is connected if every vertex can be reached from any other along edges.
-        comp = list(range(self.num_corners))
-
-        def find(a: int) -> int:
-            while comp[a] != a:
-                comp[a] = comp[comp[a]]
-                a = comp[a]
-            return a
-
+        parts = UnionFind(range(self.num_corners))
         for d in range(self.num_darts):
-            a, b = find(self.origin_of[d]), find(self.target(d))
-            if a != b:
-                comp[a] = b
-        parts: dict[int, list[int]] = defaultdict(list)
-        for c in range(self.num_corners):
-            parts[find(c)].append(c)
-        if len(parts) == 1:
+            parts.union(self.origin_of[d], self.target(d))
+        components = sorted(sorted(p) for p in parts.to_sets())
+        if len(components) == 1:
             return []
-        return [MapProblem("disconnected", f"the surface has {len(parts)} components",
-                           {"components": sorted(parts.values())})]
+        return [MapProblem("disconnected", f"the surface has {len(components)} components",
+                           {"components": components})]
 
     # -- sizes ------------------------------------------------------------------------
     @property

@@ -16,6 +16,8 @@ from __future__ import annotations
 from collections import defaultdict
 from collections.abc import Iterable
 
+from networkx.utils import UnionFind
+
 from polyloops.core.directions import Direction
 from polyloops.core.halfedge import HalfEdgeMap, MapError
 from polyloops.core.polycube import Polycube
@@ -62,17 +64,7 @@ def polycube_from_voxels(cells: Iterable[Cell]) -> Polycube:
     for f, (_, corners) in enumerate(faces):
         for i in range(4):
             by_edge[frozenset((corners[i], corners[(i + 1) % 4]))].append((f, i))
-    parent: dict[tuple[int, int], tuple[int, int]] = {}
-
-    def find(x: tuple[int, int]) -> tuple[int, int]:
-        parent.setdefault(x, x)
-        while parent[x] != x:
-            parent[x] = parent[parent[x]]
-            x = parent[x]
-        return x
-
-    def union(x: tuple[int, int], y: tuple[int, int]) -> None:
-        parent[find(x)] = find(y)
+    slots = UnionFind()
 
     for sides in by_edge.values():
         if len(sides) == 2:
@@ -84,13 +76,13 @@ def polycube_from_voxels(cells: Iterable[Cell]) -> Polycube:
             pairs = [tuple(v) for v in by_cell.values()]
         for (f, i), (g, j) in pairs:
             # Face f runs corners[i] -> corners[i+1]; face g runs the other way.
-            union((f, i), (g, (j + 1) % 4))
-            union((f, (i + 1) % 4), (g, j))
+            slots.union((f, i), (g, (j + 1) % 4))
+            slots.union((f, (i + 1) % 4), (g, j))
 
     classes: dict[tuple[int, int], list[tuple[int, int]]] = defaultdict(list)
     for f in range(len(faces)):
         for i in range(4):
-            classes[find((f, i))].append((f, i))
+            classes[slots[(f, i)]].append((f, i))
     ordered = sorted(classes.values(), key=lambda cls: (faces[cls[0][0]][1][cls[0][1]], min(cls)))
     corner_id: dict[tuple[int, int], int] = {}
     positions = []

@@ -17,6 +17,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import networkx as nx
+from networkx.utils import UnionFind
 
 from polyloops.core.directions import Axis
 
@@ -51,23 +52,13 @@ class Zones:
 def compute_zones(ls: LoopStructure, axis: Axis) -> Zones:
     m = ls.map
     system = m.loop_system
-    parent = list(range(m.num_corners))
-
-    def find(a: int) -> int:
-        while parent[a] != a:
-            parent[a] = parent[parent[a]]
-            a = parent[a]
-        return a
-
+    parts = UnionFind(range(m.num_corners))
     for d in m.edge_darts:
         if ls.axes[system.loop_of_dart[d]] != axis:
-            a, b = find(m.origin(d)), find(m.target(d))
-            if a != b:
-                parent[max(a, b)] = min(a, b)
+            parts.union(m.origin(d), m.target(d))
+    # Number zones by their lowest corner.
     label: dict[int, int] = {}
-    zone_of = []
-    for c in range(m.num_corners):
-        zone_of.append(label.setdefault(find(c), len(label)))
+    zone_of = [label.setdefault(parts[c], len(label)) for c in range(m.num_corners)]
     count = len(label)
 
     sides: dict[int, tuple[int, int]] = {}

@@ -1,0 +1,16 @@
+"""The code stays ruff-clean (ruff comes with the test extras)."""
+
+import shutil
+import subprocess
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+@pytest.mark.skipif(shutil.which("ruff") is None, reason="ruff is not installed")
+def test_ruff_clean():
+    res = subprocess.run(["ruff", "check", "src", "tests", "tools", "benchmarks"], cwd=ROOT,
+                         capture_output=True, text=True, check=False)
+    assert res.returncode == 0, res.stdout + res.stderr
