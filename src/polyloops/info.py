@@ -18,6 +18,7 @@ from polyloops.core.duality import DualityError, dualize
 from polyloops.core.formats import Structure
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LoopStructure
+from polyloops.enumerate.corners import corner_histogram
 from polyloops.verify.loop_structure import genus_balance
 
 
@@ -51,6 +52,10 @@ def describe(obj: Structure) -> dict[str, Any]:
         "genus": m.genus,
         "corner_degrees": dict(sorted(Counter(m.degree(c) for c in range(m.num_corners)).items())),
     }
+    ids, categories, unclassified = corner_histogram(obj)
+    out["corner_categories"] = categories
+    out["corner_configurations"] = ids
+    out["unclassified_corners"] = unclassified
     ls: LoopStructure | None = None
     if isinstance(obj, Polycube):
         lo, hi = obj.bounding_box()
@@ -74,6 +79,12 @@ def format_summary(s: dict[str, Any]) -> str:
         f"corners   {s['corners']}    edges {s['edges']}    faces {s['faces']}    genus {s['genus']}",
         "degrees   " + "  ".join(f"{d}:{n}" for d, n in s["corner_degrees"].items()),
     ]
+    cats = "  ".join(f"{c}:{n}" for c, n in s["corner_categories"].items() if n)
+    if cats:
+        lines.append(f"corners   {cats}   (configurations {s['corner_configurations']})")
+    if s["unclassified_corners"]:
+        lines.append(f"          {s['unclassified_corners']} corners are no polycube corner"
+                     + ("" if s.get("oriented", True) else " (no sides to tell)"))
     if "bounding_box" in s:
         lines.append(f"box       {s['bounding_box'][0]} .. {s['bounding_box'][1]}")
     if "dual" in s:

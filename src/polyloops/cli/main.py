@@ -114,6 +114,56 @@ def cmd_info(args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
+def cmd_corners(args: argparse.Namespace) -> int:
+    from polyloops.enumerate.corners import (
+        corner_classes,
+        corner_configurations,
+        corner_histogram,
+        witness,
+    )
+
+    configs = corner_configurations()
+    in_examples: dict[int, list[str]] = {c.id: [] for c in configs}
+    for name, ex in EXAMPLES.items():
+        if ex.valid:
+            for cid in corner_histogram(ex.build())[0]:
+                in_examples[cid].append(name)
+    for path, draw in ((args.png, "png"), (args.svg, "svg")):
+        if path:
+            from polyloops.render.corners import corner_sheet
+
+            try:
+                corner_sheet(path)
+            except (OSError, ValueError) as err:
+                raise CliError(f"{path}: cannot write the {draw} picture: {err}") from None
+    if args.symmetry == "none":
+        rows = []
+        for c in configs:
+            row = c.to_json()
+            row["examples"] = in_examples[c.id]
+            if args.witnesses:
+                found = witness(c)
+                row["witness_cubes"] = [list(cell) for cell in found[0]] if found else None
+            rows.append(row)
+        text = "\n".join(
+            f"{r['id']:>3}  {r['category']:<18} {' '.join(r['directions']):<20} "
+            + (", ".join(r["examples"]) or "-")
+            + (f"   witness {r['witness_cubes']}" if args.witnesses else "")
+            for r in rows)
+        shown = sum(1 for r in rows if r["examples"])
+        header = (f"{len(rows)} corner configurations (id, category, directions counter-clockwise, "
+                  f"bundled examples that contain it); {shown} appear in the bundled examples")
+        _emit(args, rows, header + "\n" + text)
+        return EXIT_OK
+    classes = corner_classes(args.symmetry)
+    rows = [c.to_json() for c in classes]
+    text = "\n".join(f"{r['class']:>3}  {r['category']:<18} size {r['size']:>2}  "
+                     f"{' '.join(r['representative']):<20} members {r['members']}" for r in rows)
+    header = f"{len(rows)} classes of corner configurations under symmetry '{args.symmetry}'"
+    _emit(args, rows, header + "\n" + text)
+    return EXIT_OK
+
+
 # -- parser -------------------------------------------------------------------------------
 
 Command = Callable[[argparse.Namespace], int]
@@ -151,6 +201,15 @@ def build_parser() -> argparse.ArgumentParser:
     p = command("dualize", cmd_dualize, "the oriented loop structure of a polycube (Theorem 1)",
                 json_flag=False)
     p.add_argument("-o", "--output", metavar="OUT", help="write JSON here instead of to standard output")
+    p = command("corners", cmd_corners, "the 126 polycube corner configurations, by category, "
+                "or their classes under rotations or all signed permutations", file_arg=False)
+    p.add_argument("--symmetry", choices=("none", "rotation", "full"), default="none",
+                   help="none: one row per configuration (default); rotation: classes under the 24 "
+                   "rotations; full: under all 48 signed permutations")
+    p.add_argument("--witnesses", action="store_true",
+                   help="for each configuration, a small set of unit cubes whose polycube has that corner")
+    p.add_argument("--png", metavar="FILE", help="draw every configuration on one sheet (PNG)")
+    p.add_argument("--svg", metavar="FILE", help="the same sheet as SVG")
     command("info", cmd_info, "corners, faces, loops, genus, zones, level graphs and corner degrees")
     return parser
 

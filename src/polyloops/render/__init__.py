@@ -1,0 +1,1 @@
+"""Pictures, drawn with matplotlib on its headless Agg backend."""
