@@ -7,7 +7,6 @@ from fractions import Fraction
 import networkx as nx
 import pytest
 from hypothesis import given
-from strategies import perturbed_structures, polycubes
 
 from polyloops.cli import main
 from polyloops.core.directions import Direction
@@ -22,6 +21,7 @@ from polyloops.enumerate.corners import (
     witness,
 )
 from polyloops.verify import check_polycube, check_polycube_loop_structure
+from strategies import perturbed_structures, polycubes
 
 
 def category_by_shape(cycle):

@@ -10,7 +10,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 
-from matplotlib.figure import Figure  # noqa: E402  (after selecting the backend)
+from matplotlib.figure import Figure
 
 FORMATS = {".png": "png", ".svg": "svg"}
 
