@@ -107,3 +107,48 @@ def renumbered(q: Polycube, rng: random.Random) -> Polycube:
     for c, p in enumerate(q.positions):
         positions[perm[c]] = tuple(p[i] + shift[i] for i in range(3))
     return Polycube.from_faces(faces, positions)
+
+
+def pillar_cells(px: int, py: int, pz: int, bumps: int = 0, seed: int = 0) -> set[Cell]:
+    """A thick block joined by pillars to three slabs: ``pz`` pillars up to a slab above,
+    ``px`` along X and ``py`` along Y to slabs beside it (genus ``px + py + pz - 3`` when all
+    are at least 1).  Each pillar's loop is a free choice that acyclicity restricts, since the
+    pillars of one axis join the same two zones.  ``bumps`` unit cubes on the top slab add
+    free choices that acyclicity does not restrict."""
+    rng = random.Random(seed)
+    n = 2 * max(px, py, pz, 1) + 1
+    cells = {(x, y, z) for x in range(n) for y in range(n) for z in range(3)}
+    spots = [(x, y) for x in range(1, n - 1, 2) for y in range(1, n - 1, 2)]
+    for x, y in rng.sample(spots, pz):
+        cells.add((x, y, 3))
+    if pz:
+        cells |= {(x, y, 4) for x in range(n) for y in range(n)}
+        tops = [(x, y) for x in range(0, n, 2) for y in range(0, n, 2)]
+        for x, y in rng.sample(tops, min(bumps, len(tops))):
+            cells.add((x, y, 5))
+    for i in range(px):
+        cells.add((n, 2 * i + 1, 1))
+    if px:
+        cells |= {(n + 1, y, z) for y in range(n) for z in range(3)}
+    for i in range(py):
+        cells.add((2 * i + 1, n, 1))
+    if py:
+        cells |= {(x, n + 1, z) for x in range(n) for z in range(3)}
+    return cells
+
+
+@st.composite
+def labelled_structures(draw) -> LoopStructure:
+    """Labelled structures to orient: forgotten sides of random polycubes (genus 0 to 3,
+    including pillar shapes where acyclicity bites), and relabelled ones (mostly unsatisfiable)."""
+    if draw(st.booleans()):
+        q = polycube_from_voxels(pillar_cells(draw(st.integers(0, 2)), draw(st.integers(0, 2)),
+                                              draw(st.integers(1, 3)), draw(st.integers(0, 2)),
+                                              draw(st.integers(0, 100))))
+    else:
+        q = draw(polycubes(max_size=8))
+    ls = q.dualize()
+    if draw(st.integers(0, 3)) == 0:
+        loop = draw(st.integers(0, len(ls.loops) - 1))
+        ls = ls.relabelled(loop, draw(st.sampled_from([a for a in Axis if a != ls.axes[loop]])))
+    return ls.forget_orientation()

@@ -24,6 +24,7 @@ from polyloops.cli.load import (
 )
 from polyloops.core.duality import DualityError, dualize, primalize
 from polyloops.core.examples import EXAMPLES
+from polyloops.core.formats import to_data, write_atomic
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LabelError
 from polyloops.info import describe, format_summary
@@ -164,6 +165,91 @@ def cmd_corners(args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
+def _components_json(problem) -> dict[str, list[list[int]]]:
+    from polyloops.core.directions import Axis
+
+    return {a.name: [list(c.loops) for c in problem.components_of(a)] for a in Axis}
+
+
+def cmd_orient(args: argparse.Namespace) -> int:
+    from polyloops.solvers import OrientationProblem, axis_flip_factor, explain, make_solver
+    from polyloops.solvers.base import count as count_solutions
+    from polyloops.solvers.base import feasible_locally
+
+    obj = read_structure(args.file)
+    ls = dualize(obj) if isinstance(obj, Polycube) else obj
+    problem = OrientationProblem(ls)
+    solver = make_solver(args.solver)
+    info: dict[str, Any] = {"solver": args.solver, "k": problem.k, "components": _components_json(problem)}
+    summary = (f"{args.file}: k = {problem.k} free choices (side-graph components: "
+               + ", ".join(f"{a}: {len(v)}" for a, v in info["components"].items()) + ")")
+
+    def fail() -> int:
+        why = explain(problem)
+        assert why is not None
+        info.update(found=False, condition=why.condition, reason=why.reason, witness=why.witness)
+        if args.json:
+            print(json.dumps(info, indent=2))
+        else:
+            print(summary)
+        raise CliError(f"{args.file}: no orientation: {why.reason}", EXIT_INVALID)
+
+    if args.count:
+        n = count_solutions(solver, problem)
+        info.update(count=n, count_modulo_axis_flips=n // axis_flip_factor(problem) if n else 0)
+        if n == 0 and not args.json:
+            return fail()
+        _emit(args, info, f"{summary}\n{n} orientations ({info['count_modulo_axis_flips']} up to "
+              "flipping all loops of an axis)")
+        return EXIT_OK if n else EXIT_INVALID
+    if args.all:
+        if not feasible_locally(problem):
+            return fail()
+        structures = (problem.structure.with_signs(signs) for signs in solver.solutions(problem))
+        if args.output:
+            lines = [json.dumps(to_data(s), separators=(",", ":")) for s in structures]
+            if not lines:
+                return fail()
+            _write_text(args.output, "\n".join(lines) + "\n")
+            print(f"{summary}\nwrote {len(lines)} orientations to {args.output} (one JSON per line)")
+            return EXIT_OK
+        n = 0
+        if args.json:
+            print("[")
+        for s in structures:
+            if args.json:
+                print(("," if n else "") + json.dumps({"signs": list(s.signs or ())}))
+            else:
+                print(" ".join("+" if x > 0 else "-" for x in s.signs or ()))
+            n += 1
+        if args.json:
+            print("]")
+        return EXIT_OK if n else fail()
+    signs = next(solver.solutions(problem), None)
+    if signs is None:
+        return fail()
+    oriented = problem.structure.with_signs(signs)
+    if args.json:
+        info.update(found=True, signs=list(signs), structure=to_data(oriented))
+        print(json.dumps(info, indent=2))
+        if args.output:
+            write_output(args.output, oriented)
+        return EXIT_OK
+    text = write_output(args.output, oriented)
+    if text is not None:
+        print(text, end="")
+    else:
+        print(f"{summary}\nwrote an orientation to {args.output}")
+    return EXIT_OK
+
+
+def _write_text(path: str, text: str) -> None:
+    try:
+        write_atomic(path, text)
+    except OSError as err:
+        raise CliError(f"{path}: cannot write: {err.strerror or err}") from None
+
+
 # -- parser -------------------------------------------------------------------------------
 
 Command = Callable[[argparse.Namespace], int]
@@ -210,6 +296,18 @@ def build_parser() -> argparse.ArgumentParser:
                    help="for each configuration, a small set of unit cubes whose polycube has that corner")
     p.add_argument("--png", metavar="FILE", help="draw every configuration on one sheet (PNG)")
     p.add_argument("--svg", metavar="FILE", help="the same sheet as SVG")
+    p = command("orient", cmd_orient, "orient the loops of a labelled loop structure so that it "
+                "becomes a polycube loop structure (sides in the input are ignored; a polycube is "
+                "dualized first)")
+    p.add_argument("--solver", choices=("brute", "sat", "smt"), default="sat",
+                   help="exhaustive search, SAT with lazy cycle cuts (default), or SMT with zone potentials")
+    mode = p.add_mutually_exclusive_group()
+    mode.add_argument("--all", action="store_true", help="every orientation: sign vectors, or "
+                      "one structure per line with -o")
+    mode.add_argument("--count", action="store_true", help="the number of orientations, raw and up to "
+                      "flipping all loops of an axis")
+    p.add_argument("-o", "--output", metavar="OUT",
+                   help="write the oriented structure (JSON lines with --all)")
     command("info", cmd_info, "corners, faces, loops, genus, zones, level graphs and corner degrees")
     return parser
 

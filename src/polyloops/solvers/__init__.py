@@ -1,1 +1,70 @@
-"""Orientation solvers for labelled loop structures (exhaustive, SAT, SMT)."""
+"""Orientation solvers for labelled loop structures: exhaustive, SAT and SMT, one interface.
+
+>>> from polyloops.core.examples import load_example
+>>> labelled = load_example("ring").dualize().forget_orientation()
+>>> result = orient(labelled, solver="sat")
+>>> result.found, result.structure is not None
+(True, True)
+>>> counts = [count_orientations(labelled, s) for s in SOLVERS]
+>>> len(set(counts)) == 1
+True
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from dataclasses import dataclass
+
+from polyloops.core.structure import LoopStructure
+from polyloops.solvers.base import Explanation, Signs, Solver, axis_flip_factor, count, explain, solve
+from polyloops.solvers.brute import BruteForceSolver
+from polyloops.solvers.problem import OrientationProblem
+from polyloops.solvers.sat import SatSolver
+from polyloops.solvers.smt import SmtSolver
+
+SOLVERS: dict[str, type] = {"brute": BruteForceSolver, "sat": SatSolver, "smt": SmtSolver}
+
+
+def make_solver(name: str) -> Solver:
+    try:
+        return SOLVERS[name]()
+    except KeyError:
+        raise ValueError(f"unknown solver {name!r}; choose from {', '.join(SOLVERS)}") from None
+
+
+@dataclass(frozen=True)
+class OrientResult:
+    problem: OrientationProblem
+    structure: LoopStructure | None
+    explanation: Explanation | None
+
+    @property
+    def found(self) -> bool:
+        return self.structure is not None
+
+
+def orient(ls: LoopStructure, solver: str = "sat") -> OrientResult:
+    """One orientation of a labelled structure (its sides are ignored if it has them)."""
+    problem = OrientationProblem(ls)
+    signs = solve(make_solver(solver), problem)
+    if signs is None:
+        return OrientResult(problem, None, explain(problem))
+    return OrientResult(problem, problem.structure.with_signs(signs), None)
+
+
+def all_orientations(ls: LoopStructure, solver: str = "sat") -> Iterator[LoopStructure]:
+    """Every orientation that makes ``ls`` a polycube loop structure, each once."""
+    problem = OrientationProblem(ls)
+    for signs in make_solver(solver).solutions(problem):
+        yield problem.structure.with_signs(signs)
+
+
+def count_orientations(ls: LoopStructure, solver: str = "sat") -> int:
+    return count(make_solver(solver), OrientationProblem(ls))
+
+
+__all__ = [
+    "SOLVERS", "BruteForceSolver", "Explanation", "OrientResult", "OrientationProblem", "SatSolver",
+    "Signs", "SmtSolver", "all_orientations", "axis_flip_factor", "count_orientations", "explain",
+    "make_solver", "orient",
+]

@@ -1,0 +1,106 @@
+"""One interface for the orientation solvers, and the reasons when no orientation exists.
+
+Every solver yields the valid sign vectors of a problem (one sign per loop, ``+1`` when the
+loop's ``+`` side is on the right of its stored walk).  ``solve`` takes the first,
+``count`` counts them.  When there is none, :func:`explain` says why: a condition no sides
+can mend, an odd cycle of sides (Condition 3), or a set of level-graph cycles one of which
+closes for every choice (Condition 5).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from dataclasses import dataclass, field
+from typing import Any, Protocol
+
+from polyloops.core.directions import Axis
+from polyloops.solvers.problem import OrientationProblem
+
+Signs = tuple[int, ...]
+
+
+class Solver(Protocol):
+    name: str
+
+    def solutions(self, problem: OrientationProblem) -> Iterator[Signs]:
+        """Every valid sign vector, each once."""
+        ...
+
+
+def solve(solver: Solver, problem: OrientationProblem) -> Signs | None:
+    if not feasible_locally(problem):
+        return None
+    return next(solver.solutions(problem), None)
+
+
+def count(solver: Solver, problem: OrientationProblem) -> int:
+    """The number of valid orientations, without listing them all.
+
+    Conditions 3 and 5 involve one axis at a time, so the count is a product over the axes;
+    within an axis, a component whose loops are all bridges of the level graph doubles the
+    count, and only the other components are enumerated by the solver.
+    """
+    if not feasible_locally(problem):
+        return 0
+    total = 1
+    for axis in Axis:
+        free = problem.bridge_components(axis)
+        rest = [c for c in problem.components_of(axis) if c not in free]
+        n = sum(1 for _ in solver.solutions(problem.restricted(axis, rest)))
+        total *= n * 2 ** len(free)
+    return total
+
+
+def count_naively(solver: Solver, problem: OrientationProblem) -> int:
+    """The number of valid orientations by listing every one (exponential; for tests)."""
+    if not feasible_locally(problem):
+        return 0
+    return sum(1 for _ in solver.solutions(problem))
+
+
+def feasible_locally(problem: OrientationProblem) -> bool:
+    """Conditions 1-4 can be met by some choice of sides."""
+    return problem.colourable and not problem.local_violations
+
+
+def axis_flip_factor(problem: OrientationProblem) -> int:
+    """Flipping every loop of one axis keeps validity: ``2^(axes that have loops)`` solutions
+    per class of such flips."""
+    return 2 ** sum(1 for a in Axis if problem.loops_of_axis[a])
+
+
+@dataclass(frozen=True)
+class Explanation:
+    """Why no orientation exists."""
+
+    condition: str
+    reason: str
+    witness: dict[str, Any] = field(default_factory=dict)
+
+
+def explain(problem: OrientationProblem) -> Explanation | None:
+    """The reason no orientation exists, or ``None`` if one does."""
+    if problem.odd_cycles:
+        odd = problem.odd_cycles[0]
+        return Explanation("3", odd.describe(),
+                           {"axis": str(odd.axis), "odd_cycle": [[loop, side] for loop, side in odd.sides]})
+    if problem.local_violations:
+        return Explanation("local", problem.local_violations[0],
+                           {"violations": problem.local_violations})
+    from polyloops.solvers.sat import SatSolver
+
+    cycles = SatSolver().blocking_cycles(problem)
+    if cycles is None:
+        return None
+    parts = []
+    for axis, arcs in cycles:
+        zones = [a[0] for a in arcs]
+        parts.append({"axis": str(axis), "zones": zones, "loops": [a[2] for a in arcs]})
+    if len(parts) == 1:
+        p = parts[0]
+        reason = (f"the {p['axis']}-graph cycle through zones {p['zones']} along loops {p['loops']} "
+                  "closes for every choice of sides")
+    else:
+        reason = (f"every choice of sides closes one of {len(parts)} level-graph cycles: "
+                  + "; ".join(f"{p['axis']} zones {p['zones']}" for p in parts))
+    return Explanation("5", reason, {"cycles": parts})

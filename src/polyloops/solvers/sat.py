@@ -1,0 +1,107 @@
+"""SAT (python-sat): one variable per side-graph component, acyclicity by lazy cycle cuts.
+
+Condition 3 is built into the variables: a component's loops take their signs from its
+one variable, so every assignment meets Condition 3.  Condition 5 is added lazily: solve,
+look for a directed cycle in a level graph, and if there is one add the clause "some loop on
+this cycle points the other way"; repeat.  An eager encoding would need an order on the
+zones of each axis (``O(zones^2)`` transitivity clauses, or bit-vector levels); level graphs
+of real structures have few cycles, so a handful of cuts usually suffices and the lazy loop
+stays small.  Each cut removes only assignments that contain that cycle, so no solution is
+lost, and every assignment returned has been checked acyclic.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from pysat.solvers import Solver as PySatSolver
+
+from polyloops.core.directions import Axis
+from polyloops.solvers.base import Signs, feasible_locally
+from polyloops.solvers.problem import OrientationProblem
+
+Arc = tuple[int, int, int]
+
+
+class SatSolver:
+    name = "sat"
+
+    def __init__(self, backend: str = "glucose4"):
+        self.backend = backend
+
+    @staticmethod
+    def _component_of(problem: OrientationProblem) -> dict[int, tuple[int, int]]:
+        """loop -> (variable, relative sign)."""
+        out = {}
+        for var, comp in enumerate(problem.components, start=1):
+            for loop, rel in zip(comp.loops, comp.relative, strict=True):
+                out[loop] = (var, rel)
+        return out
+
+    @staticmethod
+    def _cut(problem: OrientationProblem, where: dict[int, tuple[int, int]], arcs: list[Arc],
+             signs: Signs) -> list[int]:
+        """Clause: some loop on the cycle takes the opposite sign (loops outside a restricted
+        problem cannot flip, so they add nothing; an empty clause means no way out)."""
+        clause = set()
+        for _, _, loop in arcs:
+            if loop not in where:
+                continue
+            var, rel = where[loop]
+            wanted = -signs[loop] * rel  # the component choice that flips this loop
+            clause.add(var if wanted > 0 else -var)
+        return sorted(clause)
+
+    def _signs(self, problem: OrientationProblem, model: list[int]) -> Signs:
+        choice = {abs(lit): (1 if lit > 0 else -1) for lit in model}
+        return problem.signs_from_choices([choice.get(v, 1) for v in range(1, problem.k + 1)])
+
+    def solutions(self, problem: OrientationProblem) -> Iterator[Signs]:
+        if not feasible_locally(problem):
+            return
+        where = self._component_of(problem)
+        with PySatSolver(name=self.backend) as s:
+            if problem.k:
+                s.add_clause([1, -1])  # declare the variables
+                for v in range(2, problem.k + 1):
+                    s.add_clause([v, -v])
+            while s.solve():
+                model = s.get_model() or []
+                signs = self._signs(problem, model)
+                found = problem.find_cycle(signs)
+                if found is not None:
+                    cut = self._cut(problem, where, found[1], signs)
+                    if not cut:
+                        return
+                    s.add_clause(cut)
+                    continue
+                yield signs
+                if not problem.k:
+                    return
+                # Block this assignment of the component variables.
+                s.add_clause([-lit for lit in model if abs(lit) <= problem.k])
+
+    def blocking_cycles(self, problem: OrientationProblem) -> list[tuple[Axis, list[Arc]]] | None:
+        """If no acyclic choice exists: a small set of cycles whose cuts are unsatisfiable
+        together (deletion-minimal), else ``None``."""
+        where = self._component_of(problem)
+        cuts: list[tuple[list[int], tuple[Axis, list[Arc]]]] = []
+        with PySatSolver(name=self.backend) as s:
+            while s.solve():
+                signs = self._signs(problem, s.get_model() or [])
+                found = problem.find_cycle(signs)
+                if found is None:
+                    return None
+                clause = self._cut(problem, where, found[1], signs)
+                cuts.append((clause, found))
+                if not clause:
+                    return [found]
+                s.add_clause(clause)
+        # Shrink: drop each cut whose removal keeps the rest unsatisfiable.
+        keep = list(cuts)
+        for item in list(cuts):
+            trial = [c for c in keep if c is not item]
+            with PySatSolver(name=self.backend, bootstrap_with=[c for c, _ in trial]) as s2:
+                if not s2.solve():
+                    keep = trial
+        return [cycle for _, cycle in keep]
