@@ -1,0 +1,93 @@
+"""Orientation solvers: time against k (free choices) and genus.
+
+Instances are two slabs joined by p pillars (genus p - 1): every pillar's Z-loop is a free
+choice, and acyclicity leaves only 2 of the 2^p choices, so exhaustive search has to try
+them all.  A second series adds unit-cube bumps to a genus-0 block: free choices that
+acyclicity never restricts.
+
+Usage: python benchmarks/orient.py [--max-k K] [--brute-max K] [--plot FILE]
+Prints a Markdown table; --plot draws time against k.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from _common import markdown_table, timed  # noqa: E402
+from strategies import pillar_cells  # noqa: E402
+
+from polyloops.core.voxels import polycube_from_voxels  # noqa: E402
+from polyloops.solvers import OrientationProblem, make_solver  # noqa: E402
+from polyloops.solvers.base import count, solve  # noqa: E402
+
+
+def bumpy_slab(bumps: int):
+    """A genus-0 slab with unit cubes on top, two apart: each bump's loop is a free choice."""
+    side = 1
+    while ((side - 1) // 2) ** 2 < bumps:
+        side += 2
+    cells = {(x, y, 0) for x in range(side) for y in range(side)}
+    spots = [(x, y) for x in range(1, side - 1, 2) for y in range(1, side - 1, 2)][:bumps]
+    return polycube_from_voxels(cells | {(x, y, 1) for x, y in spots})
+
+
+def instances(max_k: int):
+    for p in range(2, max_k):
+        yield "pillars", polycube_from_voxels(pillar_cells(0, 0, p))
+    for bumps in range(2, max_k, 3):
+        yield "bumps", bumpy_slab(bumps)
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--max-k", type=int, default=34)
+    ap.add_argument("--brute-max", type=int, default=20, help="skip exhaustive search above this k per axis")
+    ap.add_argument("--plot", help="write a PNG of time against k")
+    args = ap.parse_args()
+    rows = []
+    for family, q in instances(args.max_k):
+        problem = OrientationProblem(q.dualize().forget_orientation())
+        k = problem.k
+        kmax = max(len(problem.components_of(a)) for a in range(3))
+        if k > args.max_k:
+            continue
+        row = [family, q.genus, q.map.num_corners, k]
+        for name in ("brute", "sat", "smt"):
+            if name == "brute" and kmax > args.brute_max:
+                row += ["-", "-"]
+                continue
+            t_solve, _ = timed(lambda n=name: solve(make_solver(n), problem))
+            t_count, n_count = timed(lambda n=name: count(make_solver(n), problem))
+            row += [t_solve, t_count]
+        row.append(n_count)
+        rows.append(row)
+        print(f"{family} k={k} genus={q.genus} done", file=sys.stderr)
+    header = ["family", "genus", "corners", "k", "brute solve s", "brute count s", "sat solve s",
+              "sat count s", "smt solve s", "smt count s", "count"]
+    print(markdown_table(header, rows))
+    if args.plot:
+        from polyloops.render.figure import new_figure, save_figure
+
+        fig = new_figure(7, 4.5)
+        ax = fig.add_subplot(1, 1, 1)
+        for j, (name, style) in enumerate((("brute", "o-"), ("sat", "s-"), ("smt", "^-"))):
+            col = 4 + 2 * j
+            for family, marker_fill in (("pillars", "full"), ("bumps", "none")):
+                pts = [(r[3], r[col]) for r in rows if r[0] == family and isinstance(r[col], float)]
+                if pts:
+                    ax.semilogy(*zip(*pts, strict=True), style, fillstyle=marker_fill,
+                                label=f"{name} ({family})")
+        ax.set_xlabel("k (free choices)")
+        ax.set_ylabel("time to find one orientation (s)")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=8)
+        save_figure(fig, args.plot)
+
+
+if __name__ == "__main__":
+    main()

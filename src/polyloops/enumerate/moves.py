@@ -1,0 +1,351 @@
+"""Loop moves (Section 4 of the paper): every valid loop addition and removal.
+
+**Addition.**  A new Delta-loop runs along a simple cycle ``C`` of corners (length >= 3),
+walked in one direction; its ``+`` side is on the right.  It crosses the loop segments of
+``C`` (the paper's edge-graph ``G_L`` has an arc between two segments that bound the same
+region, so a cycle of segments through distinct regions is a cycle of corners).  Each
+corner ``v`` of ``C`` splits into ``v-`` (left) and ``v+`` (right) joined by a new ``+Delta``
+edge; each edge of ``C`` is doubled, with a new quad between the copies.  The split of a
+region is valid (an arc of ``G_V^Delta``) exactly when neither edge of ``C`` at ``v`` has
+axis Delta, an existing ``+Delta`` edge at ``v`` lies on the right and an existing
+``-Delta`` edge on the left.  The paper proves that an addition never creates a cycle in a
+level graph, so these local tests decide validity; the tests check that claim.
+
+**Removal.**  Removing a Delta-loop contracts its rungs (the edges it crosses), merging each
+rung's two ends, and deletes its faces; the two edges along each deleted face become one.
+It is valid when every merged corner is a region of degree >= 3 with distinct directions
+that is still a disk (the rungs merging it form a tree, and no face or edge meets it twice),
+and the Delta-graph with the loop's arc contracted has no cycle through the merged zone
+(one depth-first search from it).
+
+Numbering.  After an addition, corner ``v`` of ``C`` keeps its id as ``v-``, and ``v+`` gets
+id ``n + i`` for the ``i``-th corner of the walk (``n`` = old number of corners); old faces
+keep their index and the new quads follow in walk order.  After a removal, each merged
+group of corners takes the lowest id among them, faces of the loop are dropped, and ids of
+corners and faces are then renumbered consecutively in their old order.
+
+>>> from polyloops.core.examples import load_example
+>>> cube = load_example("cube").dualize()
+>>> sorted(count_additions(cube).items())
+[('X', 6), ('Y', 6), ('Z', 6)]
+>>> [removable(cube, lp.id) for lp in cube.loops]
+[False, False, False]
+"""
+
+from __future__ import annotations
+
+from collections import defaultdict
+from collections.abc import Iterator, Sequence
+from dataclasses import dataclass
+
+from networkx.utils import UnionFind
+
+from polyloops.core.directions import Axis, Direction
+from polyloops.core.halfedge import FaceListError, MapError
+from polyloops.core.structure import LabelError, LoopStructure
+
+# -- additions -------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Addition:
+    """A loop to add: its axis and the corners it walks past (its ``+`` side on the right)."""
+
+    axis: Axis
+    cycle: tuple[int, ...]
+
+    def segments(self, ls: LoopStructure) -> list[int]:
+        """The loop segments (edge ids) it crosses, in walk order."""
+        m = ls.map
+        k = len(self.cycle)
+        return [m.edge_id(m.dart(self.cycle[i], self.cycle[(i + 1) % k])) for i in range(k)]
+
+    def to_json(self, ls: LoopStructure) -> dict[str, object]:
+        return {"axis": str(self.axis), "corners": list(self.cycle), "segments": self.segments(ls)}
+
+
+def _split_ok(ls: LoopStructure, axis: Axis, back: int, forward: int) -> bool:
+    """The region at the common origin of darts ``back`` and ``forward`` may be split by a
+    new ``axis``-loop that enters along ``back`` reversed and leaves along ``forward``."""
+    if back == forward:
+        return False
+    if ls.axis_of_dart(back) == axis or ls.axis_of_dart(forward) == axis:
+        return False
+    m = ls.map
+    plus, minus = Direction.of(axis, 1), Direction.of(axis, -1)
+    # Walking in along `back` and out along `forward`, the left side is CCW from forward to back.
+    d = m.rotate(forward)
+    on_left = set()
+    while d != back:
+        on_left.add(ls.direction(d))
+        d = m.rotate(d)
+    if plus in on_left:
+        return False
+    has_minus = any(ls.direction(x) == minus for x in m.outgoing(m.origin(forward)))
+    return not has_minus or minus in on_left
+
+
+class _AdditionGraph:
+    """``G_V^Delta`` on darts: from the dart that arrived at a corner to the darts that may leave."""
+
+    def __init__(self, ls: LoopStructure, axis: Axis):
+        self.ls, self.axis = ls, axis
+        m = ls.map
+        self.succ: dict[int, list[int]] = {}
+        for d in range(m.num_darts):
+            if ls.axis_of_dart(d) == axis:
+                continue
+            v = m.target(d)
+            back = m.twin[d]
+            self.succ[d] = [f for f in m.outgoing(v) if _split_ok(ls, axis, back, f)]
+
+    def ok(self, arrive: int, leave: int) -> bool:
+        return leave in self.succ.get(arrive, ())
+
+    def cycles(self) -> Iterator[tuple[int, ...]]:
+        """Every simple cycle of corners (each once, walked in its direction), as corners,
+        starting at its lowest corner."""
+        m = self.ls.map
+        for start in range(m.num_corners):
+            for first in m.outgoing(start):
+                if self.ls.axis_of_dart(first) == self.axis or m.target(first) <= start:
+                    continue
+                yield from self._extend(start, first)
+
+    def _extend(self, start: int, first: int) -> Iterator[tuple[int, ...]]:
+        m = self.ls.map
+        path = [first]
+        on_path = {start, m.target(first)}
+        stack = [iter(self.succ[first])]
+        while stack:
+            nxt = next(stack[-1], None)
+            if nxt is None:
+                stack.pop()
+                on_path.discard(m.target(path.pop()))
+                continue
+            w = m.target(nxt)
+            if w == start:
+                if len(path) >= 2 and self.ok(nxt, first):
+                    yield (start, *(m.target(d) for d in path))
+                continue
+            if w < start or w in on_path:
+                continue
+            path.append(nxt)
+            on_path.add(w)
+            stack.append(iter(self.succ[nxt]))
+
+
+def additions(ls: LoopStructure, axis: Axis | None = None, limit: int | None = None) -> Iterator[Addition]:
+    """Every valid loop addition (one per combinatorial class), lazily; ``axis=None`` for all."""
+    if not ls.oriented:
+        raise ValueError("loop moves need an oriented loop structure")
+    n = 0
+    for a in (Axis if axis is None else [axis]):
+        for cycle in _AdditionGraph(ls, a).cycles():
+            if limit is not None and n >= limit:
+                return
+            n += 1
+            yield Addition(a, cycle)
+
+
+def count_additions(ls: LoopStructure, limit: int | None = None) -> dict[str, int]:
+    """The number of valid additions per label, counted without storing them."""
+    return {a.name: sum(1 for _ in additions(ls, a, limit)) for a in Axis}
+
+
+def is_valid_addition(ls: LoopStructure, move: Addition) -> bool:
+    """The local test for one given cycle (any rotation of it)."""
+    m = ls.map
+    cyc = move.cycle
+    k = len(cyc)
+    if k < 3 or len(set(cyc)) != k:
+        return False
+    try:
+        darts = [m.dart(cyc[i], cyc[(i + 1) % k]) for i in range(k)]
+    except KeyError:
+        return False
+    g = _AdditionGraph(ls, move.axis)
+    return all(ls.axis_of_dart(d) != move.axis for d in darts) and all(
+        g.ok(darts[i - 1], darts[i]) for i in range(k))
+
+
+def add_loop(ls: LoopStructure, move: Addition) -> LoopStructure:
+    """Insert the loop (see the module docstring for the numbering).  Does not check validity."""
+    m = ls.map
+    cyc = move.cycle
+    k = len(cyc)
+    n = m.num_corners
+    plus_id = {v: n + i for i, v in enumerate(cyc)}
+    darts = [m.dart(cyc[i], cyc[(i + 1) % k]) for i in range(k)]
+    # Which copy of a corner of C each face keeps: the faces on the left keep v, the right v+.
+    keeps_plus: set[tuple[int, int]] = set()  # (face, corner)
+    for i, v in enumerate(cyc):
+        forward, back = darts[i], m.twin[darts[i - 1]]
+        d = back
+        while d != forward:  # faces from back round to forward (CCW) lie on the right
+            keeps_plus.add((m.face_of[d], v))
+            d = m.rotate(d)
+    faces = [[plus_id[c] if (f, c) in keeps_plus else c for c in face] for f, face in enumerate(m.faces)]
+    for i in range(k):
+        u, w = cyc[i], cyc[(i + 1) % k]
+        faces.append([w, u, plus_id[u], plus_id[w]])
+    labels: dict[tuple[int, int], Direction] = {}
+    for f, face in enumerate(faces[: m.num_faces]):
+        for j, d in enumerate(m.face_darts(f)):
+            labels.setdefault((face[j], face[(j + 1) % len(face)]), ls.direction(d))
+    for v in cyc:
+        labels[(v, plus_id[v])] = Direction.of(move.axis, 1)
+    return LoopStructure.from_edge_labels(faces, _one_per_edge(labels))
+
+
+def _one_per_edge(labels: dict[tuple[int, int], Direction]) -> dict[tuple[int, int], Direction]:
+    out: dict[tuple[int, int], Direction] = {}
+    for (u, v), d in labels.items():
+        if (v, u) not in out:
+            out[(u, v)] = d
+    return out
+
+
+# -- removals --------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class RemovalCheck:
+    loop: int
+    valid: bool
+    reason: str = ""
+
+
+def _removal_groups(ls: LoopStructure, loop: int) -> tuple[UnionFind, list[tuple[int, int]], set[int]]:
+    m = ls.map
+    lp = ls.loops[loop]
+    rungs = [(m.origin(d), m.target(d)) for d in lp.darts]
+    groups = UnionFind(range(m.num_corners))
+    for u, v in rungs:
+        groups.union(u, v)
+    return groups, rungs, set(lp.faces)
+
+
+def check_removal(ls: LoopStructure, loop: int) -> RemovalCheck:
+    """Decide locally whether removing ``loop`` leaves a polycube loop structure."""
+    if not ls.oriented:
+        raise ValueError("loop moves need an oriented loop structure")
+    m = ls.map
+    system = m.loop_system
+    lp = ls.loops[loop]
+    if lp.self_crossings:
+        return RemovalCheck(loop, False, "the loop crosses itself")
+    groups, rungs, strip = _removal_groups(ls, loop)
+    members: dict[int, list[int]] = defaultdict(list)
+    for u, v in rungs:
+        for c in (u, v):
+            if c not in members[groups[c]]:
+                members[groups[c]].append(c)
+    for root, cs in members.items():
+        if len(cs) != sum(1 for u, _ in rungs if groups[u] == root) + 1:
+            return RemovalCheck(loop, False, f"corners {sorted(cs)} would merge around a cycle")
+    # Faces that survive must not meet a merged corner twice.
+    for f, face in enumerate(m.faces):
+        if f not in strip:
+            roots = [groups[c] for c in face]
+            if len(set(roots)) != len(roots):
+                return RemovalCheck(loop, False, f"face {f} would meet a merged corner twice")
+    # Surviving edges at merged corners: the edges along a strip face merge in pairs.
+    merged_darts: dict[int, list[int]] = defaultdict(list)
+    for root, cs in members.items():
+        for c in cs:
+            merged_darts[root] += [d for d in m.outgoing(c) if system.loop_of_dart[d] != loop]
+    for root, ds in merged_darts.items():
+        by_far: dict[int, list[int]] = defaultdict(list)
+        for d in ds:
+            by_far[groups[m.target(d)]].append(d)
+        if root in by_far:
+            return RemovalCheck(loop, False, f"an edge would join merged corner {root} to itself")
+        directions = []
+        for far, fds in by_far.items():
+            if len(fds) == 2:
+                d1, d2 = fds
+                pair = (m.face_of[d1] == m.face_of[m.twin[d2]] in strip
+                        or m.face_of[d2] == m.face_of[m.twin[d1]] in strip)
+                if not pair or ls.direction(d1) != ls.direction(d2):
+                    return RemovalCheck(loop, False, f"two edges would join corners {root} and {far}")
+            elif len(fds) > 2:
+                return RemovalCheck(loop, False, f"edges would join corners {root} and {far} twice")
+            directions.append(ls.direction(fds[0]))
+        if len(directions) < 3:
+            return RemovalCheck(loop, False, f"merged region {root} would have {len(directions)} segments")
+        if len(set(directions)) != len(directions):
+            return RemovalCheck(loop, False, f"merged region {root} would have a repeated direction")
+    # Acyclicity: contract the loop's arc and search for a cycle through the merged zone.
+    axis = ls.axes[loop]
+    zones = ls.zones(axis)
+    left, right = zones.sides[loop]
+    merged = {left, right}
+    succ: dict[int, list[int]] = defaultdict(list)
+    for other, (a, b) in zones.sides.items():
+        if other == loop:
+            continue
+        tail, head = (a, b) if ls.signs[other] > 0 else (b, a)  # type: ignore[index]
+        tail, head = (-1 if tail in merged else tail), (-1 if head in merged else head)
+        succ[tail].append(head)
+    stack, seen_zones = list(succ[-1]), set()
+    while stack:
+        z = stack.pop()
+        if z == -1:
+            return RemovalCheck(loop, False, f"the {axis}-graph would get a cycle through the merged zone")
+        if z not in seen_zones:
+            seen_zones.add(z)
+            stack.extend(succ[z])
+    return RemovalCheck(loop, True)
+
+
+def removable(ls: LoopStructure, loop: int) -> bool:
+    return check_removal(ls, loop).valid
+
+
+def removals(ls: LoopStructure) -> list[int]:
+    """The loops whose removal leaves a polycube loop structure."""
+    return [lp.id for lp in ls.loops if removable(ls, lp.id)]
+
+
+def remove_loop(ls: LoopStructure, loop: int) -> LoopStructure:
+    """Remove the loop (see the module docstring for the numbering).
+
+    Raises ``MapError``, ``FaceListError`` or ``LabelError`` when the result is not a loop
+    structure at all; it does not check Definition 4 otherwise.
+    """
+    m = ls.map
+    groups, _, strip = _removal_groups(ls, loop)
+    rep = {c: min(g) for g in groups.to_sets() for c in g}
+    keep = sorted(set(rep.values()))
+    new_id = {c: i for i, c in enumerate(keep)}
+    faces = [[new_id[rep[c]] for c in face] for f, face in enumerate(m.faces) if f not in strip]
+    labels: dict[tuple[int, int], Direction] = {}
+    system = m.loop_system
+    for d in range(m.num_darts):
+        if system.loop_of_dart[d] == loop:
+            continue
+        u, v = new_id[rep[m.origin(d)]], new_id[rep[m.target(d)]]
+        if (u, v) in labels and labels[(u, v)] != ls.direction(d):
+            raise LabelError(f"merged edges ({u}, {v}) disagree in direction")
+        labels[(u, v)] = ls.direction(d)
+    return LoopStructure.from_edge_labels(faces, _one_per_edge(labels))
+
+
+def try_remove(ls: LoopStructure, loop: int) -> LoopStructure | None:
+    """``remove_loop``, or ``None`` when the result is not a loop structure."""
+    try:
+        return remove_loop(ls, loop)
+    except (MapError, FaceListError, LabelError, ValueError):
+        return None
+
+
+def parse_cycle(text: str) -> tuple[int, ...]:
+    """``"0,1,3,2"`` -> ``(0, 1, 3, 2)``."""
+    return tuple(int(x) for x in text.replace(" ", "").split(",") if x)
+
+
+def canonical_cycle(cycle: Sequence[int]) -> tuple[int, ...]:
+    """The rotation that starts at the lowest corner (the direction is kept)."""
+    i = cycle.index(min(cycle))
+    return tuple(cycle[i:]) + tuple(cycle[:i])
