@@ -6,7 +6,6 @@ from pathlib import Path
 
 import pytest
 from hypothesis import event, given, settings
-from strategies import labelled_structures, pillar_cells, polycubes
 
 from polyloops.cli import main
 from polyloops.core.examples import load_example
@@ -15,6 +14,7 @@ from polyloops.core.voxels import polycube_from_voxels
 from polyloops.solvers import SOLVERS, OrientationProblem, axis_flip_factor, explain, make_solver, orient
 from polyloops.solvers.base import count, count_naively, solve
 from polyloops.verify import check_polycube_loop_structure
+from strategies import labelled_structures, pillar_cells, polycubes
 
 FIXTURE = Path(__file__).parent / "fixtures" / "pillars-genus18.json"
 

@@ -250,6 +250,115 @@ def _write_text(path: str, text: str) -> None:
         raise CliError(f"{path}: cannot write: {err.strerror or err}") from None
 
 
+def _oriented_structure(arg: str):
+    obj = read_structure(arg)
+    ls = dualize(obj) if isinstance(obj, Polycube) else obj
+    if not ls.oriented:
+        raise CliError(f"{arg}: is a labelled loop structure without sides; orient it first")
+    report = verify(ls)
+    if not report.valid:
+        raise CliError(f"{arg}: not a polycube loop structure: {_first_violation(report)}", EXIT_INVALID)
+    return ls
+
+
+def cmd_moves(args: argparse.Namespace) -> int:
+    from polyloops.core.directions import Axis
+    from polyloops.enumerate.moves import additions, check_removal, count_additions
+
+    ls = _oriented_structure(args.file)
+    want_add = args.add is not None or not args.remove
+    want_remove = args.remove or args.add is None
+    axes = list(Axis) if args.add in (None, "all") else [Axis.parse(args.add)]
+    data: dict[str, Any] = {}
+    lines = []
+    if args.count:
+        if want_add:
+            counts = count_additions(ls, args.limit)
+            data["additions"] = {a.name: counts[a.name] for a in axes}
+            lines.append("additions " + "  ".join(f"{a}:{n}" for a, n in data["additions"].items()))
+        if want_remove:
+            data["removals"] = sum(1 for lp in ls.loops if check_removal(ls, lp.id).valid)
+            lines.append(f"removals  {data['removals']}")
+        _emit(args, data, "\n".join(lines))
+        return EXIT_OK
+    if want_add:
+        listed = []
+        for i, mv in enumerate(m for a in axes for m in additions(ls, a)):
+            if args.limit is not None and i >= args.limit:
+                break
+            row = {"index": i, **mv.to_json(ls)}
+            listed.append(row)
+            lines.append(f"add {i:>4}  {mv.axis}-loop past corners {list(mv.cycle)} "
+                         f"(+ side on the right), crossing segments {row['segments']}")
+        data["additions"] = listed
+    if want_remove:
+        rows = []
+        for lp in ls.loops:
+            check = check_removal(ls, lp.id)
+            rows.append({"loop": lp.id, "axis": str(ls.axes[lp.id]), "segments": list(lp.edges),
+                         "removable": check.valid, "reason": check.reason})
+            lines.append(f"remove {lp.id:>3}  {ls.axes[lp.id]}-loop of {len(lp)} segments: "
+                         + ("removable" if check.valid else f"not removable: {check.reason}"))
+        data["removals"] = rows
+    _emit(args, data, "\n".join(lines))
+    return EXIT_OK
+
+
+MOVE_HELP = "write an index from 'polyloops moves' or AXIS:c0,c1,..."
+
+
+def _parse_move(ls, text: str):
+    from itertools import islice
+
+    from polyloops.core.directions import Axis
+    from polyloops.enumerate.moves import Addition, additions, is_valid_addition, parse_cycle
+
+    if ":" in text:
+        label, _, corners = text.partition(":")
+        try:
+            move = Addition(Axis.parse(label.strip().upper()), parse_cycle(corners))
+        except ValueError:
+            raise CliError(f"move {text!r}: {MOVE_HELP}") from None
+        if not is_valid_addition(ls, move):
+            raise CliError(f"move {text!r} is not a valid loop addition here", EXIT_INVALID)
+        return move
+    try:
+        index = int(text)
+    except ValueError:
+        raise CliError(f"move {text!r}: {MOVE_HELP}") from None
+    listing = (m for a in Axis for m in additions(ls, a))
+    found = next(islice(listing, index, None), None) if index >= 0 else None
+    if found is None:
+        raise CliError(f"move {index}: there is no addition with that index ('polyloops moves' lists them)")
+    return found
+
+
+def cmd_add(args: argparse.Namespace) -> int:
+    from polyloops.enumerate.moves import add_loop
+
+    ls = _oriented_structure(args.file)
+    result = add_loop(ls, _parse_move(ls, args.move))
+    text = write_output(args.output, result)
+    if text is not None:
+        print(text, end="")
+    return EXIT_OK
+
+
+def cmd_remove(args: argparse.Namespace) -> int:
+    from polyloops.enumerate.moves import check_removal, remove_loop
+
+    ls = _oriented_structure(args.file)
+    if not 0 <= args.loop < len(ls.loops):
+        raise CliError(f"{args.file}: there is no loop {args.loop} (loops are 0..{len(ls.loops) - 1})")
+    check = check_removal(ls, args.loop)
+    if not check.valid:
+        raise CliError(f"{args.file}: loop {args.loop} is not removable: {check.reason}", EXIT_INVALID)
+    text = write_output(args.output, remove_loop(ls, args.loop))
+    if text is not None:
+        print(text, end="")
+    return EXIT_OK
+
+
 # -- parser -------------------------------------------------------------------------------
 
 Command = Callable[[argparse.Namespace], int]
@@ -308,6 +417,20 @@ def build_parser() -> argparse.ArgumentParser:
                       "flipping all loops of an axis")
     p.add_argument("-o", "--output", metavar="OUT",
                    help="write the oriented structure (JSON lines with --all)")
+    p = command("moves", cmd_moves, "the valid loop additions and removals of a polycube loop structure")
+    p.add_argument("--add", choices=("X", "Y", "Z", "all"), help="list additions of this label "
+                   "(default: all labels, together with removals)")
+    p.add_argument("--remove", action="store_true", help="list the loops and whether each is removable")
+    p.add_argument("--limit", type=int, metavar="N", help="stop after N additions (per label with --count)")
+    p.add_argument("--count", action="store_true", help="only count the moves")
+    p = command("add", cmd_add, "add one loop: MOVE is an index from 'polyloops moves' or "
+                "AXIS:c0,c1,... (the corners the loop walks past, + side on the right)", json_flag=False)
+    p.add_argument("move", metavar="MOVE")
+    p.add_argument("-o", "--output", metavar="OUT", help="write the new structure here")
+    p = command("remove", cmd_remove, "remove one loop, if that leaves a polycube loop structure",
+                json_flag=False)
+    p.add_argument("loop", metavar="LOOP", type=int, help="a loop id from 'polyloops moves --remove'")
+    p.add_argument("-o", "--output", metavar="OUT", help="write the new structure here")
     command("info", cmd_info, "corners, faces, loops, genus, zones, level graphs and corner degrees")
     return parser
 

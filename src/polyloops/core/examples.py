@@ -25,12 +25,18 @@ class Example:
     build: Callable[[], Structure]
 
 
+# Found by searching random unions of unit cubes for polycubes with no removable loop.
+NON_INCREMENTAL_CUBES = [(0, 0, 0), (0, 0, 1), (0, 1, 1), (1, 0, 0), (1, 1, 0), (1, 1, 1)]
+
 _ALL = [
     Example("cube", "the unit cube", True, lambda: builders.box(1, 1, 1)),
     Example("box-2x1x1", "two unit cubes in a row: two X-loops", True, lambda: builders.box(2, 1, 1)),
     Example("l-shape", "three unit cubes in an L", True,
             lambda: polycube_from_voxels([(0, 0, 0), (1, 0, 0), (0, 1, 0)])),
     Example("ring", "a square ring of eight unit cubes (genus 1)", True, lambda: builders.ring(3)),
+    Example("non-incremental", "six cubes of a 2x2x2 block (two opposite cubes missing): a polycube "
+            "none of whose loops can be removed, so additions alone cannot build it", True,
+            lambda: polycube_from_voxels(NON_INCREMENTAL_CUBES)),
     Example("torus-cycle", "a flat 3x3 torus grid: its X- and Y-graphs are cycles (Condition 5)",
             False, lambda: builders.torus_grid(3, 3)),
     Example("degree-two", "two quads glued along their boundary: regions bounded by two segments "

@@ -1,0 +1,256 @@
+"""Canonical forms and isomorphism signatures of loop structures.
+
+Two structures are isomorphic when a bijection of darts commutes with ``next`` and ``twin``
+and preserves every dart's direction (or axis, for a labelled structure), possibly after
+reversing the orientation of one of them: a polycube and its inverse are order-equivalent,
+so mirror images of the surface map are identified.  Symmetry modes widen this:
+``"labelled"`` (no change of axes), ``"rotation"`` (the 24 rotations act on labels and
+sides) and ``"full"`` (all 48 signed permutations).
+
+The canonical form is the lexicographically least code over every root dart, both
+orientations and every group element; a code lists, in breadth-first order from the root,
+each dart's ``next``, ``twin`` and label.  Roots are restricted to darts with the least local
+invariant, which automorphisms preserve, so the number of (element, orientation, root)
+triples reaching the least code is the order of the automorphism group.
+
+>>> from polyloops.core.examples import load_example
+>>> cube = load_example("cube").dualize()
+>>> form = canonical_form(cube, "full")
+>>> form.automorphisms, form.achiral  # the 48 symmetries of the cube
+(48, True)
+>>> is_isomorphic(from_signature(form.signature), cube, "full")
+True
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+
+from polyloops.core.directions import Axis, Direction
+from polyloops.core.polycube import Polycube
+from polyloops.core.structure import LoopStructure
+from polyloops.core.symmetry import ROTATIONS, SIGNED_PERMUTATIONS, SignedPermutation
+
+MODES = {"labelled": (SIGNED_PERMUTATIONS[0],), "rotation": ROTATIONS, "full": SIGNED_PERMUTATIONS}
+ALPHABET = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789-_"
+_INDEX = {ch: i for i, ch in enumerate(ALPHABET)}
+
+
+class SignatureError(ValueError):
+    """A string that is not a polyloops signature."""
+
+
+@dataclass(frozen=True)
+class CanonicalForm:
+    code: tuple[int, ...]
+    oriented: bool
+    automorphisms: int
+    mode: str
+    # Mode "full" only: whether some reflection of space maps the structure to itself
+    # (it is then equivalent to its mirror image under rotations); None in other modes.
+    achiral: bool | None
+
+    @cached_property
+    def signature(self) -> str:
+        return _encode(self.code, self.oriented)
+
+    @property
+    def structure(self) -> LoopStructure:
+        return from_signature(self.signature)
+
+
+def _labels(ls: LoopStructure, g: SignedPermutation) -> list[int]:
+    m = ls.map
+    if ls.oriented:
+        return [int(g(ls.direction(d))) for d in range(m.num_darts)]
+    return [int(g.axis(ls.axis_of_dart(d))) for d in range(m.num_darts)]
+
+
+def _code(nxt: list[int], twin: list[int], lab: list[int], root: int,
+          best: tuple[int, ...] | None) -> tuple[int, ...] | None:
+    """The BFS code from ``root``; ``None`` as soon as it is known to exceed ``best``."""
+    n = len(nxt)
+    index = [-1] * n
+    order = [root]
+    index[root] = 0
+    out: list[int] = []
+    equal_so_far = best is not None
+    for i in range(n):
+        d = order[i]
+        for e in (nxt[d], twin[d]):
+            if index[e] < 0:
+                index[e] = len(order)
+                order.append(e)
+        item = (index[nxt[d]], index[twin[d]], lab[d])
+        if equal_so_far:
+            ref = best[3 * i: 3 * i + 3]  # type: ignore[index]
+            if item > ref:
+                return None
+            if item < ref:
+                equal_so_far = False
+        out.extend(item)
+    return tuple(out)
+
+
+def canonical_form(obj: LoopStructure | Polycube, mode: str = "full") -> CanonicalForm:
+    """The canonical form of a structure (a polycube is dualized first)."""
+    if mode not in MODES:
+        raise ValueError(f"unknown symmetry mode {mode!r}; choose labelled, rotation or full")
+    ls = obj.dualize() if isinstance(obj, Polycube) else obj
+    m = ls.map
+    nxt = list(m.next)
+    twin = list(m.twin)
+    mirror_next = [m.twin[m.prev[m.twin[d]]] for d in range(m.num_darts)]
+    degree = [m.degree(m.origin(d)) for d in range(m.num_darts)]
+    face_size = [len(m.faces[m.face_of[d]]) for d in range(m.num_darts)]
+    candidates = []
+    for g in MODES[mode]:
+        lab = _labels(ls, g)
+        for mirrored, succ in ((False, nxt), (True, mirror_next)):
+            fsize = face_size if not mirrored else [face_size[twin[d]] for d in range(m.num_darts)]
+            inv = [(lab[d], degree[d], degree[twin[d]], fsize[d]) for d in range(m.num_darts)]
+            candidates.append((g, mirrored, succ, lab, inv))
+    least = min(min(c[4]) for c in candidates)
+    best: tuple[int, ...] | None = None
+    hits: list[tuple[SignedPermutation, bool]] = []
+    for g, mirrored, succ, lab, inv in candidates:
+        for root in range(m.num_darts):
+            if inv[root] != least:
+                continue
+            code = _code(succ, twin, lab, root, best)
+            if code is None:
+                continue
+            if best is None or code < best:
+                best, hits = code, [(g, mirrored)]
+            elif code == best:
+                hits.append((g, mirrored))
+    assert best is not None
+    achiral = any(g.det < 0 for g, _ in hits) if mode == "full" else None
+    return CanonicalForm(best, ls.oriented, len(hits), mode, achiral)
+
+
+def signature(obj: LoopStructure | Polycube, mode: str = "full") -> str:
+    """A short printable name: equal exactly for isomorphic structures (in that mode)."""
+    return canonical_form(obj, mode).signature
+
+
+def is_isomorphic(a: LoopStructure | Polycube, b: LoopStructure | Polycube, mode: str = "labelled") -> bool:
+    return canonical_form(a, mode).code == canonical_form(b, mode).code
+
+
+# -- encoding --------------------------------------------------------------------------------
+# A signature is: "o" (oriented) or "l" (labelled); one character for the digit width w; the
+# number of darts in w base-64 digits; then per dart one character holding its label and
+# whether its next and twin are new darts in BFS order, followed by w digits for each of
+# next and twin that is not new.
+
+
+def _digits(x: int, w: int) -> str:
+    out = []
+    for _ in range(w):
+        out.append(ALPHABET[x & 63])
+        x >>= 6
+    return "".join(reversed(out))
+
+
+def _encode(code: tuple[int, ...], oriented: bool) -> str:
+    n = len(code) // 3
+    w = 1
+    while 64 ** w <= n:
+        w += 1
+    parts = ["o" if oriented else "l", ALPHABET[w], _digits(n, w)]
+    seen = 1  # darts discovered so far: the root
+    for i in range(n):
+        nx_, tw, lab = code[3 * i: 3 * i + 3]
+        flags = 0
+        refs = []
+        for bit, ref in ((1, nx_), (2, tw)):
+            if ref == seen:
+                flags |= bit
+                seen += 1
+            else:
+                refs.append(ref)
+        parts.append(ALPHABET[lab * 4 + flags])
+        parts.extend(_digits(r, w) for r in refs)
+    return "".join(parts)
+
+
+def _decode(sig: str) -> tuple[list[int], list[int], list[int], bool]:
+    try:
+        if sig[0] not in "ol":
+            raise SignatureError("a signature starts with 'o' or 'l'")
+        oriented = sig[0] == "o"
+        w = _INDEX[sig[1]]
+        pos = 2
+
+        def read(k: int) -> int:
+            nonlocal pos
+            chunk = sig[pos: pos + k]
+            if len(chunk) != k:
+                raise SignatureError("the signature ends too early")
+            pos += k
+            x = 0
+            for ch in chunk:
+                x = x * 64 + _INDEX[ch]
+            return x
+
+        n = read(w)
+        nxt, twin, lab = [0] * n, [0] * n, [0] * n
+        seen = 1
+        for i in range(n):
+            sym = _INDEX[sig[pos]]
+            pos += 1
+            lab[i], flags = divmod(sym, 4)
+            for bit, target in ((1, nxt), (2, twin)):
+                if flags & bit:
+                    target[i] = seen
+                    seen += 1
+                else:
+                    target[i] = read(w)
+        if pos != len(sig):
+            raise SignatureError("unexpected characters after the signature")
+    except (KeyError, IndexError):
+        raise SignatureError("not a polyloops signature") from None
+    return nxt, twin, lab, oriented
+
+
+def from_signature(sig: str) -> LoopStructure:
+    """The structure a signature names (its canonical representative)."""
+    nxt, twin, lab, oriented = _decode(sig.strip())
+    n = len(nxt)
+    if sorted(nxt) != list(range(n)) or any(twin[twin[d]] != d or twin[d] == d for d in range(n)):
+        raise SignatureError("the signature does not describe a map")
+    prev = [0] * n
+    for d, e in enumerate(nxt):
+        prev[e] = d
+    # Corners are the orbits of rotate(d) = twin(prev(d)).
+    corner = [-1] * n
+    k = 0
+    for d in range(n):
+        if corner[d] < 0:
+            e = d
+            while corner[e] < 0:
+                corner[e] = k
+                e = twin[prev[e]]
+            k += 1
+    faces, seen = [], [False] * n
+    for d in range(n):
+        if not seen[d]:
+            face, e = [], d
+            while not seen[e]:
+                seen[e] = True
+                face.append(corner[e])
+                e = nxt[e]
+            faces.append(face)
+    labels: dict[tuple[int, int], Direction | Axis] = {}
+    for d in range(n):
+        u, v = corner[d], corner[nxt[d]]
+        if (v, u) not in labels:
+            if not 0 <= lab[d] < (6 if oriented else 3):
+                raise SignatureError("the signature has an unknown label")
+            labels[(u, v)] = Direction(lab[d]) if oriented else Axis(lab[d])
+    try:
+        return LoopStructure.from_edge_labels(faces, labels)
+    except ValueError as err:
+        raise SignatureError(f"the signature does not describe a loop structure: {err}") from None

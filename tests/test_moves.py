@@ -1,0 +1,225 @@
+"""Loop moves: the fast addition and removal tests equal brute force, and the paper's claims."""
+
+import json
+from functools import cache
+
+import networkx as nx
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from polyloops.cli import main
+from polyloops.core.canonical import signature
+from polyloops.core.directions import Axis
+from polyloops.core.examples import load_example
+from polyloops.core.formats import loads
+from polyloops.enumerate.moves import (
+    Addition,
+    add_loop,
+    additions,
+    canonical_cycle,
+    count_additions,
+    is_valid_addition,
+    removals,
+    remove_loop,
+    try_remove,
+)
+from polyloops.verify import check_polycube, check_polycube_loop_structure
+from polyloops.verify.loop_structure import cycle_violations
+from polyloops.verify.report import ReportBuilder
+from strategies import polycubes, random_polycube
+
+
+def corner_graph(ls, avoid=None):
+    m = ls.map
+    return nx.Graph((m.origin(d), m.target(d)) for d in range(m.num_darts)
+                    if avoid is None or ls.axis_of_dart(d) != avoid)
+
+
+def valid_after_insert(ls, move):
+    try:
+        new = add_loop(ls, move)
+    except ValueError:
+        return False
+    return check_polycube_loop_structure(new).valid
+
+
+def brute_additions(ls, prune=True):
+    """Every simple cycle of corners, both directions, every label, inserted and checked with the
+    full Definition-4 checker.  With ``prune``, only cycles avoiding edges of the new loop's axis
+    are tried (an edge of that axis would make the new loop cross a loop of its own axis);
+    test_pruning_loses_nothing checks that on small structures."""
+    out = set()
+    for axis in Axis:
+        g = corner_graph(ls, axis if prune else None)
+        for cycle in nx.simple_cycles(g):
+            if len(cycle) < 3:
+                continue
+            for walk in (cycle, cycle[::-1]):
+                move = Addition(axis, canonical_cycle(walk))
+                if valid_after_insert(ls, move):
+                    out.add(move)
+    return out
+
+
+def brute_removals(ls):
+    out = []
+    for lp in ls.loops:
+        new = try_remove(ls, lp.id)
+        if new is not None and check_polycube_loop_structure(new).valid:
+            out.append(lp.id)
+    return out
+
+
+@cache
+def within_three_moves():
+    """Every structure within three moves of the cube, one per class under all 48 symmetries."""
+    cube = load_example("cube").dualize()
+    seen = {signature(cube): cube}
+    level = [cube]
+    for _ in range(3):
+        nxt = []
+        for ls in level:
+            for x in [add_loop(ls, mv) for mv in additions(ls)] + [remove_loop(ls, i) for i in removals(ls)]:
+                s = signature(x)
+                if s not in seen:
+                    seen[s] = x
+                    nxt.append(x)
+        level = nxt
+    return list(seen.values())
+
+
+def test_three_moves_set_is_nontrivial():
+    structures = within_three_moves()
+    assert len(structures) > 10
+    assert all(check_polycube_loop_structure(x).valid for x in structures)
+
+
+@pytest.mark.parametrize("i", range(17))
+def test_fast_equals_brute_within_three_moves(i):
+    structures = within_three_moves()
+    if i >= len(structures):
+        pytest.skip("fewer structures")
+    ls = structures[i]
+    fast = list(additions(ls))
+    assert len(fast) == len(set(fast))
+    assert set(fast) == brute_additions(ls)
+    assert sum(count_additions(ls).values()) == len(fast)
+    assert removals(ls) == brute_removals(ls)
+
+
+@pytest.mark.parametrize("name", ["cube", "box-2x1x1", "l-shape"])
+def test_pruning_loses_nothing(name):
+    ls = load_example(name).dualize()
+    assert brute_additions(ls, prune=False) == brute_additions(ls, prune=True)
+
+
+@settings(max_examples=25)
+@given(polycubes(kinds=("blob",), max_size=3))
+def test_fast_equals_brute_on_random_polycubes(q):
+    ls = q.dualize()
+    assert set(additions(ls)) == brute_additions(ls)
+    assert removals(ls) == brute_removals(ls)
+
+
+@given(polycubes())
+def test_fast_removal_equals_brute_on_larger_polycubes(q):
+    ls = q.dualize()
+    assert removals(ls) == brute_removals(ls)
+
+
+@settings(max_examples=30)
+@given(polycubes(), st.integers(0, 10**6))
+def test_additions_never_create_a_level_graph_cycle(q, pick):
+    ls = q.dualize()
+    moves = list(additions(ls, limit=60))
+    for move in moves[pick % max(1, len(moves)):][:8]:
+        new = add_loop(ls, move)
+        assert not cycle_violations(ReportBuilder("x", "x"), new), (q.genus, move)
+        assert check_polycube_loop_structure(new).valid
+
+
+@settings(max_examples=20)
+@given(st.integers(0, 10**6), st.lists(st.integers(0, 10**6), min_size=1, max_size=5),
+       st.sampled_from(["blob", "frame1"]))
+def test_any_sequence_of_moves_keeps_a_polycube(seed, picks, kind):
+    ls = random_polycube(seed, kind, 3).dualize()
+    for p in picks:
+        options = [("add", mv) for mv in additions(ls, limit=40)] + [("remove", i) for i in removals(ls)]
+        kind_, arg = options[p % len(options)]
+        ls = add_loop(ls, arg) if kind_ == "add" else remove_loop(ls, arg)
+        assert check_polycube_loop_structure(ls).valid
+        assert check_polycube(ls.primalize()).valid
+
+
+def test_paper_addition_sequence():
+    """The paper's figure: from the cube a Z-loop, then a Y-loop placed between existing loops
+    (through corners that the Z-loop created), then an X-loop."""
+    ls = load_example("cube").dualize()
+    z = next(additions(ls, Axis.Z))
+    ls = add_loop(ls, z)
+    n = 8
+    y = next(mv for mv in additions(ls, Axis.Y) if any(c >= n for c in mv.cycle)
+             and any(c < n for c in mv.cycle))
+    ls = add_loop(ls, y)
+    x = next(additions(ls, Axis.X))
+    ls = add_loop(ls, x)
+    assert [ls.axes.count(a) for a in Axis] == [2, 2, 2]
+    assert check_polycube(ls.primalize()).valid
+
+
+@pytest.mark.parametrize("name", ["cube", "box-2x1x1"])
+def test_counts_for_cube_and_box(name):
+    ls = load_example(name).dualize()
+    counts = count_additions(ls)
+    brute = brute_additions(ls)
+    assert counts == {a.name: sum(1 for mv in brute if mv.axis == a) for a in Axis}
+    assert len(removals(ls)) == len(brute_removals(ls))
+
+
+def test_non_incremental():
+    q = load_example("non-incremental")
+    ls = q.dualize()
+    assert check_polycube(q).valid and check_polycube_loop_structure(ls).valid
+    assert signature(ls) != signature(load_example("cube"))
+    assert removals(ls) == brute_removals(ls) == []
+
+
+def test_numbering_after_addition():
+    ls = load_example("cube").dualize()
+    move = next(additions(ls))
+    new = add_loop(ls, move)
+    n, k = ls.map.num_corners, len(move.cycle)
+    assert new.map.num_corners == n + k
+    assert new.map.faces[ls.map.num_faces:] == tuple(
+        (move.cycle[(i + 1) % k], move.cycle[i], n + i, n + (i + 1) % k) for i in range(k))
+
+
+def test_is_valid_addition_matches_listing():
+    ls = load_example("box-2x1x1").dualize()
+    for mv in additions(ls):
+        assert is_valid_addition(ls, mv)
+        assert not is_valid_addition(ls, Addition(mv.axis, mv.cycle[::-1]))
+
+
+def test_cli_moves_count(capsys):
+    assert main(["moves", "example:box-2x1x1", "--count", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    ls = load_example("box-2x1x1").dualize()
+    assert data["additions"] == count_additions(ls) and data["removals"] == len(removals(ls))
+
+
+def test_cli_add_and_remove(capsys, tmp_path):
+    out = tmp_path / "a.json"
+    assert main(["add", "example:cube", "0", "-o", str(out)]) == 0
+    added = loads(out.read_text())
+    assert check_polycube_loop_structure(added).valid and len(added.loops) == 4
+    loop = removals(added)[0]
+    back = tmp_path / "b.json"
+    assert main(["remove", str(out), str(loop), "-o", str(back)]) == 0
+    assert signature(loads(back.read_text())) == signature(load_example("cube"))
+    assert main(["remove", "example:cube", "0"]) == 1
+    assert "not removable" in capsys.readouterr().err
+    assert main(["add", "example:cube", "99"]) == 2
+    assert main(["add", "example:cube", "Q:1,2"]) == 2
+    assert main(["moves", "example:cube", "--add", "Z", "--json"]) == 0
