@@ -18,12 +18,12 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from _common import markdown_table, timed  # noqa: E402
-from strategies import pillar_cells  # noqa: E402
+from _common import markdown_table, timed
 
-from polyloops.core.voxels import polycube_from_voxels  # noqa: E402
-from polyloops.solvers import OrientationProblem, make_solver  # noqa: E402
-from polyloops.solvers.base import count, solve  # noqa: E402
+from polyloops.core.voxels import polycube_from_voxels
+from polyloops.solvers import OrientationProblem, make_solver
+from polyloops.solvers.base import count, solve
+from strategies import pillar_cells
 
 
 def bumpy_slab(bumps: int):
@@ -61,8 +61,8 @@ def main() -> None:
             if name == "brute" and kmax > args.brute_max:
                 row += ["-", "-"]
                 continue
-            t_solve, _ = timed(lambda n=name: solve(make_solver(n), problem))
-            t_count, n_count = timed(lambda n=name: count(make_solver(n), problem))
+            t_solve, _ = timed(lambda n=name, p=problem: solve(make_solver(n), p))
+            t_count, n_count = timed(lambda n=name, p=problem: count(make_solver(n), p))
             row += [t_solve, t_count]
         row.append(n_count)
         rows.append(row)

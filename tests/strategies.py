@@ -10,13 +10,57 @@ import random
 
 from hypothesis import strategies as st
 
-from polyloops.core.builders import box
 from polyloops.core.directions import Axis, Direction
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LoopStructure
 from polyloops.core.voxels import Cell, VoxelError, polycube_from_voxels
 
 NEIGHBOURS = [d.vector for d in Direction]
+
+
+def _critical(cells: set[Cell], c: Cell) -> bool:
+    """Whether some 2x2x2 block containing ``c`` is critical (two cubes meeting only at an edge
+    or a corner, or the complement of that): sets with no critical block are well-composed and
+    their boundary is a polycube without splitting."""
+    for ox in (-1, 0):
+        for oy in (-1, 0):
+            for oz in (-1, 0):
+                b = {(i, j, k): (c[0] + ox + i, c[1] + oy + j, c[2] + oz + k) in cells
+                     for i in (0, 1) for j in (0, 1) for k in (0, 1)}
+                for axis in range(3):
+                    for layer in (0, 1):
+                        sq = []
+                        for u in (0, 1):
+                            for v in (0, 1):
+                                key = [u, v]
+                                key.insert(axis, layer)
+                                sq.append(b[tuple(key)])
+                        if sq[0] == sq[3] != sq[1] == sq[2]:
+                            return True
+                for i, j, k in ((0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)):
+                    a, z = b[(i, j, k)], b[(1 - i, 1 - j, 1 - k)]
+                    others = [v for key, v in b.items() if key not in ((i, j, k), (1 - i, 1 - j, 1 - k))]
+                    if a == z and all(v != a for v in others):
+                        return True
+    return False
+
+
+def well_composed_blob(seed: int, size: int) -> set[Cell]:
+    """A random face-connected set of ``size + 1`` cubes with no critical 2x2x2 block."""
+    rng = random.Random(seed)
+    cells = {(0, 0, 0)}
+    while len(cells) <= size:
+        frontier = sorted({(c[0] + v[0], c[1] + v[1], c[2] + v[2])
+                           for c in cells for v in NEIGHBOURS} - cells)
+        rng.shuffle(frontier)
+        for c in frontier:
+            cells.add(c)
+            if not _critical(cells, c):
+                break
+            cells.discard(c)
+        else:
+            break
+    return cells
 
 
 def _grow(rng: random.Random, cells: set[Cell], extra: int, allowed=None) -> set[Cell]:
@@ -53,6 +97,8 @@ def random_voxels(seed: int, kind: str, size: int) -> set[Cell]:
     rng = random.Random(seed)
     if kind == "blob":
         return _grow(rng, {(0, 0, 0)}, size)
+    if kind == "smooth":
+        return well_composed_blob(seed, size)
     holes = {"frame1": 1, "frame2": 2}[kind]
     base = _frame(rng, holes)
     top = max(c[2] for c in base) + 1
@@ -67,10 +113,10 @@ def random_polycube(seed: int, kind: str = "blob", size: int = 6) -> Polycube:
             return polycube_from_voxels(random_voxels(seed * 101 + attempt, kind, size))
         except VoxelError:
             continue
-    return box(1, 1, 1)  # pragma: no cover - not reached in practice
+    raise RuntimeError(f"no {kind} of size {size} from seed {seed} is a polycube in 100 draws")
 
 
-KINDS = ("blob", "frame1", "frame2")
+KINDS = ("blob", "smooth", "frame1", "frame2")
 
 
 @st.composite

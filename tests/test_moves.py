@@ -223,3 +223,26 @@ def test_cli_add_and_remove(capsys, tmp_path):
     assert main(["add", "example:cube", "99"]) == 2
     assert main(["add", "example:cube", "Q:1,2"]) == 2
     assert main(["moves", "example:cube", "--add", "Z", "--json"]) == 0
+
+
+@pytest.mark.slow
+def test_non_incremental_is_five_moves_from_the_cube():
+    """Breadth-first search over additions and removals (about 3 minutes): the first structure
+    without a removable loop appears at distance 5, and it is the bundled example."""
+    target = signature(load_example("non-incremental"))
+    cube = load_example("cube").dualize()
+    seen = {signature(cube)}
+    level = [cube]
+    for depth in range(1, 6):
+        nxt = []
+        for ls in level:
+            for x in [add_loop(ls, mv) for mv in additions(ls)] + [remove_loop(ls, i) for i in removals(ls)]:
+                s = signature(x)
+                if s not in seen:
+                    seen.add(s)
+                    nxt.append(x)
+                    if not removals(x):
+                        assert depth == 5 and s == target
+                        return
+        level = nxt
+    pytest.fail("no structure without a removable loop within five moves")

@@ -27,7 +27,7 @@ corners and faces are then renumbered consecutively in their old order.
 >>> from polyloops.core.examples import load_example
 >>> cube = load_example("cube").dualize()
 >>> sorted(count_additions(cube).items())
-[('X', 6), ('Y', 6), ('Z', 6)]
+[('X', 2), ('Y', 2), ('Z', 2)]
 >>> [removable(cube, lp.id) for lp in cube.loops]
 [False, False, False]
 """
