@@ -33,7 +33,14 @@ class CliError(Exception):
 
 
 def read_document(arg: str) -> Document:
-    """Parse a FILE argument: a path, or ``example:NAME``."""
+    """Parse a FILE argument: a path, ``example:NAME`` or ``sig:SIGNATURE``."""
+    if arg.startswith("sig:"):
+        from polyloops.core.canonical import SignatureError, from_signature
+
+        try:
+            return parse_document(dumps(from_signature(arg.removeprefix("sig:"))))
+        except SignatureError as err:
+            raise CliError(f"{arg}: {err}") from None
     if arg.startswith("example:"):
         name = arg.removeprefix("example:")
         if name not in EXAMPLES:

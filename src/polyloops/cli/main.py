@@ -26,11 +26,12 @@ from polyloops.core.duality import DualityError, dualize, primalize
 from polyloops.core.examples import EXAMPLES
 from polyloops.core.formats import to_data, write_atomic
 from polyloops.core.polycube import Polycube
-from polyloops.core.structure import LabelError
+from polyloops.core.structure import LabelError, LoopStructure
 from polyloops.info import describe, format_summary
 from polyloops.verify import Report, verify, verify_document
 
-FILE_HELP = "a JSON file, or example:NAME for a bundled example ('polyloops examples' lists them)"
+FILE_HELP = ("a JSON file, example:NAME for a bundled example ('polyloops examples' lists them), "
+             "or sig:SIGNATURE")
 
 
 def _emit(args: argparse.Namespace, data: Any, text: str) -> None:
@@ -359,6 +360,157 @@ def cmd_remove(args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
+def cmd_catalog(args: argparse.Namespace) -> int:
+    from pathlib import Path
+
+    from polyloops.enumerate.catalog_run import execute, plan_jobs, summarize, write_catalog
+    from polyloops.enumerate.quadrangulations import PlantriError, find_plantri
+
+    if args.max_corners < args.min_corners:
+        raise CliError("--max-corners must be at least --min-corners")
+    if (args.res is None) != (args.mod is None) or (args.mod is not None and not 0 <= args.res < args.mod):
+        raise CliError("--res R --mod M go together, with 0 <= R < M")
+    if args.workers < 1:
+        raise CliError("--workers must be at least 1")
+    try:
+        plantri = find_plantri(args.plantri)
+    except PlantriError as err:
+        raise CliError(str(err)) from None
+    out = Path(args.output)
+    if out.exists() and not out.is_dir():
+        raise CliError(f"{out}: exists and is not a directory")
+    jobs = plan_jobs(args.min_corners, args.max_corners, args.res, args.mod, args.workers)
+    from tqdm import tqdm
+
+    bar = tqdm(total=len(jobs), unit="job", desc="catalog", disable=None, file=sys.stderr)
+    maps = [0]
+
+    def progress(result: dict[str, Any]) -> None:
+        maps[0] += result["quadrangulations"]
+        bar.update(1)
+        bar.set_postfix(corners=result["n"], maps=maps[0])
+
+    try:
+        results = execute(jobs, out, plantri, args.workers, args.dask, progress)
+    except (PlantriError, RuntimeError, OSError) as err:
+        raise CliError(f"{out}: {err}") from None
+    finally:
+        bar.close()
+    summary = summarize(results, args.min_corners, args.max_corners, partial=args.mod is not None)
+    n = write_catalog(out, results, args.symmetry, summary)
+    rows = [[k, summary["quadrangulations"][k], *v.values()] for k, v in summary["counts"].items()]
+    text = "corners  quadrangulations  labelled  rotation  full\n" + "\n".join(
+        f"{r[0]:>7}  {r[1]:>16}  {r[2]:>8}  {r[3]:>8}  {r[4]:>4}" for r in rows)
+    _emit(args, summary, f"{text}\nwrote {n} records ({args.symmetry}) to {out}")
+    return EXIT_OK
+
+
+def cmd_catalog_query(args: argparse.Namespace) -> int:
+    import sqlite3
+    from pathlib import Path
+
+    from polyloops.enumerate.catalog_run import query
+
+    try:
+        columns, rows = query(Path(args.dir), args.where)
+    except FileNotFoundError as err:
+        raise CliError(str(err)) from None
+    except sqlite3.Error as err:
+        raise CliError(f"{args.dir}: bad query: {err}") from None
+    if args.json:
+        print(json.dumps([dict(zip(columns, r, strict=True)) for r in rows], indent=1))
+    else:
+        print("\t".join(columns))
+        for r in rows:
+            print("\t".join(str(x) for x in r))
+    return EXIT_OK
+
+
+def cmd_signature(args: argparse.Namespace) -> int:
+    from polyloops.core.canonical import canonical_form
+
+    form = canonical_form(read_structure(args.file), args.symmetry)
+    data = {"signature": form.signature, "symmetry": args.symmetry, "automorphisms": form.automorphisms}
+    if form.achiral is not None:
+        data["chiral"] = not form.achiral
+    _emit(args, data, f"{form.signature}\n(symmetry {args.symmetry}, automorphism group of order "
+          f"{form.automorphisms})")
+    return EXIT_OK
+
+
+def _picture_path(path: str) -> str:
+    if not path.lower().endswith((".png", ".svg")):
+        raise CliError(f"{path}: pictures are written as .png or .svg")
+    return path
+
+
+def cmd_render(args: argparse.Namespace) -> int:
+    from polyloops.render.level_graphs import render_level_graphs
+    from polyloops.render.polycube import render_polycube
+
+    out = _picture_path(args.output)
+    obj = read_structure(args.file)
+    ls = dualize(obj) if isinstance(obj, Polycube) and verify(obj).valid else obj
+    if isinstance(ls, LoopStructure) and not ls.oriented:
+        raise CliError(f"{args.file}: is a labelled loop structure without sides; orient it first")
+    try:
+        if args.level_graphs:
+            if not isinstance(ls, LoopStructure):
+                raise CliError(f"{args.file}: not a polycube, so it has no loop structure", EXIT_INVALID)
+            render_level_graphs(ls, out)
+        else:
+            report = verify(obj)
+            title = None if report.valid else f"not valid: {_first_violation(report)}"[:110]
+            try:
+                render_polycube(obj, out, views=args.views, loops=args.loops, title=title)
+            except DualityError as err:
+                render_level_graphs(obj, out)  # type: ignore[arg-type]
+                print(f"polyloops render: {args.file}: no polycube ({err}); drew the level graphs instead",
+                      file=sys.stderr)
+    except OSError as err:
+        raise CliError(f"{out}: cannot write: {err.strerror or err}") from None
+    return EXIT_OK
+
+
+def cmd_sheet(args: argparse.Namespace) -> int:
+    from pathlib import Path
+
+    from polyloops.core.canonical import SignatureError, from_signature
+    from polyloops.render.sheet import render_sheet
+
+    out = _picture_path(args.output)
+    items = []
+    for source in args.sources:
+        path = Path(source)
+        if path.is_dir():
+            listing = path / "catalog.jsonl"
+            if not listing.is_file():
+                raise CliError(f"{source}: a directory, but no catalog.jsonl in it")
+            for i, line in enumerate(listing.read_text().splitlines()):
+                rec = json.loads(line)
+                try:
+                    obj = from_signature(rec["signature"])
+                except (SignatureError, KeyError) as err:
+                    raise CliError(f"{listing}: bad record: {err}") from None
+                items.append((f"#{i} {rec['corners']}c ..{rec['signature'][-8:]}", obj))
+        else:
+            obj = read_structure(source)
+            name = source[:24] if source.startswith(("example:", "sig:")) else Path(source).name
+            items.append((f"{name} {obj.map.num_corners}c", obj))
+    if args.limit is not None:
+        items = items[: args.limit]
+    if not items:
+        raise CliError("nothing to draw")
+    try:
+        render_sheet(items, out, columns=args.columns)
+    except DualityError as err:
+        raise CliError(f"cannot draw: {err}", EXIT_INVALID) from None
+    except OSError as err:
+        raise CliError(f"{out}: cannot write: {err.strerror or err}") from None
+    print(f"drew {len(items)} polycubes to {out}")
+    return EXIT_OK
+
+
 # -- parser -------------------------------------------------------------------------------
 
 Command = Callable[[argparse.Namespace], int]
@@ -431,12 +583,53 @@ def build_parser() -> argparse.ArgumentParser:
                 json_flag=False)
     p.add_argument("loop", metavar="LOOP", type=int, help="a loop id from 'polyloops moves --remove'")
     p.add_argument("-o", "--output", metavar="OUT", help="write the new structure here")
+    p = command("signature", cmd_signature, "a canonical name: equal exactly for isomorphic "
+                "structures (mirror images of the surface identified); use it as sig:NAME anywhere")
+    p.add_argument("--symmetry", choices=("labelled", "rotation", "full"), default="labelled",
+                   help="labelled: axes fixed (order-equivalence); rotation: up to the 24 rotations; "
+                   "full: up to all 48 signed permutations")
+    p = command("catalog", cmd_catalog, "the catalog of genus-0 polycubes up to order-equivalence, by "
+                "number of corners, from plantri's quadrangulations ('polyloops catalog query DIR "
+                "WHERE' searches one)", file_arg=False)
+    p.add_argument("--max-corners", type=int, required=True, metavar="N")
+    p.add_argument("--min-corners", type=int, default=8, metavar="M")
+    p.add_argument("--symmetry", choices=("labelled", "rotation", "full"), default="full",
+                   help="which classes the records list (summary.json counts all three); default full")
+    p.add_argument("--workers", type=int, default=1, metavar="K", help="local worker processes")
+    p.add_argument("--res", type=int, metavar="R", help="only plantri's slice R of M (with --mod)")
+    p.add_argument("--mod", type=int, metavar="M")
+    p.add_argument("--dask", metavar="ADDRESS", help="run the jobs on a Dask cluster (an address, or local)")
+    p.add_argument("--plantri", metavar="PATH", help="the plantri to use (default: the one from "
+                   "passagemath-plantri, $POLYLOOPS_PLANTRI, or PATH)")
+    p.add_argument("-o", "--output", metavar="DIR", required=True, help="catalog directory (resumable)")
+    p = command("catalog-query", cmd_catalog_query, "rows of a catalog matching an SQL WHERE clause",
+                file_arg=False)
+    p.add_argument("dir", metavar="DIR")
+    p.add_argument("where", metavar="WHERE", help='an SQL condition, e.g. "corners = 20 AND chiral"')
+    p = command("render", cmd_render, "draw the polycube in 3D with its loops (a loop structure is "
+                "primalized first), or its three level graphs", json_flag=False)
+    p.add_argument("-o", "--output", metavar="OUT", required=True, help="OUT.png or OUT.svg")
+    p.add_argument("--views", type=int, default=1, metavar="N", help="N views from different octants")
+    p.add_argument("--loops", action=argparse.BooleanOptionalAction, default=True,
+                   help="draw the loops on the surface (default) or not")
+    p.add_argument("--level-graphs", action="store_true", help="draw the X-, Y- and Z-graphs instead")
+    p = sub.add_parser("sheet", help="a grid of small renders with captions, from files or a catalog "
+                       "directory", description="a grid of small renders with captions, from files or "
+                       "a catalog directory")
+    p.add_argument("sources", metavar="DIR|FILE", nargs="+", help="catalog directories or " + FILE_HELP)
+    p.add_argument("-o", "--output", metavar="OUT", required=True, help="OUT.png or OUT.svg")
+    p.add_argument("--columns", type=int, default=6)
+    p.add_argument("--limit", type=int, metavar="N", help="draw at most N")
+    p.set_defaults(func=cmd_sheet)
     command("info", cmd_info, "corners, faces, loops, genus, zones, level graphs and corner degrees")
     return parser
 
 
 def main(argv: Sequence[str] | None = None) -> int:
     parser = build_parser()
+    argv = list(sys.argv[1:] if argv is None else argv)
+    if argv[:2] == ["catalog", "query"]:
+        argv = ["catalog-query", *argv[2:]]
     args = parser.parse_args(argv)
     try:
         return args.func(args)

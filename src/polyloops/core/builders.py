@@ -78,3 +78,16 @@ def double_plus_x() -> LoopStructure:
     first = next(lp.id for lp in ls.loops if ls.axes[lp.id] == Axis.X
                  and {q.positions[m.origin(lp.darts[0])][0], q.positions[m.target(lp.darts[0])][0]} == {0, 1})
     return ls.flipped(first)
+
+
+def dented_slab() -> Polycube:
+    """A 3x3x1 slab with a bump on top, its bump's Z-loop flipped: the bump becomes a dent whose
+    floor lies in the plane of the slab's bottom, so the surface meets itself (Definition 1
+    allows self-intersecting polycubes)."""
+    q = polycube_from_voxels([(i, j, 0) for i in range(3) for j in range(3)] + [(1, 1, 1)])
+    ls = q.dualize()
+    top = max(p[2] for p in q.positions)
+    m = ls.map
+    bump = next(lp.id for lp in ls.loops if ls.axes[lp.id] == Axis.Z
+                and top in {q.positions[m.origin(lp.darts[0])][2], q.positions[m.target(lp.darts[0])][2]})
+    return ls.flipped(bump).primalize()

@@ -60,11 +60,16 @@ class CanonicalForm:
         return from_signature(self.signature)
 
 
-def _labels(ls: LoopStructure, g: SignedPermutation) -> list[int]:
+# How each group element acts on direction numbers (0..5) and on axis numbers (0..2).
+_ON_DIRECTIONS = {g: tuple(int(g(d)) for d in Direction) for g in SIGNED_PERMUTATIONS}
+_ON_AXES = {g: tuple(int(g.axis(a)) for a in Axis) for g in SIGNED_PERMUTATIONS}
+
+
+def _base_labels(ls: LoopStructure) -> list[int]:
     m = ls.map
     if ls.oriented:
-        return [int(g(ls.direction(d))) for d in range(m.num_darts)]
-    return [int(g.axis(ls.axis_of_dart(d))) for d in range(m.num_darts)]
+        return [int(ls.direction(d)) for d in range(m.num_darts)]
+    return [int(ls.axis_of_dart(d)) for d in range(m.num_darts)]
 
 
 def _code(nxt: list[int], twin: list[int], lab: list[int], root: int,
@@ -101,30 +106,50 @@ def canonical_form(obj: LoopStructure | Polycube, mode: str = "full") -> Canonic
     m = ls.map
     nxt = list(m.next)
     twin = list(m.twin)
-    mirror_next = [m.twin[m.prev[m.twin[d]]] for d in range(m.num_darts)]
-    degree = [m.degree(m.origin(d)) for d in range(m.num_darts)]
-    face_size = [len(m.faces[m.face_of[d]]) for d in range(m.num_darts)]
+    n = m.num_darts
+    mirror_next = [m.twin[m.prev[m.twin[d]]] for d in range(n)]
+    # Turning around a corner: counter-clockwise in the map, the other way in its mirror.
+    rotations = ([m.twin[m.prev[d]] for d in range(n)], [m.next[m.twin[d]] for d in range(n)])
+    degree = [m.degree(m.origin(d)) for d in range(n)]
+    face_size = [len(m.faces[m.face_of[d]]) for d in range(n)]
     candidates = []
+    base = _base_labels(ls)
     for g in MODES[mode]:
-        lab = _labels(ls, g)
+        table = (_ON_DIRECTIONS if ls.oriented else _ON_AXES)[g]
+        lab = [table[x] for x in base]
         for mirrored, succ in ((False, nxt), (True, mirror_next)):
-            fsize = face_size if not mirrored else [face_size[twin[d]] for d in range(m.num_darts)]
-            inv = [(lab[d], degree[d], degree[twin[d]], fsize[d]) for d in range(m.num_darts)]
+            fsize = face_size if not mirrored else [face_size[twin[d]] for d in range(n)]
+            inv = [(lab[d], degree[d], degree[twin[d]], fsize[d]) for d in range(n)]
             candidates.append((g, mirrored, succ, lab, inv))
     least = min(min(c[4]) for c in candidates)
+
+    def around(lab: list[int], rot: list[int], d: int) -> tuple[int, ...]:
+        out, e = [lab[d]], rot[d]
+        while e != d:
+            out.append(lab[e])
+            e = rot[e]
+        return tuple(out)
+
+    # Refine the roots with the least invariant by the labels around both ends of the dart.
+    roots = []
+    for g, mirrored, succ, lab, inv in candidates:
+        rot = rotations[mirrored]
+        for r in range(n):
+            if inv[r] == least:
+                roots.append(((around(lab, rot, r), around(lab, rot, twin[r])), g, mirrored, succ, lab, r))
+    key = min(item[0] for item in roots)
     best: tuple[int, ...] | None = None
     hits: list[tuple[SignedPermutation, bool]] = []
-    for g, mirrored, succ, lab, inv in candidates:
-        for root in range(m.num_darts):
-            if inv[root] != least:
-                continue
-            code = _code(succ, twin, lab, root, best)
-            if code is None:
-                continue
-            if best is None or code < best:
-                best, hits = code, [(g, mirrored)]
-            elif code == best:
-                hits.append((g, mirrored))
+    for k, g, mirrored, succ, lab, root in roots:
+        if k != key:
+            continue
+        code = _code(succ, twin, lab, root, best)
+        if code is None:
+            continue
+        if best is None or code < best:
+            best, hits = code, [(g, mirrored)]
+        elif code == best:
+            hits.append((g, mirrored))
     assert best is not None
     achiral = any(g.det < 0 for g, _ in hits) if mode == "full" else None
     return CanonicalForm(best, ls.oriented, len(hits), mode, achiral)
@@ -254,3 +279,16 @@ def from_signature(sig: str) -> LoopStructure:
         return LoopStructure.from_edge_labels(faces, labels)
     except ValueError as err:
         raise SignatureError(f"the signature does not describe a loop structure: {err}") from None
+
+
+def transformed(obj: LoopStructure | Polycube, g: SignedPermutation) -> LoopStructure:
+    """The image of a structure under a signed permutation of the axes: every direction is
+    mapped by ``g``; a reflection also reverses the faces, as a mirror in space does."""
+    ls = obj.dualize() if isinstance(obj, Polycube) else obj
+    m = ls.map
+    faces = [tuple(reversed(f)) for f in m.faces] if g.det < 0 else m.faces
+    labels: dict[tuple[int, int], Direction | Axis] = {}
+    for d in m.edge_darts:
+        key = (m.origin(d), m.target(d))
+        labels[key] = g(ls.direction(d)) if ls.oriented else g.axis(ls.axis_of_dart(d))
+    return LoopStructure.from_edge_labels(faces, labels)

@@ -37,6 +37,8 @@ _ALL = [
     Example("non-incremental", "six cubes of a 2x2x2 block (two opposite cubes missing): a polycube "
             "none of whose loops can be removed, so additions alone cannot build it", True,
             lambda: polycube_from_voxels(NON_INCREMENTAL_CUBES)),
+    Example("self-intersecting", "a slab whose dent reaches down to its own bottom face: a valid "
+            "polycube whose surface meets itself", True, builders.dented_slab),
     Example("torus-cycle", "a flat 3x3 torus grid: its X- and Y-graphs are cycles (Condition 5)",
             False, lambda: builders.torus_grid(3, 3)),
     Example("degree-two", "two quads glued along their boundary: regions bounded by two segments "

@@ -70,6 +70,27 @@ class Polycube:
         hi = tuple(max(p[i] for p in self.positions) for i in range(3))
         return (lo[0], lo[1], lo[2]), (hi[0], hi[1], hi[2])
 
+    def signed_volume(self) -> float:
+        """The enclosed volume, positive when the faces are counter-clockwise seen from outside
+        (divergence theorem: a sum over faces of the face's plane coordinate times its signed
+        area along its normal axis)."""
+        total = 0
+        for face in self.faces:
+            p = [self.positions[c] for c in face]
+            # Twice the vector area of the quad; only its normal-axis component is non-zero.
+            area = [0, 0, 0]
+            for i in range(4):
+                a, b = p[i], p[(i + 1) % 4]
+                area[0] += a[1] * b[2] - a[2] * b[1]
+                area[1] += a[2] * b[0] - a[0] * b[2]
+                area[2] += a[0] * b[1] - a[1] * b[0]
+            total += sum(p[0][k] * area[k] for k in range(3))
+        return total / 6
+
+    def outward(self) -> Polycube:
+        """``self``, or its inverse if its faces are clockwise seen from outside."""
+        return self if self.signed_volume() >= 0 else self.inverse()
+
     def inverse(self) -> Polycube:
         """Every face reversed; order-equivalent to ``self`` (Definition 2)."""
         return Polycube(self.map.reversed(), self.positions)
@@ -79,6 +100,12 @@ class Polycube:
         from polyloops.core.duality import dualize
 
         return dualize(self)
+
+    def _repr_png_(self) -> bytes | None:
+        """Jupyter shows a polycube as its picture (see :mod:`polyloops.render`)."""
+        from polyloops.render.polycube import png_bytes
+
+        return png_bytes(self)
 
     def __eq__(self, other: object) -> bool:
         return isinstance(other, Polycube) and self.map == other.map and self.positions == other.positions

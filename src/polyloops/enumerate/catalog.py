@@ -1,0 +1,156 @@
+"""The catalog of genus-0 polycubes, up to order-equivalence, by number of corners.
+
+For each quadrangulation from plantri that survives the batch filter (no self-crossing
+loop), :func:`polycube_structures` finds every labelling and orientation that makes it a
+polycube loop structure: crossing loops get different axes (a proper 3-colouring of the
+crossing graph), and Condition 3 holds at every corner (a 2-colouring of the side graph of
+each axis; each component is a free choice).  Condition 5 holds at genus 0 and Conditions 1,
+2 and 4 hold for every simple quadrangulation with minimum degree 3.
+
+Structures are then identified by signature in each symmetry mode.  plantri lists each map
+once, mirror images identified, and signatures identify mirror images too, so structures on
+different maps never coincide: classes are counted map by map.
+
+>>> from polyloops.core.examples import load_example
+>>> cube = load_example("cube").map
+>>> classes = map_classes(cube)
+>>> {mode: len(v) for mode, v in classes.items()}
+{'labelled': 8, 'rotation': 1, 'full': 1}
+"""
+
+from __future__ import annotations
+
+from collections import defaultdict
+from collections.abc import Iterator
+from dataclasses import dataclass
+from itertools import product
+from typing import Any
+
+from polyloops.core.canonical import CanonicalForm, canonical_form
+from polyloops.core.directions import Axis
+from polyloops.core.halfedge import HalfEdgeMap
+from polyloops.core.structure import LoopStructure
+from polyloops.enumerate.corners import CATEGORIES, corner_histogram
+
+MODES = ("labelled", "rotation", "full")
+
+
+def _colourings(adjacency: list[set[int]]) -> Iterator[list[int]]:
+    """Every proper colouring with colours 0, 1, 2 (backtracking, most constrained first)."""
+    n = len(adjacency)
+    order = sorted(range(n), key=lambda v: -len(adjacency[v]))
+    colour = [-1] * n
+
+    def extend(i: int) -> Iterator[list[int]]:
+        if i == n:
+            yield list(colour)
+            return
+        v = order[i]
+        used = {colour[w] for w in adjacency[v]}
+        for c in (0, 1, 2):
+            if c not in used:
+                colour[v] = c
+                yield from extend(i + 1)
+        colour[v] = -1
+
+    yield from extend(0)
+
+
+def _sign_choices(m: HalfEdgeMap, axes: list[int]) -> list[list[tuple[int, int]]] | None:
+    """Condition 3 as parity constraints ``s_a * s_b = p``; the components of the constraint
+    graph with each loop's sign relative to its component's root, or ``None`` if some
+    constraint cycle is odd."""
+    system = m.loop_system
+    n = len(system.loops)
+    parent = list(range(n))
+    parity = [1] * n  # sign relative to parent
+
+    def find(a: int) -> tuple[int, int]:
+        p = 1
+        while parent[a] != a:
+            p *= parity[a]
+            a = parent[a]
+        return a, p
+
+    for c in range(m.num_corners):
+        darts = m.outgoing(c)
+        for i, d1 in enumerate(darts):
+            l1 = system.loop_of_dart[d1]
+            for d2 in darts[i + 1:]:
+                l2 = system.loop_of_dart[d2]
+                if axes[l1] != axes[l2]:
+                    continue
+                want = -system.side_of_dart[d1] * system.side_of_dart[d2]  # s_l1 * s_l2
+                (r1, p1), (r2, p2) = find(l1), find(l2)
+                if r1 == r2:
+                    if p1 * p2 != want:
+                        return None
+                else:
+                    parent[r1], parity[r1] = r2, p1 * p2 * want
+    groups: dict[int, list[tuple[int, int]]] = defaultdict(list)
+    for loop in range(n):
+        root, p = find(loop)
+        groups[root].append((loop, p))
+    return list(groups.values())
+
+
+def polycube_structures(m: HalfEdgeMap) -> Iterator[LoopStructure]:
+    """Every polycube loop structure on a genus-0 quad map (labelled and oriented)."""
+    system = m.loop_system
+    if any(lp.self_crossings for lp in system.loops):
+        return
+    adjacency: list[set[int]] = [set() for _ in system.loops]
+    for f in range(m.num_faces):
+        a, b = system.loops_of_face(m, f)
+        adjacency[a].add(b)
+        adjacency[b].add(a)
+    for colouring in _colourings(adjacency):
+        comps = _sign_choices(m, colouring)
+        if comps is None:
+            continue
+        axes = tuple(Axis(c) for c in colouring)
+        for choice in product((1, -1), repeat=len(comps)):
+            signs = [0] * len(system.loops)
+            for comp, c in zip(comps, choice, strict=True):
+                for loop, rel in comp:
+                    signs[loop] = c * rel
+            yield LoopStructure(m, axes, tuple(signs))
+
+
+@dataclass(frozen=True)
+class CatalogRecord:
+    """One polycube class in one symmetry mode."""
+
+    signature: str
+    corners: int
+    faces: int
+    loops: dict[str, int]
+    categories: dict[str, int]
+    automorphisms: int
+    chiral: bool
+
+    def to_json(self) -> dict[str, Any]:
+        return {"signature": self.signature, "corners": self.corners, "faces": self.faces,
+                "loops": self.loops, "corner_categories": self.categories,
+                "automorphisms": self.automorphisms, "chiral": self.chiral}
+
+
+def map_classes(m: HalfEdgeMap) -> dict[str, list[CatalogRecord]]:
+    """The polycube classes on one map, in every symmetry mode."""
+    labelled: dict[str, tuple[LoopStructure, CanonicalForm]] = {}
+    for ls in polycube_structures(m):
+        form = canonical_form(ls, "labelled")
+        labelled.setdefault(form.signature, (ls, form))
+    out: dict[str, dict[str, CatalogRecord]] = {mode: {} for mode in MODES}
+    for ls, form in labelled.values():
+        full = canonical_form(ls, "full")
+        chiral = not full.achiral
+        forms = {"labelled": form, "rotation": canonical_form(ls, "rotation"), "full": full}
+        _, categories, _ = corner_histogram(ls)
+        for mode, form in forms.items():
+            key = form.signature
+            if key not in out[mode]:
+                out[mode][key] = CatalogRecord(
+                    key, m.num_corners, m.num_faces, {a.name: ls.axes.count(a) for a in Axis},
+                    {c: categories[c] for c in CATEGORIES}, form.automorphisms, chiral)
+    return {mode: list(v.values()) for mode, v in out.items()}

@@ -1,0 +1,198 @@
+"""Running the genus-0 catalog: jobs, workers, resuming, storage.
+
+A run is split into jobs ``(n, res, mod)``: the maps plantri writes for ``-qc2 n res/mod``.
+Each finished job is written to ``DIR/parts/`` atomically, so an interrupted run resumes
+where it stopped.  When all jobs are done, the parts are merged into ``DIR/catalog.jsonl``,
+``DIR/catalog.sqlite`` (records of the chosen symmetry mode) and ``DIR/summary.json`` (counts
+in every mode), each written through a temporary file and a rename.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import sqlite3
+import tempfile
+import time
+from collections.abc import Callable, Iterable
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from polyloops.core.formats import write_atomic
+from polyloops.enumerate.catalog import MODES, map_classes
+from polyloops.enumerate.corners import CATEGORIES
+from polyloops.enumerate.quadrangulations import candidate_maps
+
+SCHEMA_VERSION = 1
+
+
+@dataclass(frozen=True)
+class Job:
+    n: int
+    res: int = 0
+    mod: int = 1
+
+    @property
+    def name(self) -> str:
+        return f"n{self.n:03d}-{self.res}of{self.mod}"
+
+
+def run_job(job: Job, plantri: str) -> dict[str, Any]:
+    """Generate and classify one slice of the quadrangulations with ``job.n`` vertices."""
+    start = time.perf_counter()
+    maps = [0]
+    candidates = 0
+    records: dict[str, list[dict[str, Any]]] = {mode: [] for mode in MODES}
+
+    def seen(k: int) -> None:
+        maps[0] += k
+
+    for m in candidate_maps(job.n, plantri, job.res, job.mod, on_batch=seen):
+        candidates += 1
+        for mode, recs in map_classes(m).items():
+            records[mode].extend(r.to_json() for r in recs)
+    return {"version": SCHEMA_VERSION, "n": job.n, "res": job.res, "mod": job.mod,
+            "quadrangulations": maps[0], "candidates": candidates, "records": records,
+            "seconds": time.perf_counter() - start}
+
+
+def plan_jobs(min_n: int, max_n: int, res: int | None, mod: int | None, workers: int) -> list[Job]:
+    """One job per corner count, split further for large counts when several workers run;
+    with ``res/mod`` given, just that slice of each corner count."""
+    jobs = []
+    for n in range(min_n, max_n + 1):
+        if mod is not None:
+            jobs.append(Job(n, res or 0, mod))
+        else:
+            parts = 1 if workers <= 1 or n < 20 else 4 * workers * 3 ** max(0, (n - 20) // 2)
+            jobs.extend(Job(n, r, parts) for r in range(parts))
+    # Largest first, so that workers finish together.
+    return sorted(jobs, key=lambda j: (-j.n, j.res))
+
+
+def part_path(out: Path, job: Job) -> Path:
+    return out / "parts" / f"{job.name}.json"
+
+
+def load_part(out: Path, job: Job) -> dict[str, Any] | None:
+    path = part_path(out, job)
+    try:
+        data = json.loads(path.read_text())
+    except (OSError, ValueError):
+        return None
+    ok = data.get("version") == SCHEMA_VERSION and (data["n"], data["res"], data["mod"]) == (
+        job.n, job.res, job.mod)
+    return data if ok else None
+
+
+def execute(jobs: list[Job], out: Path, plantri: str, workers: int = 1, dask: str | None = None,
+            progress: Callable[[dict[str, Any]], None] | None = None) -> list[dict[str, Any]]:
+    """Run the jobs not yet in ``out/parts`` and return every job's result."""
+    (out / "parts").mkdir(parents=True, exist_ok=True)
+    done = {job: load_part(out, job) for job in jobs}
+    todo = [job for job, part in done.items() if part is None]
+    for part in done.values():
+        if part is not None and progress:
+            progress(part)
+
+    def finish(result: dict[str, Any]) -> None:
+        job = Job(result["n"], result["res"], result["mod"])
+        write_atomic(part_path(out, job), json.dumps(result, separators=(",", ":")))
+        done[job] = result
+        if progress:
+            progress(result)
+
+    if dask is not None:
+        for result in _run_dask(todo, plantri, dask):
+            finish(result)
+    elif workers > 1 and len(todo) > 1:
+        from concurrent.futures import ProcessPoolExecutor, as_completed
+
+        with ProcessPoolExecutor(max_workers=workers) as pool:
+            futures = [pool.submit(run_job, job, plantri) for job in todo]
+            for fut in as_completed(futures):
+                finish(fut.result())
+    else:
+        for job in todo:
+            finish(run_job(job, plantri))
+    return [done[job] for job in jobs]  # type: ignore[misc]
+
+
+def _run_dask(jobs: list[Job], plantri: str, address: str) -> Iterable[dict[str, Any]]:
+    try:
+        from distributed import Client, LocalCluster, as_completed
+    except ImportError:
+        raise RuntimeError("--dask needs dask.distributed: pip install 'polyloops[dask]'") from None
+    cluster = LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                           dashboard_address=None) if address == "local" else None
+    with Client(cluster if cluster is not None else address) as client:
+        futures = client.map(run_job, jobs, plantri=plantri, pure=False)
+        for fut in as_completed(futures):
+            yield fut.result()
+    if cluster is not None:
+        cluster.close()
+
+
+# -- merging and storage ---------------------------------------------------------------------
+
+def summarize(results: list[dict[str, Any]], min_n: int, max_n: int, partial: bool) -> dict[str, Any]:
+    counts = {str(n): dict.fromkeys(MODES, 0) for n in range(min_n, max_n + 1)}
+    quads = {str(n): 0 for n in range(min_n, max_n + 1)}
+    for r in results:
+        quads[str(r["n"])] += r["quadrangulations"]
+        for mode in MODES:
+            counts[str(r["n"])][mode] += len(r["records"][mode])
+    out: dict[str, Any] = {"genus": 0, "counts": counts, "quadrangulations": quads}
+    if partial:
+        out["partial"] = "only the plantri slice res/mod given on the command line"
+    return out
+
+
+COLUMNS = ["signature", "corners", "faces", "loops_x", "loops_y", "loops_z",
+           *[c.replace("-", "_") for c in CATEGORIES], "automorphisms", "chiral"]
+
+
+def _row(rec: dict[str, Any]) -> list[Any]:
+    return [rec["signature"], rec["corners"], rec["faces"], rec["loops"]["X"], rec["loops"]["Y"],
+            rec["loops"]["Z"], *[rec["corner_categories"][c] for c in CATEGORIES],
+            rec["automorphisms"], int(rec["chiral"])]
+
+
+def write_catalog(out: Path, results: list[dict[str, Any]], symmetry: str, summary: dict[str, Any]) -> int:
+    records = sorted((rec for r in results for rec in r["records"][symmetry]),
+                     key=lambda rec: (rec["corners"], rec["signature"]))
+    lines = [json.dumps({**rec, "symmetry": symmetry}, separators=(",", ":")) for rec in records]
+    write_atomic(out / "catalog.jsonl", "\n".join(lines) + ("\n" if lines else ""))
+    fd, tmp = tempfile.mkstemp(dir=out, prefix=".catalog.sqlite.", suffix=".tmp")
+    os.close(fd)
+    try:
+        con = sqlite3.connect(tmp)
+        cols = ", ".join(f"{c} {'TEXT' if c == 'signature' else 'INTEGER'}" for c in COLUMNS)
+        con.execute(f"CREATE TABLE polycubes ({cols}, PRIMARY KEY (signature))")
+        con.executemany(f"INSERT INTO polycubes VALUES ({', '.join('?' * len(COLUMNS))})",
+                        [_row(rec) for rec in records])
+        con.execute("CREATE TABLE meta (key TEXT PRIMARY KEY, value TEXT)")
+        con.execute("INSERT INTO meta VALUES ('symmetry', ?)", (symmetry,))
+        con.execute("CREATE INDEX by_corners ON polycubes (corners)")
+        con.commit()
+        con.close()
+        os.replace(tmp, out / "catalog.sqlite")
+    finally:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+    write_atomic(out / "summary.json", json.dumps(summary, indent=1) + "\n")
+    return len(records)
+
+
+def query(out: Path, where: str) -> tuple[list[str], list[tuple[Any, ...]]]:
+    """Rows of ``DIR/catalog.sqlite`` matching an SQL WHERE clause (read-only connection)."""
+    path = out / "catalog.sqlite"
+    if not path.is_file():
+        raise FileNotFoundError(f"{path}: no catalog here")
+    con = sqlite3.connect(f"file:{path}?mode=ro", uri=True)
+    try:
+        cur = con.execute(f"SELECT * FROM polycubes WHERE {where} ORDER BY corners, signature")
+        return [d[0] for d in cur.description], cur.fetchall()
+    finally:
+        con.close()

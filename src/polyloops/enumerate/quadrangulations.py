@@ -1,0 +1,166 @@
+"""Genus-0 quad meshes from plantri, decoded and filtered in batches with numpy.
+
+The quad mesh of a genus-0 polycube is a simple quadrangulation of the sphere with minimum
+degree 3, which ``plantri -qc2 N`` generates (one map per isomorphism class, mirror images
+identified).  plantri writes *planar code*: per map, the number of vertices and, for each
+vertex, its neighbours in clockwise order ending with 0.  For a fixed number of vertices
+``n`` every record has ``5n - 7`` bytes, so a batch is a 2D array.
+
+A loop (strip) that crosses itself rules a map out (Condition 3), and almost every
+quadrangulation has one, so the batch filter traces the strips of every map at once with
+numpy and keeps the rest for the per-map work.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+import sys
+import sysconfig
+from collections.abc import Iterator
+from pathlib import Path
+
+import numpy as np
+
+from polyloops.core.halfedge import HalfEdgeMap
+
+HEADER = b">>planar_code<<"
+
+
+class PlantriError(RuntimeError):
+    """plantri is missing or failed."""
+
+
+def find_plantri(explicit: str | None = None) -> str:
+    """The plantri executable: ``explicit``, ``$POLYLOOPS_PLANTRI``, the one that
+    passagemath-plantri installs (``sage_wheels/bin/plantri`` in site-packages), or PATH."""
+    for candidate in (explicit, os.environ.get("POLYLOOPS_PLANTRI")):
+        if candidate:
+            if Path(candidate).is_file() and os.access(candidate, os.X_OK):
+                return str(candidate)
+            raise PlantriError(f"{candidate}: not an executable plantri")
+    roots = {sysconfig.get_paths()["purelib"], sysconfig.get_paths()["platlib"], *sys.path}
+    for root in sorted(r for r in roots if r):
+        p = Path(root) / "sage_wheels" / "bin" / "plantri"
+        if p.is_file() and os.access(p, os.X_OK):
+            return str(p)
+    found = shutil.which("plantri")
+    if found:
+        return found
+    raise PlantriError("plantri not found: install passagemath-plantri, or set POLYLOOPS_PLANTRI")
+
+
+def record_size(n: int) -> int:
+    return 5 * n - 7
+
+
+def plantri_batches(n: int, plantri: str, res: int = 0, mod: int = 1,
+                    batch: int = 4000) -> Iterator[np.ndarray]:
+    """Run ``plantri -qc2 n [res/mod]`` and yield its maps as uint8 arrays of ``batch`` rows."""
+    args = [plantri, "-qc2", str(n)] + ([f"{res}/{mod}"] if mod > 1 else [])
+    size = record_size(n)
+    with subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE) as proc:
+        assert proc.stdout is not None
+        head = proc.stdout.read(len(HEADER))
+        if head and head != HEADER:
+            raise PlantriError(f"unexpected plantri output: {head!r}")
+        while True:
+            chunk = proc.stdout.read(size * batch)
+            if not chunk:
+                break
+            if len(chunk) % size:
+                raise PlantriError("plantri output ended inside a map")
+            yield np.frombuffer(chunk, dtype=np.uint8).reshape(-1, size)
+        err = proc.stderr.read().decode() if proc.stderr else ""
+    if proc.returncode:
+        raise PlantriError(f"plantri failed ({proc.returncode}): {err.strip()}")
+
+
+def plantri_count(n: int, plantri: str, res: int = 0, mod: int = 1) -> int:
+    """The number of maps plantri reports for ``-qc2 n`` (it generates without writing)."""
+    args = [plantri, "-qc2u", str(n)] + ([f"{res}/{mod}"] if mod > 1 else [])
+    out = subprocess.run(args, capture_output=True, text=True, check=True).stderr
+    for line in out.splitlines():
+        words = line.split()
+        if len(words) > 1 and words[1].startswith("quadrangulation"):
+            return int(words[0])
+    raise PlantriError(f"cannot read plantri's count from: {out.strip()}")
+
+
+class Batch:
+    """Darts of a batch of maps with ``n`` vertices: ``origin``, ``target``, ``twin``, face
+    successor ``nxt`` and loop label (the least dart of the loop) ``loop``, each ``(B, 2E)``."""
+
+    def __init__(self, rows: np.ndarray):
+        n = int(rows[0, 0])
+        self.n = n
+        e2 = 2 * (2 * n - 4)
+        body = rows[:, 1:]
+        zero = body == 0
+        vert = np.cumsum(zero, axis=1, dtype=np.int32) - zero
+        nonzero = ~zero
+        b = rows.shape[0]
+        self.origin = vert[nonzero].reshape(b, e2)
+        self.target = body[nonzero].reshape(b, e2).astype(np.int32) - 1
+        pos = np.broadcast_to(np.arange(e2, dtype=np.int32), (b, e2))
+        first = np.ones((b, e2), dtype=bool)
+        first[:, 1:] = self.origin[:, 1:] != self.origin[:, :-1]
+        block_start = np.maximum.accumulate(np.where(first, pos, 0), axis=1)
+        last = np.ones((b, e2), dtype=bool)
+        last[:, :-1] = first[:, 1:]
+        cw_next = np.where(last, block_start, pos + 1)
+        index = np.empty((b, n, n), dtype=np.int32)
+        rows_ix = np.arange(b)[:, None]
+        index[rows_ix, self.origin, self.target] = pos
+        self.twin = index[rows_ix, self.target, self.origin]
+        # Around a face: from u->v continue with v->w, w the clockwise successor of u at v.
+        self.nxt = np.take_along_axis(cw_next, self.twin, axis=1)
+
+    def __len__(self) -> int:
+        return self.origin.shape[0]
+
+    def without_self_crossing(self) -> np.ndarray:
+        """Boolean mask of the maps none of whose loops crosses itself."""
+        take = np.take_along_axis
+        e2 = self.origin.shape[1]
+        cross = take(self.twin, take(self.nxt, self.nxt, axis=1), axis=1)
+        label = np.minimum(np.arange(e2, dtype=np.int32)[None, :], self.twin)
+        step = cross
+        for _ in range(int(np.ceil(np.log2(e2))) + 1):
+            label = np.minimum(label, take(label, step, axis=1))
+            step = take(step, step, axis=1)
+        # A face is crossed by the loops of its two consecutive darts; equal means self-crossing.
+        return ~(label == take(label, self.nxt, axis=1)).any(axis=1)
+
+    def faces(self, i: int) -> list[list[int]]:
+        """The faces of map ``i`` as corner lists."""
+        nxt, origin = self.nxt[i], self.origin[i]
+        seen = np.zeros(len(nxt), dtype=bool)
+        out = []
+        for d in range(len(nxt)):
+            if not seen[d]:
+                face, e = [], d
+                while not seen[e]:
+                    seen[e] = True
+                    face.append(int(origin[e]))
+                    e = int(nxt[e])
+                out.append(face)
+        return out
+
+    def map(self, i: int) -> HalfEdgeMap:
+        return HalfEdgeMap.from_faces(self.faces(i))
+
+
+def candidate_maps(n: int, plantri: str, res: int = 0, mod: int = 1,
+                   on_batch=None) -> Iterator[HalfEdgeMap]:
+    """The quadrangulations with ``n`` vertices that have no self-crossing loop.
+
+    ``on_batch(k)`` is called with the number of maps in each batch read (for progress)."""
+    for rows in plantri_batches(n, plantri, res, mod):
+        batch = Batch(rows)
+        keep = np.flatnonzero(batch.without_self_crossing())
+        for i in keep:
+            yield batch.map(int(i))
+        if on_batch is not None:
+            on_batch(len(batch))

@@ -1,0 +1,76 @@
+"""The three level graphs side by side: zones as nodes placed by level, loops as arcs."""
+
+from __future__ import annotations
+
+import os
+from collections import defaultdict
+
+import networkx as nx
+from matplotlib.patches import FancyArrowPatch
+
+from polyloops.core.directions import Axis
+from polyloops.core.structure import LoopStructure
+from polyloops.render.colors import AXIS_COLOR, LIGHT_COLOR
+from polyloops.render.figure import new_figure, save_figure
+
+
+def _positions(g: nx.MultiDiGraph) -> dict[int, tuple[float, float]]:
+    """Level (longest path from a source) upwards; nodes of one level spread evenly.
+    A graph with a cycle has no levels: its nodes go on a circle."""
+    if not nx.is_directed_acyclic_graph(g):
+        return {k: (float(x), float(y)) for k, (x, y) in nx.circular_layout(g).items()}
+    level = dict.fromkeys(g.nodes, 0)
+    for z in nx.topological_sort(g):
+        for _, w in g.out_edges(z):
+            level[w] = max(level[w], level[z] + 1)
+    rows: dict[int, list[int]] = defaultdict(list)
+    for z in sorted(g.nodes):
+        rows[level[z]].append(z)
+    pos = {}
+    for lev, zs in rows.items():
+        for i, z in enumerate(zs):
+            pos[z] = (i - (len(zs) - 1) / 2, float(lev))
+    return pos
+
+
+def draw_level_graph(ax, ls: LoopStructure, axis: Axis) -> None:
+    g = ls.level_graph(axis)
+    pos = _positions(g)
+    seen: dict[tuple[int, int], int] = defaultdict(int)
+    for u, v, loop in sorted(g.edges(keys=True)):
+        pair = (min(u, v), max(u, v))
+        k = seen[pair]
+        seen[pair] += 1
+        rad = 0.0 if k == 0 else (0.35 * ((k + 1) // 2)) * (1 if k % 2 else -1)
+        if u == v:
+            rad = 1.5
+        arrow = FancyArrowPatch(pos[u], pos[v], connectionstyle=f"arc3,rad={rad}", arrowstyle="-|>",
+                                mutation_scale=14, color=AXIS_COLOR[axis], lw=1.6, shrinkA=11, shrinkB=11)
+        ax.add_patch(arrow)
+        mx, my = (pos[u][0] + pos[v][0]) / 2, (pos[u][1] + pos[v][1]) / 2
+        ax.text(mx + 0.12 + rad * 0.4, my, str(loop), fontsize=7, color=AXIS_COLOR[axis])
+    for z, (x, y) in pos.items():
+        ax.plot([x], [y], "o", ms=16, color=LIGHT_COLOR[axis], markeredgecolor=AXIS_COLOR[axis])
+        ax.text(x, y, str(z), ha="center", va="center", fontsize=8)
+    xs = [p[0] for p in pos.values()] or [0.0]
+    ys = [p[1] for p in pos.values()] or [0.0]
+    ax.set_xlim(min(xs) - 1, max(xs) + 1)
+    ax.set_ylim(min(ys) - 0.7, max(ys) + 0.7)
+    acyclic = nx.is_directed_acyclic_graph(g)
+    ax.set_title(f"{axis}-graph: {g.number_of_nodes()} zones, {g.number_of_edges()} loops"
+                 + ("" if acyclic else " (cycle!)"), fontsize=9, color="black" if acyclic else "red")
+    ax.axis("off")
+
+
+def render_level_graphs(ls: LoopStructure, path: str | os.PathLike[str] | None = None):
+    """The X-, Y- and Z-graphs side by side (zones numbered as in ``zones(axis)``, arcs by loop id)."""
+    if not ls.oriented:
+        raise ValueError("a labelled loop structure has no level graphs; orient it first")
+    fig = new_figure(11, 4)
+    for i, axis in enumerate(Axis):
+        draw_level_graph(fig.add_subplot(1, 3, i + 1), ls, axis)
+    fig.subplots_adjust(left=0.02, right=0.98, bottom=0.03, top=0.9, wspace=0.1)
+    if path is None:
+        return fig
+    save_figure(fig, path)
+    return None

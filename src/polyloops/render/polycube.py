@@ -1,0 +1,223 @@
+"""Pictures of polycubes with their loops, and of level graphs.
+
+Faces are drawn with the painter's algorithm after cutting them into unit cells, so that
+depth sorting stays right for concave and self-intersecting polycubes.  Each loop is drawn
+on the surface through the face centres it visits, as two thin strokes on either side of
+its path: the stroke on the ``+`` side (towards higher coordinates of the loop's axis) dark,
+the one on the ``-`` side light, in the paper's colours.
+"""
+
+from __future__ import annotations
+
+import io
+import math
+import os
+from itertools import product
+
+from matplotlib.patches import Polygon
+
+from polyloops.core.directions import Axis, Direction
+from polyloops.core.duality import DualityError, dualize, primalize
+from polyloops.core.polycube import Polycube
+from polyloops.core.structure import LoopStructure
+from polyloops.render.colors import AXIS_COLOR, LIGHT_COLOR
+from polyloops.render.figure import new_figure, save_figure
+from polyloops.render.projection import View
+
+FACE_SHADE = {Axis.X: "#cfcfcf", Axis.Y: "#e8e8e8", Axis.Z: "#b4b4b4"}
+
+Vec = tuple[float, float, float]
+
+
+def _sub(a, b):
+    return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
+
+
+def _add(a, b, s=1.0):
+    return (a[0] + s * b[0], a[1] + s * b[1], a[2] + s * b[2])
+
+
+def _cross(a, b):
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+def face_normal(q: Polycube, f: int) -> Direction | None:
+    """The outward normal of a face (faces are counter-clockwise seen from outside)."""
+    p = [q.positions[c] for c in q.faces[f]]
+    n = _cross(_sub(p[1], p[0]), _sub(p[2], p[1]))
+    nz = [i for i in range(3) if n[i]]
+    if len(nz) != 1:
+        return None
+    return Direction.of(nz[0], 1 if n[nz[0]] > 0 else -1)
+
+
+def candidate_views() -> list[tuple[float, float]]:
+    """Azimuth/elevation pairs looking from each of the eight octants, slightly off-diagonal;
+    views from above first, so that they win ties."""
+    return [(az, el) for el in (28.0, -28.0) for az in (35.0, 125.0, 215.0, 305.0)]
+
+
+def choose_views(q: Polycube, count: int) -> list[View]:
+    """Greedy: each view shows the most faces (facing the camera) not shown by earlier ones."""
+    normals = [face_normal(q, f) for f in range(q.map.num_faces)]
+    remaining = {f for f, n in enumerate(normals) if n is not None}
+    chosen: list[View] = []
+    pool = [View(az, el) for az, el in candidate_views()]
+    for _ in range(count):
+        best = max(pool, key=lambda v: (sum(1 for f in remaining if v.facing(normals[f].vector) > 0),
+                                        -pool.index(v)))
+        chosen.append(best)
+        pool.remove(best)
+        remaining -= {f for f in remaining if best.facing(normals[f].vector) > 0}
+        if not pool:
+            break
+    return chosen
+
+
+def _cells(q: Polycube, f: int) -> list[list[Vec]]:
+    """The face cut into unit cells (faces are axis-aligned rectangles with integer corners)."""
+    p = [q.positions[c] for c in q.faces[f]]
+    lo = [min(x[i] for x in p) for i in range(3)]
+    hi = [max(x[i] for x in p) for i in range(3)]
+    flat = [i for i in range(3) if lo[i] == hi[i]]
+    if len(flat) != 1:
+        return [[tuple(map(float, x)) for x in p]]
+    a, b = [i for i in range(3) if i != flat[0]]
+    order = p[0], p[1], p[2], p[3]
+    out = []
+    for u, v in product(range(lo[a], hi[a]), range(lo[b], hi[b])):
+        cell = []
+        for corner in order:  # keep the face's orientation
+            x = list(map(float, corner))
+            x[a] = u + (1.0 if corner[a] == hi[a] else 0.0)
+            x[b] = v + (1.0 if corner[b] == hi[b] else 0.0)
+            cell.append((x[0], x[1], x[2]))
+        out.append(cell)
+    return out
+
+
+def _loop_strokes(q: Polycube, ls: LoopStructure, lift: float,
+                  faces: set[int]) -> list[tuple[list[Vec], str, float]]:
+    """Short 3D segments of every loop: (points, colour, width), on both sides of its path."""
+    m = q.map
+    out = []
+    for lp in ls.loops:
+        axis = ls.axes[lp.id]
+        e = [0.0, 0.0, 0.0]
+        e[axis] = 1.0
+        for i, d in enumerate(lp.darts):
+            f = lp.faces[i]
+            n = face_normal(q, f)
+            if n is None or f not in faces:
+                continue
+            nv = n.vector
+            ends = []
+            for dart in (d, m.next[m.next[d]]):  # entry and exit edges of this face
+                a, b = q.positions[m.origin(dart)], q.positions[m.target(dart)]
+                ends.append(tuple((a[k] + b[k]) / 2 for k in range(3)))
+            centre = tuple(sum(q.positions[c][k] for c in q.faces[f]) / 4 for k in range(3))
+            path = [ends[0], centre, ends[1]]
+            width = 0.08
+            for side, colour in ((1.0, AXIS_COLOR[axis]), (-1.0, LIGHT_COLOR[axis])):
+                pts = [_add(_add(p, nv, lift), tuple(e), side * width) for p in path]
+                for j in range(2):  # split so each piece sorts with the cells under it
+                    a, b = pts[j], pts[j + 1]
+                    mid = tuple((a[k] + b[k]) / 2 for k in range(3))
+                    out.append(([a, mid], colour, 2.2))
+                    out.append(([mid, b], colour, 2.2))
+    return out
+
+
+def draw_polycube(ax, q: Polycube, view: View, loops: LoopStructure | None) -> None:
+    """Faces turned away from the camera are left out (the surface is closed, so they are hidden
+    unless it meets itself); the rest are sorted by depth, cell by cell."""
+    items = []
+    front = set()
+    for f in range(q.map.num_faces):
+        n = face_normal(q, f)
+        if n is not None and view.facing(n.vector) <= 0:
+            continue
+        front.add(f)
+        colour = FACE_SHADE[n.axis] if n is not None else "#ff8080"
+        for cell in _cells(q, f):
+            centre = tuple(sum(p[k] for p in cell) / 4 for k in range(3))
+            items.append((view.depth(centre), 0, cell, colour, 0.0))
+        # The face's own edges (its cells are only for depth sorting), in unit pieces.
+        corners = [q.positions[c] for c in q.faces[f]]
+        for i in range(4):
+            a, b = corners[i], corners[(i + 1) % 4]
+            steps = max(1, max(abs(b[k] - a[k]) for k in range(3)))
+            for j in range(steps):
+                p0 = tuple(a[k] + (b[k] - a[k]) * j / steps for k in range(3))
+                p1 = tuple(a[k] + (b[k] - a[k]) * (j + 1) / steps for k in range(3))
+                mid = tuple((p0[k] + p1[k]) / 2 for k in range(3))
+                items.append((view.depth(mid) + 0.005, 1, [p0, p1], "#4d4d4d", 0.7))
+    if loops is not None:
+        for pts, colour, width in _loop_strokes(q, loops, 0.02, front):
+            centre = tuple((pts[0][k] + pts[1][k]) / 2 for k in range(3))
+            items.append((view.depth(centre) + 0.01, 1, pts, colour, width))
+    items.sort(key=lambda t: (t[0], t[1]))
+    xs, ys = [], []
+    for _, kind, pts, colour, width in items:
+        flat = [view.project(p) for p in pts]
+        xs += [x for x, _ in flat]
+        ys += [y for _, y in flat]
+        if kind == 0:
+            ax.add_patch(Polygon(flat, closed=True, facecolor=colour, edgecolor=colour, lw=0.3))
+        else:
+            ax.plot([flat[0][0], flat[1][0]], [flat[0][1], flat[1][1]], color=colour, lw=width,
+                    solid_capstyle="round")
+    if xs:
+        pad = 0.3
+        cx, cy = (max(xs) + min(xs)) / 2, (max(ys) + min(ys)) / 2
+        r = max(max(xs) - min(xs), max(ys) - min(ys)) / 2 + pad
+        ax.set_xlim(cx - r, cx + r)
+        ax.set_ylim(cy - r, cy + r)
+    ax.set_aspect("equal")
+    ax.axis("off")
+
+
+def as_polycube(obj: Polycube | LoopStructure) -> tuple[Polycube, LoopStructure | None]:
+    """The polycube to draw and its loop structure (``None`` if it has none); raises
+    :class:`DualityError` when a loop structure has no polycube (a cyclic level graph)."""
+    if isinstance(obj, Polycube):
+        q = obj.outward()
+        try:
+            return q, dualize(q)
+        except DualityError:
+            return q, None
+    if not obj.oriented:
+        raise DualityError("a labelled loop structure has no polycube; orient it first")
+    q = primalize(obj).outward()
+    return q, dualize(q) if q.map is not obj.map else obj
+
+
+def render_polycube(obj: Polycube | LoopStructure, path: str | os.PathLike[str] | None = None,
+                    views: int = 1, loops: bool = True, title: str | None = None, size: float = 4.0):
+    """Draw a polycube (a loop structure is primalized first) from ``views`` directions.
+
+    Writes PNG or SVG to ``path``; with ``path=None`` returns the figure."""
+    q, ls = as_polycube(obj)
+    chosen = choose_views(q, max(1, views))
+    cols = min(len(chosen), 2 if len(chosen) == 4 else len(chosen))
+    rows = math.ceil(len(chosen) / cols)
+    fig = new_figure(size * cols, size * rows + (0.4 if title else 0))
+    for i, view in enumerate(chosen):
+        ax = fig.add_subplot(rows, cols, i + 1)
+        draw_polycube(ax, q, view, ls if loops else None)
+    if title:
+        fig.suptitle(title, fontsize=10)
+    fig.subplots_adjust(left=0.01, right=0.99, bottom=0.01, top=0.93 if title else 0.99,
+                        wspace=0.02, hspace=0.02)
+    if path is None:
+        return fig
+    save_figure(fig, path)
+    return None
+
+
+def png_bytes(obj: Polycube | LoopStructure, size: float = 3.5) -> bytes:
+    """PNG of a single view (for Jupyter's ``_repr_png_``)."""
+    fig = render_polycube(obj, None, views=1, size=size)
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", metadata={"Software": None})
+    return buf.getvalue()

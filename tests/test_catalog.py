@@ -1,0 +1,199 @@
+"""The genus-0 catalog: plantri's maps, two independent methods that agree, storage, resuming."""
+
+import itertools
+import json
+import shutil
+import subprocess
+from functools import cache
+from pathlib import Path
+
+import pytest
+
+from polyloops.cli import main
+from polyloops.core.canonical import canonical_form
+from polyloops.core.directions import Axis
+from polyloops.core.halfedge import HalfEdgeMap
+from polyloops.core.structure import LoopStructure
+from polyloops.enumerate.catalog import MODES
+from polyloops.enumerate.quadrangulations import find_plantri, plantri_batches, plantri_count
+from polyloops.solvers import OrientationProblem, make_solver
+from polyloops.verify import check_polycube_loop_structure
+
+ROOT = Path(__file__).resolve().parent.parent
+SHIPPED = ROOT / "catalogs" / "genus0"
+
+
+@cache
+def plantri():
+    return find_plantri()
+
+
+def test_batches_hold_every_map():
+    for n in range(8, 17):
+        read = sum(len(b) for b in plantri_batches(n, plantri(), batch=7))
+        assert read == plantri_count(n, plantri())
+
+
+def test_counts_of_quadrangulations_match_the_notes():
+    # MATH.md: counts of plantri -qc2 by vertices, 8..18.
+    notes = [1, 0, 1, 1, 3, 3, 12, 19, 64, 155, 510]
+    assert [plantri_count(n, plantri()) for n in range(8, 19)] == notes
+
+
+def ascii_maps(n):
+    """A second reader: plantri's ASCII output (-a), neighbours clockwise, faces traced here."""
+    out = subprocess.run([plantri(), "-qc2a", str(n)], capture_output=True, text=True, check=True).stdout
+    for line in out.splitlines():
+        if not line.strip():
+            continue
+        _, spec = line.split()
+        rot = [[ord(ch) - ord("a") for ch in part] for part in spec.split(",")]
+        seen, faces = set(), []
+        for u in range(len(rot)):
+            for v in rot[u]:
+                if (u, v) in seen:
+                    continue
+                face, a, b = [], u, v
+                while (a, b) not in seen:
+                    seen.add((a, b))
+                    face.append(a)
+                    i = rot[b].index(a)
+                    a, b = b, rot[b][(i - 1) % len(rot[b])]
+                faces.append(face)
+        yield HalfEdgeMap.from_faces(faces)
+
+
+def brute_counts(n):
+    """The slow twin: every labelling of the loops by axes (skipping those where two crossing
+    loops share an axis), every orientation the SAT solver lists, each checked with the
+    Definition-4 checker, deduplicated by signature."""
+    classes = {mode: set() for mode in MODES}
+    for m in ascii_maps(n):
+        loops = m.loop_system.loops
+        if any(lp.self_crossings for lp in loops):
+            continue
+        pairs = {tuple(sorted(m.loop_system.loops_of_face(m, f))) for f in range(m.num_faces)}
+        for axes in itertools.product(Axis, repeat=len(loops)):
+            if any(axes[a] == axes[b] for a, b in pairs):
+                continue
+            ls = LoopStructure(m, axes)
+            for signs in make_solver("sat").solutions(OrientationProblem(ls)):
+                oriented = ls.with_signs(signs)
+                assert check_polycube_loop_structure(oriented).valid
+                for mode in MODES:
+                    classes[mode].add(canonical_form(oriented, mode).signature)
+    return {mode: len(v) for mode, v in classes.items()}
+
+
+@pytest.fixture(scope="module")
+def small_catalog(tmp_path_factory):
+    out = tmp_path_factory.mktemp("cat") / "c"
+    assert main(["catalog", "--min-corners", "8", "--max-corners", "20", "-o", str(out), "--symmetry",
+                 "rotation"]) == 0
+    return out
+
+
+def test_two_methods_agree_through_20(small_catalog):
+    summary = json.loads((small_catalog / "summary.json").read_text())
+    for n in range(8, 21):
+        assert summary["counts"][str(n)] == brute_counts(n), n
+
+
+def test_summary_form_and_records(small_catalog):
+    summary = json.loads((small_catalog / "summary.json").read_text())
+    assert summary["genus"] == 0
+    assert set(summary["counts"]) == {str(n) for n in range(8, 21)}
+    assert summary["quadrangulations"]["16"] == plantri_count(16, plantri())
+    lines = (small_catalog / "catalog.jsonl").read_text().splitlines()
+    assert len(lines) == sum(c["rotation"] for c in summary["counts"].values())
+    for line in lines:
+        rec = json.loads(line)
+        assert sum(rec["corner_categories"].values()) == rec["corners"]
+        assert rec["faces"] == rec["corners"] - 2
+        assert rec["symmetry"] == "rotation"
+
+
+def test_query(capsys, small_catalog):
+    assert main(["catalog", "query", str(small_catalog), "corners = 16", "--json"]) == 0
+    rows = json.loads(capsys.readouterr().out)
+    summary = json.loads((small_catalog / "summary.json").read_text())
+    assert len(rows) == summary["counts"]["16"]["rotation"]
+    assert main(["catalog", "query", str(small_catalog), "nonsense ((("]) == 2
+    assert "bad query" in capsys.readouterr().err
+
+
+def test_resume_and_no_half_written_files(tmp_path, capsys):
+    out = tmp_path / "c"
+    assert main(["catalog", "--max-corners", "18", "-o", str(out)]) == 0
+    first = (out / "summary.json").read_text()
+    parts = sorted((out / "parts").iterdir())
+    stamp = {p.name: p.stat().st_mtime_ns for p in parts}
+    parts[0].unlink()  # as if interrupted before that job finished
+    assert main(["catalog", "--max-corners", "18", "-o", str(out)]) == 0
+    assert (out / "summary.json").read_text() == first
+    again = {p.name: p.stat().st_mtime_ns for p in (out / "parts").iterdir()}
+    assert [k for k in again if again[k] != stamp.get(k)] == [parts[0].name]
+    assert not list(out.rglob("*.tmp"))
+
+
+def test_slices_and_workers_agree(tmp_path):
+    whole, a, b, w = (tmp_path / x for x in ("whole", "a", "b", "w"))
+    assert main(["catalog", "--min-corners", "20", "--max-corners", "20", "-o", str(whole)]) == 0
+    assert main(["catalog", "--min-corners", "20", "--max-corners", "20", "--res", "0", "--mod", "2",
+                 "-o", str(a)]) == 0
+    assert main(["catalog", "--min-corners", "20", "--max-corners", "20", "--res", "1", "--mod", "2",
+                 "-o", str(b)]) == 0
+    assert main(["catalog", "--min-corners", "20", "--max-corners", "20", "--workers", "2", "-o", str(w)]) == 0
+    total = json.loads((whole / "summary.json").read_text())["counts"]["20"]
+    halves = [json.loads((x / "summary.json").read_text())["counts"]["20"] for x in (a, b)]
+    assert {m: halves[0][m] + halves[1][m] for m in MODES} == total
+    assert json.loads((w / "summary.json").read_text())["counts"]["20"] == total
+    assert (whole / "catalog.jsonl").read_text() == (w / "catalog.jsonl").read_text()
+
+
+def test_dask_local(tmp_path):
+    pytest.importorskip("distributed")
+    out, ref = tmp_path / "d", tmp_path / "r"
+    assert main(["catalog", "--max-corners", "16", "--dask", "local", "-o", str(out)]) == 0
+    assert main(["catalog", "--max-corners", "16", "-o", str(ref)]) == 0
+    assert (out / "catalog.jsonl").read_text() == (ref / "catalog.jsonl").read_text()
+
+
+def test_shipped_catalog_regenerates(tmp_path):
+    shipped = json.loads((SHIPPED / "summary.json").read_text())
+    out = tmp_path / "c"
+    assert main(["catalog", "--max-corners", "20", "-o", str(out)]) == 0
+    mine = json.loads((out / "summary.json").read_text())
+    for n in range(8, 21):
+        assert mine["counts"][str(n)] == shipped["counts"][str(n)]
+        assert mine["quadrangulations"][str(n)] == shipped["quadrangulations"][str(n)]
+    ours = [line for line in (out / "catalog.jsonl").read_text().splitlines()]
+    theirs = [line for line in (SHIPPED / "catalog.jsonl").read_text().splitlines()
+              if json.loads(line)["corners"] <= 20]
+    assert ours == theirs
+
+
+def test_bad_arguments(capsys, tmp_path):
+    assert main(["catalog", "--max-corners", "6", "--min-corners", "8", "-o", str(tmp_path / "x")]) == 2
+    assert main(["catalog", "--max-corners", "10", "--res", "1", "-o", str(tmp_path / "x")]) == 2
+    assert main(["catalog", "--max-corners", "10", "--plantri", "/nonexistent", "-o", str(tmp_path / "x")]) == 2
+    err = capsys.readouterr().err
+    assert "Traceback" not in err and err.count("\n") == 3
+
+
+def test_plantri_is_found_without_help():
+    assert Path(find_plantri()).is_file()
+    assert shutil.which(find_plantri()) or Path(find_plantri()).exists()
+
+
+def test_catalog_readme_table_is_the_summary():
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("catalog_readme", ROOT / "tools" / "catalog_readme.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    summary = json.loads((SHIPPED / "summary.json").read_text())
+    readme = (ROOT / "catalogs" / "README.md").read_text()
+    assert mod.render(readme, summary) == readme, "run: python tools/catalog_readme.py"
+    rows = len((SHIPPED / "catalog.jsonl").read_text().splitlines())
+    assert rows == sum(c["full"] for c in summary["counts"].values())
