@@ -1,13 +1,15 @@
 """The ``polyloops`` command line: a thin layer over the Python API.
 
 Exit status: 0 when done or valid, 1 when the input was checked and is
-invalid, 2 for bad input or usage.  Errors are one line naming the file.
+invalid, 2 for bad input or usage, 3 for an internal error (a bug).  Errors
+are one line naming the file.
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import os
 import sys
 from collections.abc import Callable, Sequence
 from typing import Any
@@ -30,6 +32,7 @@ from polyloops.core.structure import LabelError, LoopStructure
 from polyloops.info import describe, format_summary
 from polyloops.verify import Report, verify, verify_document
 
+EXIT_INTERNAL = 3
 FILE_HELP = ("a JSON file, example:NAME for a bundled example ('polyloops examples' lists them), "
              "or sig:SIGNATURE")
 
@@ -641,6 +644,12 @@ def main(argv: Sequence[str] | None = None) -> int:
     except KeyboardInterrupt:
         print(f"polyloops {args.command}: interrupted", file=sys.stderr)
         return 130
+    except Exception as err:  # a bug, not bad input: one line, the traceback on request
+        if os.environ.get("POLYLOOPS_DEBUG"):
+            raise
+        print(f"polyloops {args.command}: internal error: {type(err).__name__}: {err} "
+              "(set POLYLOOPS_DEBUG=1 to see where)", file=sys.stderr)
+        return EXIT_INTERNAL
 
 
 __all__ = ["build_parser", "main"]

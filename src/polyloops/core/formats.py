@@ -178,6 +178,19 @@ def to_obj(q: Polycube) -> str:
     return "\n".join(out) + "\n"
 
 
+def _default_mode() -> int:
+    """The permissions a plain ``open(path, "w")`` would give (0o666 less the umask)."""
+    mask = os.umask(0)
+    os.umask(mask)
+    return 0o666 & ~mask
+
+
+def replace_atomic(tmp: str, target: str | os.PathLike[str]) -> None:
+    """Give a finished temporary file ordinary permissions and move it into place."""
+    os.chmod(tmp, _default_mode())
+    os.replace(tmp, target)
+
+
 def write_atomic(path: str | os.PathLike[str], text: str) -> None:
     """Write through a temporary file and rename, so no half-written file is ever left."""
     target = Path(path)
@@ -185,7 +198,7 @@ def write_atomic(path: str | os.PathLike[str], text: str) -> None:
     try:
         with os.fdopen(fd, "w", encoding="utf-8") as fh:
             fh.write(text)
-        os.replace(tmp, target)
+        replace_atomic(tmp, target)
     except BaseException:
         if os.path.exists(tmp):
             os.unlink(tmp)

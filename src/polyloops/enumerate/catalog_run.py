@@ -19,7 +19,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from polyloops.core.formats import write_atomic
+from polyloops.core.formats import replace_atomic, write_atomic
 from polyloops.enumerate.catalog import MODES, map_classes
 from polyloops.enumerate.corners import CATEGORIES
 from polyloops.enumerate.quadrangulations import candidate_maps
@@ -177,7 +177,7 @@ def write_catalog(out: Path, results: list[dict[str, Any]], symmetry: str, summa
         con.execute("CREATE INDEX by_corners ON polycubes (corners)")
         con.commit()
         con.close()
-        os.replace(tmp, out / "catalog.sqlite")
+        replace_atomic(tmp, out / "catalog.sqlite")
     finally:
         if os.path.exists(tmp):
             os.unlink(tmp)

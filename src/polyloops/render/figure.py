@@ -12,6 +12,8 @@ matplotlib.use("Agg")
 
 from matplotlib.figure import Figure
 
+from polyloops.core.formats import replace_atomic
+
 FORMATS = {".png": "png", ".svg": "svg"}
 
 
@@ -41,7 +43,7 @@ def save_figure(fig: Figure, path: str | os.PathLike[str]) -> None:
                 fig.savefig(tmp, format=fmt, metadata=metadata)
         else:
             fig.savefig(tmp, format=fmt, metadata=metadata)
-        os.replace(tmp, target)
+        replace_atomic(tmp, target)
     except BaseException:
         if os.path.exists(tmp):
             os.unlink(tmp)
