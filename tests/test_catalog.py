@@ -143,7 +143,8 @@ def test_slices_and_workers_agree(tmp_path):
                  "-o", str(a)]) == 0
     assert main(["catalog", "--min-corners", "20", "--max-corners", "20", "--res", "1", "--mod", "2",
                  "-o", str(b)]) == 0
-    assert main(["catalog", "--min-corners", "20", "--max-corners", "20", "--workers", "2", "-o", str(w)]) == 0
+    assert main(["catalog", "--min-corners", "20", "--max-corners", "20", "--workers", "2",
+                 "-o", str(w)]) == 0
     total = json.loads((whole / "summary.json").read_text())["counts"]["20"]
     halves = [json.loads((x / "summary.json").read_text())["counts"]["20"] for x in (a, b)]
     assert {m: halves[0][m] + halves[1][m] for m in MODES} == total
@@ -167,7 +168,7 @@ def test_shipped_catalog_regenerates(tmp_path):
     for n in range(8, 21):
         assert mine["counts"][str(n)] == shipped["counts"][str(n)]
         assert mine["quadrangulations"][str(n)] == shipped["quadrangulations"][str(n)]
-    ours = [line for line in (out / "catalog.jsonl").read_text().splitlines()]
+    ours = (out / "catalog.jsonl").read_text().splitlines()
     theirs = [line for line in (SHIPPED / "catalog.jsonl").read_text().splitlines()
               if json.loads(line)["corners"] <= 20]
     assert ours == theirs
@@ -176,7 +177,8 @@ def test_shipped_catalog_regenerates(tmp_path):
 def test_bad_arguments(capsys, tmp_path):
     assert main(["catalog", "--max-corners", "6", "--min-corners", "8", "-o", str(tmp_path / "x")]) == 2
     assert main(["catalog", "--max-corners", "10", "--res", "1", "-o", str(tmp_path / "x")]) == 2
-    assert main(["catalog", "--max-corners", "10", "--plantri", "/nonexistent", "-o", str(tmp_path / "x")]) == 2
+    assert main(["catalog", "--max-corners", "10", "--plantri", "/nonexistent",
+                 "-o", str(tmp_path / "x")]) == 2
     err = capsys.readouterr().err
     assert "Traceback" not in err and err.count("\n") == 3
 

@@ -15,7 +15,7 @@ different maps never coincide: classes are counted map by map.
 >>> cube = load_example("cube").map
 >>> classes = map_classes(cube)
 >>> {mode: len(v) for mode, v in classes.items()}
-{'labelled': 8, 'rotation': 1, 'full': 1}
+{'labelled': 1, 'rotation': 1, 'full': 1}
 """
 
 from __future__ import annotations
