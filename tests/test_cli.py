@@ -10,7 +10,8 @@ from polyloops.cli import main
 from polyloops.core.examples import EXAMPLES, load_example
 from polyloops.core.formats import dumps, loads
 
-COMMANDS = ["examples", "verify", "primalize", "dualize", "info"]
+COMMANDS = ["examples", "verify", "primalize", "dualize", "info", "corners", "orient", "moves", "add",
+            "remove", "signature", "catalog", "catalog-query", "render", "sheet"]
 
 
 def run(capsys, *argv):
@@ -147,6 +148,13 @@ def test_unwritable_output(capsys, tmp_path):
     status, _, err = run(capsys, "dualize", "example:cube", "-o", str(tmp_path / "no" / "such" / "x.json"))
     assert status == 2 and "cannot write" in err
     assert not list(tmp_path.rglob("*.tmp"))
+
+
+def test_every_command_is_listed():
+    from polyloops.cli.main import build_parser
+
+    sub = next(a for a in build_parser()._actions if a.dest == "command")
+    assert set(sub.choices) == set(COMMANDS)
 
 
 def test_module_entry_point():

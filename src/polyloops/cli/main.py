@@ -634,20 +634,21 @@ def main(argv: Sequence[str] | None = None) -> int:
     if argv[:2] == ["catalog", "query"]:
         argv = ["catalog-query", *argv[2:]]
     args = parser.parse_args(argv)
+    name = "catalog query" if args.command == "catalog-query" else args.command
     try:
         return args.func(args)
     except CliError as err:
-        print(f"polyloops {args.command}: {err}", file=sys.stderr)
+        print(f"polyloops {name}: {err}", file=sys.stderr)
         return err.status
     except BrokenPipeError:  # output piped into head, for example
         return EXIT_OK
     except KeyboardInterrupt:
-        print(f"polyloops {args.command}: interrupted", file=sys.stderr)
+        print(f"polyloops {name}: interrupted", file=sys.stderr)
         return 130
     except Exception as err:  # a bug, not bad input: one line, the traceback on request
         if os.environ.get("POLYLOOPS_DEBUG"):
             raise
-        print(f"polyloops {args.command}: internal error: {type(err).__name__}: {err} "
+        print(f"polyloops {name}: internal error: {type(err).__name__}: {err} "
               "(set POLYLOOPS_DEBUG=1 to see where)", file=sys.stderr)
         return EXIT_INTERNAL
 
