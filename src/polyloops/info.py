@@ -81,7 +81,7 @@ def format_summary(s: dict[str, Any]) -> str:
     ]
     cats = "  ".join(f"{c}:{n}" for c, n in s["corner_categories"].items() if n)
     if cats:
-        lines.append(f"corners   {cats}   (configurations {s['corner_configurations']})")
+        lines.append(f"category  {cats}   (configuration ids {s['corner_configurations']})")
     if s["unclassified_corners"]:
         lines.append(f"          {s['unclassified_corners']} corners are no polycube corner"
                      + ("" if s.get("oriented", True) else " (no sides to tell)"))
