@@ -74,31 +74,50 @@ def choose_views(q: Polycube, count: int) -> list[View]:
     return chosen
 
 
-def _cells(q: Polycube, f: int) -> list[list[Vec]]:
-    """The face cut into unit cells (faces are axis-aligned rectangles with integer corners)."""
+def _face_frame(q: Polycube, f: int) -> tuple[int, int, list[int], list[int]] | None:
+    """The two in-plane axes and the bounds of an axis-aligned rectangular face, else ``None``."""
     p = [q.positions[c] for c in q.faces[f]]
     lo = [min(x[i] for x in p) for i in range(3)]
     hi = [max(x[i] for x in p) for i in range(3)]
     flat = [i for i in range(3) if lo[i] == hi[i]]
     if len(flat) != 1:
-        return [[tuple(map(float, x)) for x in p]]
+        return None
     a, b = [i for i in range(3) if i != flat[0]]
-    order = p[0], p[1], p[2], p[3]
+    return a, b, lo, hi
+
+
+def _cells(q: Polycube, f: int) -> list[tuple[tuple[int, int], list[Vec]]]:
+    """The face cut into unit cells, each with its grid position (faces are axis-aligned
+    rectangles with integer corners; any other face stays whole, at position (0, 0))."""
+    p = [q.positions[c] for c in q.faces[f]]
+    frame = _face_frame(q, f)
+    if frame is None:
+        return [((0, 0), [tuple(map(float, x)) for x in p])]
+    a, b, lo, hi = frame
     out = []
     for u, v in product(range(lo[a], hi[a]), range(lo[b], hi[b])):
         cell = []
-        for corner in order:  # keep the face's orientation
+        for corner in p:  # keep the face's orientation
             x = list(map(float, corner))
             x[a] = u + (1.0 if corner[a] == hi[a] else 0.0)
             x[b] = v + (1.0 if corner[b] == hi[b] else 0.0)
             cell.append((x[0], x[1], x[2]))
-        out.append(cell)
+        out.append(((u, v), cell))
     return out
 
 
+def _pieces(a: Vec, b: Vec, longest: float = 0.5) -> list[tuple[Vec, Vec]]:
+    """A segment cut into pieces no longer than ``longest``."""
+    length = math.dist(a, b)
+    k = max(1, math.ceil(length / longest))
+    pts = [tuple(a[i] + (b[i] - a[i]) * j / k for i in range(3)) for j in range(k + 1)]
+    return [(pts[j], pts[j + 1]) for j in range(k)]
+
+
 def _loop_strokes(q: Polycube, ls: LoopStructure, lift: float,
-                  faces: set[int]) -> list[tuple[list[Vec], str, float]]:
-    """Short 3D segments of every loop: (points, colour, width), on both sides of its path."""
+                  faces: set[int]) -> list[tuple[int, tuple[Vec, Vec], str, float]]:
+    """Pieces of every loop on the given faces: (face, segment, colour, width), one stroke on
+    each side of the loop's path."""
     m = q.map
     out = []
     for lp in ls.loops:
@@ -110,63 +129,74 @@ def _loop_strokes(q: Polycube, ls: LoopStructure, lift: float,
             n = face_normal(q, f)
             if n is None or f not in faces:
                 continue
-            nv = n.vector
             ends = []
             for dart in (d, m.next[m.next[d]]):  # entry and exit edges of this face
                 a, b = q.positions[m.origin(dart)], q.positions[m.target(dart)]
                 ends.append(tuple((a[k] + b[k]) / 2 for k in range(3)))
             centre = tuple(sum(q.positions[c][k] for c in q.faces[f]) / 4 for k in range(3))
-            path = [ends[0], centre, ends[1]]
-            width = 0.08
             for side, colour in ((1.0, AXIS_COLOR[axis]), (-1.0, LIGHT_COLOR[axis])):
-                pts = [_add(_add(p, nv, lift), tuple(e), side * width) for p in path]
-                for j in range(2):  # split so each piece sorts with the cells under it
-                    a, b = pts[j], pts[j + 1]
-                    mid = tuple((a[k] + b[k]) / 2 for k in range(3))
-                    out.append(([a, mid], colour, 2.2))
-                    out.append(([mid, b], colour, 2.2))
+                path = (ends[0], centre, ends[1])
+                pts = [_add(_add(p, n.vector, lift), tuple(e), side * 0.08) for p in path]
+                for j in range(2):
+                    for piece in _pieces(pts[j], pts[j + 1]):
+                        out.append((f, piece, colour, 2.2))
     return out
+
+
+EDGE_COLOUR = "#4d4d4d"
 
 
 def draw_polycube(ax, q: Polycube, view: View, loops: LoopStructure | None) -> None:
     """Faces turned away from the camera are left out (the surface is closed, so they are hidden
-    unless it meets itself); the rest are sorted by depth, cell by cell."""
-    items = []
-    front = set()
+    unless it meets itself).  The rest are cut into unit cells sorted by depth; each cell is
+    drawn with the pieces of face edges and loops that lie on it, so they are hidden with it."""
+    cells: dict[tuple[int, int, int], list] = {}
+    frames: dict[int, tuple[int, int, list[int], list[int]] | None] = {}
     for f in range(q.map.num_faces):
         n = face_normal(q, f)
         if n is not None and view.facing(n.vector) <= 0:
             continue
-        front.add(f)
+        frames[f] = _face_frame(q, f)
         colour = FACE_SHADE[n.axis] if n is not None else "#ff8080"
-        for cell in _cells(q, f):
+        for (u, v), cell in _cells(q, f):
             centre = tuple(sum(p[k] for p in cell) / 4 for k in range(3))
-            items.append((view.depth(centre), 0, cell, colour, 0.0))
-        # The face's own edges (its cells are only for depth sorting), in unit pieces.
-        corners = [q.positions[c] for c in q.faces[f]]
+            cells[(f, u, v)] = [view.depth(centre), cell, colour, [], []]
+
+    def cell_of(f: int, point: Vec) -> list:
+        frame = frames[f]
+        if frame is None:
+            return cells[(f, 0, 0)]
+        a, b, lo, hi = frame
+        u = min(max(math.floor(point[a]), lo[a]), hi[a] - 1)
+        v = min(max(math.floor(point[b]), lo[b]), hi[b] - 1)
+        return cells[(f, u, v)]
+
+    for f in frames:
+        corners = [tuple(map(float, q.positions[c])) for c in q.faces[f]]
+        inward = tuple(sum(c[k] for c in corners) / 4 for k in range(3))
         for i in range(4):
-            a, b = corners[i], corners[(i + 1) % 4]
-            steps = max(1, max(abs(b[k] - a[k]) for k in range(3)))
-            for j in range(steps):
-                p0 = tuple(a[k] + (b[k] - a[k]) * j / steps for k in range(3))
-                p1 = tuple(a[k] + (b[k] - a[k]) * (j + 1) / steps for k in range(3))
-                mid = tuple((p0[k] + p1[k]) / 2 for k in range(3))
-                items.append((view.depth(mid) + 0.005, 1, [p0, p1], "#4d4d4d", 0.7))
+            for piece in _pieces(corners[i], corners[(i + 1) % 4], 1.0):
+                mid = tuple((piece[0][k] + piece[1][k]) / 2 for k in range(3))
+                # Nudge towards the face centre to find the cell the piece borders.
+                probe = tuple(mid[k] + 0.25 * math.copysign(1, inward[k] - mid[k]) * (inward[k] != mid[k])
+                              for k in range(3))
+                cell_of(f, probe)[3].append(piece)
     if loops is not None:
-        for pts, colour, width in _loop_strokes(q, loops, 0.02, front):
-            centre = tuple((pts[0][k] + pts[1][k]) / 2 for k in range(3))
-            items.append((view.depth(centre) + 0.01, 1, pts, colour, width))
-    items.sort(key=lambda t: (t[0], t[1]))
+        for f, piece, colour, width in _loop_strokes(q, loops, 0.02, set(frames)):
+            mid = tuple((piece[0][k] + piece[1][k]) / 2 for k in range(3))
+            cell_of(f, mid)[4].append((piece, colour, width))
     xs, ys = [], []
-    for _, kind, pts, colour, width in items:
-        flat = [view.project(p) for p in pts]
+    for _, poly, colour, edges, strokes in sorted(cells.values(), key=lambda c: c[0]):
+        flat = [view.project(p) for p in poly]
         xs += [x for x, _ in flat]
         ys += [y for _, y in flat]
-        if kind == 0:
-            ax.add_patch(Polygon(flat, closed=True, facecolor=colour, edgecolor=colour, lw=0.3))
-        else:
-            ax.plot([flat[0][0], flat[1][0]], [flat[0][1], flat[1][1]], color=colour, lw=width,
-                    solid_capstyle="round")
+        ax.add_patch(Polygon(flat, closed=True, facecolor=colour, edgecolor=colour, lw=0.3))
+        for a, b in edges:
+            (x0, y0), (x1, y1) = view.project(a), view.project(b)
+            ax.plot([x0, x1], [y0, y1], color=EDGE_COLOUR, lw=0.7, solid_capstyle="round")
+        for (a, b), c, width in strokes:
+            (x0, y0), (x1, y1) = view.project(a), view.project(b)
+            ax.plot([x0, x1], [y0, y1], color=c, lw=width, solid_capstyle="round")
     if xs:
         pad = 0.3
         cx, cy = (max(xs) + min(xs)) / 2, (max(ys) + min(ys)) / 2
