@@ -82,8 +82,13 @@ def write_output(path: str | None, obj: Structure) -> str | None:
         text = to_obj(obj)
     else:
         text = dumps(obj)
+    write_text(path, text)
+    return None
+
+
+def write_text(path: str, text: str) -> None:
+    """Write atomically; a failure becomes a one-line :class:`CliError`."""
     try:
         write_atomic(path, text)
     except OSError as err:
         raise CliError(f"{path}: cannot write: {err.strerror or err}") from None
-    return None

@@ -23,10 +23,11 @@ from polyloops.cli.load import (
     read_document,
     read_structure,
     write_output,
+    write_text,
 )
 from polyloops.core.duality import DualityError, dualize, primalize
 from polyloops.core.examples import EXAMPLES
-from polyloops.core.formats import to_data, write_atomic
+from polyloops.core.formats import to_data
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LabelError, LoopStructure
 from polyloops.info import describe, format_summary
@@ -214,7 +215,7 @@ def cmd_orient(args: argparse.Namespace) -> int:
             lines = [json.dumps(to_data(s), separators=(",", ":")) for s in structures]
             if not lines:
                 return fail()
-            _write_text(args.output, "\n".join(lines) + "\n")
+            write_text(args.output, "\n".join(lines) + "\n")
             print(f"{summary}\nwrote {len(lines)} orientations to {args.output} (one JSON per line)")
             return EXIT_OK
         n = 0
@@ -245,13 +246,6 @@ def cmd_orient(args: argparse.Namespace) -> int:
     else:
         print(f"{summary}\nwrote an orientation to {args.output}")
     return EXIT_OK
-
-
-def _write_text(path: str, text: str) -> None:
-    try:
-        write_atomic(path, text)
-    except OSError as err:
-        raise CliError(f"{path}: cannot write: {err.strerror or err}") from None
 
 
 def _oriented_structure(arg: str):
@@ -287,9 +281,7 @@ def cmd_moves(args: argparse.Namespace) -> int:
         return EXIT_OK
     if want_add:
         listed = []
-        for i, mv in enumerate(m for a in axes for m in additions(ls, a)):
-            if args.limit is not None and i >= args.limit:
-                break
+        for i, mv in enumerate(additions(ls, axes[0] if len(axes) == 1 else None, args.limit)):
             row = {"index": i, **mv.to_json(ls)}
             listed.append(row)
             lines.append(f"add {i:>4}  {mv.axis}-loop past corners {list(mv.cycle)} "
@@ -330,8 +322,7 @@ def _parse_move(ls, text: str):
         index = int(text)
     except ValueError:
         raise CliError(f"move {text!r}: {MOVE_HELP}") from None
-    listing = (m for a in Axis for m in additions(ls, a))
-    found = next(islice(listing, index, None), None) if index >= 0 else None
+    found = next(islice(additions(ls), index, None), None) if index >= 0 else None
     if found is None:
         raise CliError(f"move {index}: there is no addition with that index ('polyloops moves' lists them)")
     return found
@@ -453,7 +444,8 @@ def cmd_render(args: argparse.Namespace) -> int:
 
     out = _picture_path(args.output)
     obj = read_structure(args.file)
-    ls = dualize(obj) if isinstance(obj, Polycube) and verify(obj).valid else obj
+    report = verify(obj)
+    ls = dualize(obj) if isinstance(obj, Polycube) and report.valid else obj
     if isinstance(ls, LoopStructure) and not ls.oriented:
         raise CliError(f"{args.file}: is a labelled loop structure without sides; orient it first")
     try:
@@ -462,7 +454,6 @@ def cmd_render(args: argparse.Namespace) -> int:
                 raise CliError(f"{args.file}: not a polycube, so it has no loop structure", EXIT_INVALID)
             render_level_graphs(ls, out)
         else:
-            report = verify(obj)
             title = None if report.valid else f"not valid: {_first_violation(report)}"[:110]
             try:
                 render_polycube(obj, out, views=args.views, loops=args.loops, title=title)

@@ -12,7 +12,7 @@ free binary choice, ``2^k`` in all.  Condition 5 (acyclic level graphs) restrict
 at genus 0 the level graphs are trees and every choice is acyclic.
 
 >>> from polyloops.core.examples import load_example
->>> p = OrientationProblem.from_structure(load_example("l-shape").dualize())
+>>> p = OrientationProblem(load_example("l-shape").dualize())
 >>> p.k, [len(p.components_of(a)) for a in Axis]
 (3, [1, 1, 1])
 """
@@ -80,10 +80,6 @@ class OrientationProblem:
             for loop, rel in zip(comp.loops, comp.relative, strict=True):
                 signs[loop] = rel
         return signs
-
-    @classmethod
-    def from_structure(cls, ls: LoopStructure) -> OrientationProblem:
-        return cls(ls)
 
     # -- the side graph ---------------------------------------------------------------------
     def _build_side_edges(self) -> dict[Axis, list[tuple[Side, Side]]]:
