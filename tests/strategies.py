@@ -125,6 +125,42 @@ def polycubes(draw, kinds=KINDS, max_size: int = 10) -> Polycube:
     return random_polycube(draw(st.integers(0, 2**31)), kind, draw(st.integers(0, max_size)))
 
 
+def bridged_ring(width: int, depth: int, holes: int, bumps: list[int]) -> set[Cell]:
+    """A ring of unit cubes in the plane ``z = 0`` (``holes`` square holes side by side) whose
+    bar at ``x = 0`` is lifted to ``z = 1``, leaving a tunnel under it.  The Z-zone at
+    ``z = 1`` then runs around the hole and under the bridge: it has a handle (genus 1).
+    ``bumps`` pick top faces on which one more cube stands."""
+    length = holes * (width - 1) + 1
+    cells = {(x, y, 0) for x in range(length) for y in range(depth)
+             if x % (width - 1) == 0 or y in (0, depth - 1)}
+    for y in range(1, depth - 1):
+        cells.discard((0, y, 0))
+        cells.add((0, y, 1))
+    cells |= {(0, 0, 1), (0, depth - 1, 1)}
+    tops = sorted(c for c in cells if (c[0], c[1], c[2] + 1) not in cells)
+    for i in bumps:
+        c = tops[i % len(tops)]
+        cells.add((c[0], c[1], c[2] + 1))
+    return cells
+
+
+def transform_cells(cells: set[Cell], perm: tuple[int, int, int], signs: tuple[int, int, int]) -> set[Cell]:
+    """The image of a set of cubes under a signed permutation of the axes."""
+    return {tuple(-1 - c[perm[k]] if signs[k] < 0 else c[perm[k]] for k in range(3))  # type: ignore[misc]
+            for c in cells}
+
+
+@st.composite
+def handle_zone_polycubes(draw, max_bumps: int = 2) -> Polycube:
+    """Polycubes of genus 1 or 2 with a zone of positive genus, in any position in space:
+    bridged rings (:func:`bridged_ring`) with drawn sizes, bumps and a signed permutation."""
+    cells = bridged_ring(draw(st.integers(3, 4)), draw(st.integers(3, 4)), draw(st.integers(1, 2)),
+                         draw(st.lists(st.integers(0, 60), max_size=max_bumps)))
+    perm = draw(st.permutations((0, 1, 2)))
+    signs = draw(st.tuples(*[st.sampled_from((1, -1))] * 3))
+    return polycube_from_voxels(transform_cells(cells, tuple(perm), signs))
+
+
 @st.composite
 def perturbed_structures(draw, max_size: int = 8) -> LoopStructure:
     """The loop structure of a random polycube with a few loops flipped or relabelled."""

@@ -28,6 +28,11 @@ class Example:
 # Found by searching random unions of unit cubes for polycubes with no removable loop.
 NON_INCREMENTAL_CUBES = [(0, 0, 0), (0, 0, 1), (0, 1, 1), (1, 0, 0), (1, 1, 0), (1, 1, 1)]
 
+# A genus-1 ring whose x = 0 side is a bridge at z = 1: one Z-zone runs around the hole and
+# under the bridge, so it has a handle, and a Z-loop around it would not separate the zone.
+BRIDGED_RING_CUBES = [(0, 0, 0), (0, 0, 1), (0, 1, 1), (0, 2, 0), (0, 2, 1), (1, 0, 0), (1, 2, 0),
+                      (2, 0, 0), (2, 1, 0), (2, 2, 0)]
+
 _ALL = [
     Example("cube", "the unit cube", True, lambda: builders.box(1, 1, 1)),
     Example("box-2x1x1", "two unit cubes in a row: two X-loops", True, lambda: builders.box(2, 1, 1)),
@@ -37,6 +42,9 @@ _ALL = [
     Example("non-incremental", "six cubes of a 2x2x2 block (two opposite cubes missing): a polycube "
             "none of whose loops can be removed, so additions alone cannot build it", True,
             lambda: polycube_from_voxels(NON_INCREMENTAL_CUBES)),
+    Example("bridged-ring", "a ring of ten cubes with a bridge (genus 1) whose Z-zone at z = 1 has "
+            "a handle: a Z-loop around it is locally valid but closes a level-graph cycle", True,
+            lambda: polycube_from_voxels(BRIDGED_RING_CUBES)),
     Example("self-intersecting", "a slab whose dent reaches down to its own bottom face: a valid "
             "polycube whose surface meets itself", True, builders.dented_slab),
     Example("torus-cycle", "a flat 3x3 torus grid: its X- and Y-graphs are cycles (Condition 5)",

@@ -135,17 +135,87 @@ class _AdditionGraph:
             stack.append(iter(self.succ[nxt]))
 
 
+def separates_zone(ls: LoopStructure, move: Addition) -> bool:
+    """Whether the new loop cuts its ``axis``-zone in two (so its arc is not a self-loop).
+
+    The cycle's edges have other axes, so its corners lie in one zone ``Z``.  After the
+    addition, two corners are in one zone when edges of other axes join them; the new loop's
+    rungs have its own axis.  So ``Z`` stays connected exactly when ``v-`` and ``v+`` of a
+    corner of the cycle are still joined: a union-find over the zone's edges with each edge at
+    a cycle corner attached to the copy on its side.  A zone of genus 0 is a planar surface,
+    where every simple closed curve separates (Jordan), so only zones with a handle are
+    searched.
+    """
+    m = ls.map
+    cyc = move.cycle
+    zones = ls.zones(move.axis)
+    zone = zones.zone_of[cyc[0]]
+    if zones.genera[zone] == 0:
+        return True
+    k = len(cyc)
+    darts = [m.dart(cyc[i], cyc[(i + 1) % k]) for i in range(k)]
+    plus_id = {v: m.num_corners + i for i, v in enumerate(cyc)}
+    # The copy of its origin that each dart leaves from, for darts at cycle corners.
+    copy: dict[int, int] = {}
+    for i, v in enumerate(cyc):
+        forward, back = darts[i], m.twin[darts[i - 1]]
+        d = m.rotate(back)
+        while d != forward:  # strictly between back and forward (CCW): the right side
+            copy[d] = plus_id[v]
+            d = m.rotate(d)
+    parts = _DisjointSets()
+    for c in range(m.num_corners):
+        if zones.zone_of[c] != zone:
+            continue
+        for d in m.outgoing(c):
+            if ls.axis_of_dart(d) == move.axis or d in darts or m.twin[d] in darts:
+                continue
+            parts.union(copy.get(d, c), copy.get(m.twin[d], m.target(d)))
+    for i in range(k):  # each edge of the cycle is doubled: one copy per side
+        u, w = cyc[i], cyc[(i + 1) % k]
+        parts.union(u, w)
+        parts.union(plus_id[u], plus_id[w])
+    return parts.find(cyc[0]) != parts.find(plus_id[cyc[0]])
+
+
+class _DisjointSets:
+    """A small union-find on integers (path halving)."""
+
+    def __init__(self) -> None:
+        self.parent: dict[int, int] = {}
+
+    def find(self, x: int) -> int:
+        p = self.parent
+        p.setdefault(x, x)
+        while p[x] != x:
+            p[x] = p[p[x]]
+            x = p[x]
+        return x
+
+    def union(self, a: int, b: int) -> None:
+        ra, rb = self.find(a), self.find(b)
+        if ra != rb:
+            self.parent[ra] = rb
+
+
 def additions(ls: LoopStructure, axis: Axis | None = None, limit: int | None = None) -> Iterator[Addition]:
-    """Every valid loop addition (one per combinatorial class), lazily; ``axis=None`` for all."""
+    """Every valid loop addition (one per combinatorial class), lazily; ``axis=None`` for all.
+
+    A simple cycle of ``G_V^Delta`` is valid when its loop also separates its zone
+    (:func:`separates_zone`); that is the only level-graph cycle an addition can close.
+    """
     if not ls.oriented:
         raise ValueError("loop moves need an oriented loop structure")
     n = 0
     for a in (Axis if axis is None else [axis]):
         for cycle in _AdditionGraph(ls, a).cycles():
+            move = Addition(a, cycle)
+            if not separates_zone(ls, move):
+                continue
             if limit is not None and n >= limit:
                 return
             n += 1
-            yield Addition(a, cycle)
+            yield move
 
 
 def count_additions(ls: LoopStructure, limit: int | None = None) -> dict[str, int]:
@@ -154,7 +224,8 @@ def count_additions(ls: LoopStructure, limit: int | None = None) -> dict[str, in
 
 
 def is_valid_addition(ls: LoopStructure, move: Addition) -> bool:
-    """The local test for one given cycle (any rotation of it)."""
+    """Whether adding this loop (any rotation of its cycle) leaves a polycube loop structure:
+    the local tests at its corners and the separation of its zone."""
     m = ls.map
     cyc = move.cycle
     k = len(cyc)
@@ -165,8 +236,9 @@ def is_valid_addition(ls: LoopStructure, move: Addition) -> bool:
     except KeyError:
         return False
     g = _AdditionGraph(ls, move.axis)
-    return all(ls.axis_of_dart(d) != move.axis for d in darts) and all(
-        g.ok(darts[i - 1], darts[i]) for i in range(k))
+    return (all(ls.axis_of_dart(d) != move.axis for d in darts)
+            and all(g.ok(darts[i - 1], darts[i]) for i in range(k))
+            and separates_zone(ls, move))
 
 
 def add_loop(ls: LoopStructure, move: Addition) -> LoopStructure:

@@ -41,11 +41,17 @@ def draw_level_graph(ax, ls: LoopStructure, axis: Axis) -> None:
         pair = (min(u, v), max(u, v))
         k = seen[pair]
         seen[pair] += 1
+        style = dict(arrowstyle="-|>", mutation_scale=14, color=AXIS_COLOR[axis], lw=1.6)
+        if u == v:  # a self-loop (an invalid structure): a small arc above the node, stacked
+            (x, y), lift = pos[u], 0.25 * k
+            arrow = FancyArrowPatch((x + 0.12, y + 0.1 + lift), (x - 0.12, y + 0.1 + lift),
+                                    connectionstyle="arc3,rad=2.2", shrinkA=0, shrinkB=0, **style)
+            ax.add_patch(arrow)
+            ax.text(x + 0.3, y + 0.35 + lift, str(loop), fontsize=7, color=AXIS_COLOR[axis])
+            continue
         rad = 0.0 if k == 0 else (0.35 * ((k + 1) // 2)) * (1 if k % 2 else -1)
-        if u == v:
-            rad = 1.5
-        arrow = FancyArrowPatch(pos[u], pos[v], connectionstyle=f"arc3,rad={rad}", arrowstyle="-|>",
-                                mutation_scale=14, color=AXIS_COLOR[axis], lw=1.6, shrinkA=11, shrinkB=11)
+        arrow = FancyArrowPatch(pos[u], pos[v], connectionstyle=f"arc3,rad={rad}", shrinkA=11, shrinkB=11,
+                                **style)
         ax.add_patch(arrow)
         mx, my = (pos[u][0] + pos[v][0]) / 2, (pos[u][1] + pos[v][1]) / 2
         ax.text(mx + 0.12 + rad * 0.4, my, str(loop), fontsize=7, color=AXIS_COLOR[axis])
