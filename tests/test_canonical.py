@@ -158,3 +158,25 @@ def test_cli_signature_and_sig_files(capsys):
     assert '"corners": 16' in capsys.readouterr().out
     assert main(["verify", "sig:nonsense"]) == 2
     assert "sig:nonsense" in capsys.readouterr().err
+
+
+REFLECTIONS = [g for g in SIGNED_PERMUTATIONS if g.det < 0]
+
+
+@given(polycubes(kinds=("blob", "smooth"), max_size=7), st.sampled_from(SIGNED_PERMUTATIONS))
+def test_chirality_is_an_invariant(q, g):
+    """Chirality is a property of the class: the same for every image under the 48 symmetries,
+    and it says whether the mirror image is a rotation of the structure."""
+    ls = q.dualize()
+    achiral = canonical_form(ls, "full").achiral
+    assert canonical_form(transformed(ls, g), "full").achiral == achiral
+    mirrored = transformed(ls, REFLECTIONS[0])
+    assert achiral == (signature(mirrored, "rotation") == signature(ls, "rotation"))
+
+
+def test_some_random_polycubes_are_chiral():
+    """The invariance test above would pass vacuously if every sample were achiral."""
+    from strategies import random_polycube
+
+    flags = {canonical_form(random_polycube(seed, "blob", 4), "full").achiral for seed in range(12)}
+    assert flags == {True, False}

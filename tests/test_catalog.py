@@ -199,3 +199,47 @@ def test_catalog_readme_table_is_the_summary():
     assert mod.render(readme, summary) == readme, "run: python tools/catalog_readme.py"
     rows = len((SHIPPED / "catalog.jsonl").read_text().splitlines())
     assert rows == sum(c["full"] for c in summary["counts"].values())
+
+
+def shipped_records():
+    return [json.loads(line) for line in (SHIPPED / "catalog.jsonl").read_text().splitlines()]
+
+
+def test_shipped_records_describe_their_own_signature():
+    """Every column is recomputed from the structure that ``sig:SIGNATURE`` loads."""
+    from polyloops.core.canonical import from_signature
+    from polyloops.enumerate.corners import corner_histogram
+
+    for rec in shipped_records():
+        ls = from_signature(rec["signature"])
+        form = canonical_form(ls, rec["symmetry"])
+        assert form.signature == rec["signature"]
+        assert rec["loops"] == {a.name: ls.axes.count(a) for a in Axis}, rec["signature"]
+        assert rec["corners"] == ls.map.num_corners and rec["faces"] == ls.map.num_faces
+        _, categories, _ = corner_histogram(ls)
+        assert rec["corner_categories"] == {c: categories[c] for c in rec["corner_categories"]}
+        assert rec["automorphisms"] == form.automorphisms
+        assert rec["chiral"] == (not form.achiral)
+
+
+def chiral_identity_holds(summary, records):
+    """A class up to all 48 symmetries is one class up to rotation when it is achiral and two
+    when it is chiral (the rotations are a subgroup of index 2)."""
+    chiral = {n: 0 for n in summary["counts"]}
+    for rec in records:
+        chiral[str(rec["corners"])] += rec["chiral"]
+    return all(c["rotation"] == c["full"] + chiral[n] for n, c in summary["counts"].items())
+
+
+def test_chirality_ties_the_columns_together():
+    assert chiral_identity_holds(json.loads((SHIPPED / "summary.json").read_text()), shipped_records())
+    assert any(rec["chiral"] for rec in shipped_records())
+
+
+def test_chiral_query_in_the_readme(capsys):
+    """The README's example query returns every chiral class with 24 corners."""
+    assert "corners = 24 AND chiral" in (ROOT / "catalogs" / "README.md").read_text()
+    assert main(["catalog", "query", str(SHIPPED), "corners = 24 AND chiral", "--json"]) == 0
+    rows = json.loads(capsys.readouterr().out)
+    counts = json.loads((SHIPPED / "summary.json").read_text())["counts"]["24"]
+    assert len(rows) == counts["rotation"] - counts["full"] > 0

@@ -11,7 +11,7 @@ from polyloops.core.examples import EXAMPLES, load_example
 from polyloops.core.formats import dumps, loads
 
 COMMANDS = ["examples", "verify", "primalize", "dualize", "info", "corners", "orient", "moves", "add",
-            "remove", "signature", "catalog", "catalog-query", "render", "sheet"]
+            "remove", "signature", "catalog", "catalog-query", "render", "sheet", "convert"]
 
 
 def run(capsys, *argv):

@@ -68,8 +68,16 @@ def build(arg: str, doc: Document) -> Structure:
         raise CliError(f"{arg}: {err}") from None
 
 
-def read_structure(arg: str) -> Structure:
-    return build(arg, read_document(arg))
+def read_structure(arg: str, fix_orientation: bool = False) -> Structure:
+    """Read and build a FILE argument.  An inside-out polycube (faces clockwise seen from
+    outside) is refused with exit status 1, or turned outward with ``fix_orientation``."""
+    obj = build(arg, read_document(arg))
+    if isinstance(obj, Polycube) and obj.signed_volume() < 0:
+        if fix_orientation:
+            return obj.inverse()
+        raise CliError(f"{arg}: the polycube is inside out (faces clockwise seen from outside); "
+                       f"repair it with 'polyloops convert {arg} OUT --fix-orientation'", EXIT_INVALID)
+    return obj
 
 
 def write_output(path: str | None, obj: Structure) -> str | None:

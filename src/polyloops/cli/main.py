@@ -91,7 +91,8 @@ def cmd_primalize(args: argparse.Namespace) -> int:
     if not report.valid:
         raise CliError(f"{args.file}: not a polycube loop structure: {_first_violation(report)}",
                        EXIT_INVALID)
-    text = write_output(args.output, primalize(ls))
+    # A structure and its mirror have one polycube; write it outward, as the format says.
+    text = write_output(args.output, primalize(ls).outward())
     if text is not None:
         print(text, end="")
     return EXIT_OK
@@ -111,6 +112,12 @@ def cmd_dualize(args: argparse.Namespace) -> int:
     text = write_output(args.output, ls)
     if text is not None:
         print(text, end="")
+    return EXIT_OK
+
+
+def cmd_convert(args: argparse.Namespace) -> int:
+    obj = read_structure(args.file, fix_orientation=args.fix_orientation)
+    write_output(args.output, obj)
     return EXIT_OK
 
 
@@ -542,6 +549,11 @@ def build_parser() -> argparse.ArgumentParser:
     p = command("dualize", cmd_dualize, "the oriented loop structure of a polycube (Theorem 1)",
                 json_flag=False)
     p.add_argument("-o", "--output", metavar="OUT", help="write JSON here instead of to standard output")
+    p = command("convert", cmd_convert, "write a polycube or loop structure in another format "
+                "(JSON, or OBJ for a polycube: chosen by OUT's extension)", json_flag=False)
+    p.add_argument("output", metavar="OUT", help="the file to write (.obj for Wavefront OBJ, else JSON)")
+    p.add_argument("--fix-orientation", action="store_true",
+                   help="turn an inside-out polycube (faces clockwise seen from outside) outward")
     p = command("corners", cmd_corners, "the 126 polycube corner configurations, by category, "
                 "or their classes under rotations or all signed permutations", file_arg=False)
     p.add_argument("--symmetry", choices=("none", "rotation", "full"), default="none",

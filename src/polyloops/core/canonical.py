@@ -151,7 +151,10 @@ def canonical_form(obj: LoopStructure | Polycube, mode: str = "full") -> Canonic
         elif code == best:
             hits.append((g, mirrored))
     assert best is not None
-    achiral = any(g.det < 0 for g, _ in hits) if mode == "full" else None
+    # The hits are a coset h * Aut of the automorphism group; the structure is achiral when
+    # Aut holds a reflection, that is, when the hits have both determinants.  (Testing for one
+    # hit with det < 0 would ask about h, which depends on the input's position.)
+    achiral = len({g.det for g, _ in hits}) == 2 if mode == "full" else None
     return CanonicalForm(best, ls.oriented, len(hits), mode, achiral)
 
 

@@ -23,6 +23,28 @@ if TYPE_CHECKING:
 Position = tuple[int, int, int]
 
 
+def signed_volume(faces: Sequence[Sequence[int]], positions: Sequence[Sequence[int]]) -> float:
+    """The volume a closed surface of polygons encloses, positive when its faces are
+    counter-clockwise seen from outside and negative when it is inside out (divergence
+    theorem: a sum over faces of a corner's coordinates dotted with the face's vector area).
+
+    >>> signed_volume([[0, 1, 2], [0, 2, 3], [0, 3, 1], [1, 3, 2]],
+    ...               [(0, 0, 0), (0, 1, 0), (1, 0, 0), (0, 0, 1)])  # a tetrahedron
+    0.16666666666666666
+    """
+    total = 0
+    for face in faces:
+        p = [positions[c] for c in face]
+        area = [0, 0, 0]  # twice the vector area of the polygon
+        for i in range(len(p)):
+            a, b = p[i], p[(i + 1) % len(p)]
+            area[0] += a[1] * b[2] - a[2] * b[1]
+            area[1] += a[2] * b[0] - a[0] * b[2]
+            area[2] += a[0] * b[1] - a[1] * b[0]
+        total += sum(p[0][k] * area[k] for k in range(3))
+    return total / 6
+
+
 @dataclass(frozen=True, eq=False)
 class Polycube:
     """A closed oriented quad map with corner positions in Z^3; immutable.
@@ -72,20 +94,8 @@ class Polycube:
 
     def signed_volume(self) -> float:
         """The enclosed volume, positive when the faces are counter-clockwise seen from outside
-        (divergence theorem: a sum over faces of the face's plane coordinate times its signed
-        area along its normal axis)."""
-        total = 0
-        for face in self.faces:
-            p = [self.positions[c] for c in face]
-            # Twice the vector area of the quad; only its normal-axis component is non-zero.
-            area = [0, 0, 0]
-            for i in range(4):
-                a, b = p[i], p[(i + 1) % 4]
-                area[0] += a[1] * b[2] - a[2] * b[1]
-                area[1] += a[2] * b[0] - a[0] * b[2]
-                area[2] += a[0] * b[1] - a[1] * b[0]
-            total += sum(p[0][k] * area[k] for k in range(3))
-        return total / 6
+        (see :func:`signed_volume`)."""
+        return signed_volume(self.faces, self.positions)
 
     def outward(self) -> Polycube:
         """``self``, or its inverse if its faces are clockwise seen from outside."""

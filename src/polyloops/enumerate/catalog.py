@@ -150,7 +150,10 @@ def map_classes(m: HalfEdgeMap) -> dict[str, list[CatalogRecord]]:
         for mode, form in forms.items():
             key = form.signature
             if key not in out[mode]:
+                # Symmetries permute the axes: count loops on the class's own representative,
+                # the structure its signature names, not on the one met first.
+                rep = ls if mode == "labelled" else form.structure
                 out[mode][key] = CatalogRecord(
-                    key, m.num_corners, m.num_faces, {a.name: ls.axes.count(a) for a in Axis},
+                    key, m.num_corners, m.num_faces, {a.name: rep.axes.count(a) for a in Axis},
                     {c: categories[c] for c in CATEGORIES}, form.automorphisms, chiral)
     return {mode: list(v.values()) for mode, v in out.items()}

@@ -24,7 +24,8 @@ from polyloops.enumerate.catalog import MODES, map_classes
 from polyloops.enumerate.corners import CATEGORIES
 from polyloops.enumerate.quadrangulations import candidate_maps
 
-SCHEMA_VERSION = 1
+# Version 2: chirality and loops per axis fixed; parts of version 1 are recomputed.
+SCHEMA_VERSION = 2
 
 
 @dataclass(frozen=True)

@@ -15,11 +15,13 @@ from collections.abc import Sequence
 
 from polyloops.core.directions import Direction
 from polyloops.core.halfedge import HalfEdgeMap, MapError
-from polyloops.core.polycube import Polycube
+from polyloops.core.polycube import Polycube, signed_volume
 from polyloops.verify.report import Report, ReportBuilder
 from polyloops.verify.surface import add_surface_checks
 
 DEF1 = "Definition 1"
+CONVENTION = "file convention"
+OUTWARD = "faces are counter-clockwise seen from outside (positive signed volume)"
 
 
 def _is_int(x: object) -> bool:
@@ -73,6 +75,28 @@ def check_polycube_faces(faces: Sequence[Sequence[int]], positions: Sequence[Seq
                     corner=u, direction=str(d), neighbours=vs))
     rb.condition("3", "positions of adjacent corners differ in exactly one coordinate", bad_edges)
     rb.condition("4", "edges incident to the same corner do not overlap", overlaps)
+    return rb.build() + _check_outward(faces, positions, surface_ok=problems is None)
+
+
+def _check_outward(faces: Sequence[Sequence[int]], positions: Sequence[Sequence[int]],
+                   surface_ok: bool) -> Report:
+    """The file convention: an inside-out polycube (negative signed volume) is reported, with
+    the way to repair it.  Definition 1 itself does not see orientation: a polycube and its
+    inverse are order-equivalent."""
+    rb = ReportBuilder("polycube", CONVENTION)
+    numeric = all(len(p) == 3 and all(_is_int(x) for x in p) for p in positions)
+    if not (surface_ok and numeric):
+        rb.given("outward", OUTWARD, "not checked: needs a closed surface with integer positions",
+                 status="not checked")
+        return rb.build()
+    volume = signed_volume(faces, positions)
+    found = []
+    if volume < 0:
+        found.append(rb.violation(
+            "outward", f"the polycube is inside out: its faces are clockwise seen from outside "
+            f"(signed volume {volume:g}); reverse every face, for example with "
+            "'polyloops convert FILE OUT --fix-orientation'", signed_volume=volume))
+    rb.condition("outward", OUTWARD, found)
     return rb.build()
 
 

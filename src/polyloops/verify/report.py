@@ -76,9 +76,9 @@ class ReportBuilder:
         self.checks: list[Check] = []
         self.violations: list[Violation] = []
 
-    def condition(self, condition: str, statement: str, found: list[Violation]) -> None:
+    def condition(self, condition: str, statement: str, found: list[Violation], note: str = "") -> None:
         self.violations.extend(found)
-        self.checks.append(Check(self.definition, condition, statement, VIOLATED if found else HOLDS))
+        self.checks.append(Check(self.definition, condition, statement, VIOLATED if found else HOLDS, note))
 
     def given(self, condition: str, statement: str, note: str, status: str = BY_CONSTRUCTION) -> None:
         self.checks.append(Check(self.definition, condition, statement, status, note))
