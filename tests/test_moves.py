@@ -246,3 +246,22 @@ def test_non_incremental_is_five_moves_from_the_cube():
                         return
         level = nxt
     pytest.fail("no structure without a removable loop within five moves")
+
+
+@pytest.mark.parametrize("which", [[], ["--add", "Y"], ["--add", "Z"], ["--add", "all"]])
+def test_every_listed_index_adds_the_listed_loop(capsys, tmp_path, which):
+    """``moves`` and ``add`` name additions the same way, whichever labels are listed."""
+    ls = load_example("box-2x1x1").dualize()
+    assert main(["moves", "example:box-2x1x1", *which, "--json"]) == 0
+    listed = json.loads(capsys.readouterr().out)["additions"]
+    assert listed and len({row["index"] for row in listed}) == len(listed)
+    for row in listed:
+        out = tmp_path / f"{row['index']}.json"
+        assert main(["add", "example:box-2x1x1", row["index"], "-o", str(out)]) == 0
+        expected = add_loop(ls, Addition(Axis.parse(row["axis"]), tuple(row["corners"])))
+        assert loads(out.read_text()) == expected
+    if not which:  # a plain integer counts through the full listing
+        for n, row in enumerate(listed):
+            out = tmp_path / f"{n}.json"
+            assert main(["add", "example:box-2x1x1", str(n), "-o", str(out)]) == 0
+            assert loads(out.read_text()) == loads((tmp_path / f"{row['index']}.json").read_text())

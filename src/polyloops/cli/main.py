@@ -268,7 +268,7 @@ def _oriented_structure(arg: str):
 
 def cmd_moves(args: argparse.Namespace) -> int:
     from polyloops.core.directions import Axis
-    from polyloops.enumerate.moves import additions, check_removal, count_additions
+    from polyloops.enumerate.moves import addition_index, additions, check_removal, count_additions
 
     ls = _oriented_structure(args.file)
     want_add = args.add is not None or not args.remove
@@ -288,10 +288,13 @@ def cmd_moves(args: argparse.Namespace) -> int:
         return EXIT_OK
     if want_add:
         listed = []
-        for i, mv in enumerate(additions(ls, axes[0] if len(axes) == 1 else None, args.limit)):
-            row = {"index": i, **mv.to_json(ls)}
+        per_axis = dict.fromkeys(Axis, 0)
+        for mv in additions(ls, axes[0] if len(axes) == 1 else None, args.limit):
+            index = addition_index(mv.axis, per_axis[mv.axis])
+            per_axis[mv.axis] += 1
+            row = {"index": index, **mv.to_json(ls)}
             listed.append(row)
-            lines.append(f"add {i:>4}  {mv.axis}-loop past corners {list(mv.cycle)} "
+            lines.append(f"add {index:>5}  {mv.axis}-loop past corners {list(mv.cycle)} "
                          f"(+ side on the right), crossing segments {row['segments']}")
         data["additions"] = listed
     if want_remove:
@@ -307,39 +310,41 @@ def cmd_moves(args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
-MOVE_HELP = "write an index from 'polyloops moves' or AXIS:c0,c1,..."
+MOVE_HELP = "write an index from 'polyloops moves' (such as Y3), or AXIS:c0,c1,..."
 
 
-def _parse_move(ls, text: str):
-    from itertools import islice
-
+def _parse_move(arg: str, ls, text: str):
     from polyloops.core.directions import Axis
-    from polyloops.enumerate.moves import Addition, additions, is_valid_addition, parse_cycle
+    from polyloops.enumerate.moves import Addition, addition_at, is_valid_addition, parse_cycle
 
     if ":" in text:
         label, _, corners = text.partition(":")
         try:
             move = Addition(Axis.parse(label.strip().upper()), parse_cycle(corners))
         except ValueError:
-            raise CliError(f"move {text!r}: {MOVE_HELP}") from None
+            raise CliError(f"{arg}: move {_clip(text)!r}: {MOVE_HELP}") from None
         if not is_valid_addition(ls, move):
-            raise CliError(f"move {text!r} is not a valid loop addition here", EXIT_INVALID)
+            raise CliError(f"{arg}: move {_clip(text)!r} is not a valid loop addition here", EXIT_INVALID)
         return move
     try:
-        index = int(text)
+        found = addition_at(ls, int(text) if text.strip().lstrip("-").isdigit() else text)
     except ValueError:
-        raise CliError(f"move {text!r}: {MOVE_HELP}") from None
-    found = next(islice(additions(ls), index, None), None) if index >= 0 else None
+        raise CliError(f"{arg}: move {_clip(text)!r}: {MOVE_HELP}") from None
     if found is None:
-        raise CliError(f"move {index}: there is no addition with that index ('polyloops moves' lists them)")
+        raise CliError(f"{arg}: there is no addition {_clip(text)} ('polyloops moves' lists them)")
     return found
+
+
+def _clip(text: str, width: int = 40) -> str:
+    """An argument as quoted in an error message: long ones are shortened."""
+    return text if len(text) <= width else text[: width - 3] + "..."
 
 
 def cmd_add(args: argparse.Namespace) -> int:
     from polyloops.enumerate.moves import add_loop
 
     ls = _oriented_structure(args.file)
-    result = add_loop(ls, _parse_move(ls, args.move))
+    result = add_loop(ls, _parse_move(args.file, ls, args.move))
     text = write_output(args.output, result)
     if text is not None:
         print(text, end="")
@@ -581,8 +586,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--remove", action="store_true", help="list the loops and whether each is removable")
     p.add_argument("--limit", type=int, metavar="N", help="stop after N additions (per label with --count)")
     p.add_argument("--count", action="store_true", help="only count the moves")
-    p = command("add", cmd_add, "add one loop: MOVE is an index from 'polyloops moves' or "
-                "AXIS:c0,c1,... (the corners the loop walks past, + side on the right)", json_flag=False)
+    p = command("add", cmd_add, "add one loop: MOVE is an index from 'polyloops moves' (Y3: the "
+                "fourth valid Y-loop; a plain N counts through X, Y and Z), or AXIS:c0,c1,... (the "
+                "corners the loop walks past, + side on the right)", json_flag=False)
     p.add_argument("move", metavar="MOVE")
     p.add_argument("-o", "--output", metavar="OUT", help="write the new structure here")
     p = command("remove", cmd_remove, "remove one loop, if that leaves a polycube loop structure",

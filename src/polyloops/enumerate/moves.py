@@ -37,6 +37,7 @@ from __future__ import annotations
 from collections import defaultdict
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
+from itertools import islice
 
 from networkx.utils import UnionFind
 
@@ -216,6 +217,32 @@ def additions(ls: LoopStructure, axis: Axis | None = None, limit: int | None = N
                 return
             n += 1
             yield move
+
+
+def addition_index(axis: Axis, i: int) -> str:
+    """The name of the ``i``-th valid ``axis``-addition: ``"Y3"``.  Indices carry their axis,
+    so a listing of one label and a listing of all three name each addition the same way."""
+    return f"{axis.name}{i}"
+
+
+def addition_at(ls: LoopStructure, index: str | int) -> Addition | None:
+    """The addition named ``"Y3"`` (the fourth valid Y-loop in :func:`additions` order), or by
+    a plain integer ``n``, the ``n``-th of the listing of all labels (X, then Y, then Z);
+    ``None`` when there is no such addition.
+
+    >>> from polyloops.core.examples import load_example
+    >>> box = load_example("box-2x1x1").dualize()
+    >>> count_additions(box)
+    {'X': 3, 'Y': 6, 'Z': 6}
+    >>> addition_at(box, "Y0") == addition_at(box, 3)  # the three X-additions come first
+    True
+    """
+    if isinstance(index, int):
+        return next(islice(additions(ls), index, None), None) if index >= 0 else None
+    text = index.strip().upper()
+    if len(text) < 2 or text[0] not in "XYZ" or not text[1:].isdigit():
+        raise ValueError(f"{index!r} is not an addition index such as Y3")
+    return next(islice(additions(ls, Axis.parse(text[0])), int(text[1:]), None), None)
 
 
 def count_additions(ls: LoopStructure, limit: int | None = None) -> dict[str, int]:
