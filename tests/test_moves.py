@@ -108,7 +108,7 @@ def test_fast_equals_brute_within_three_moves(i):
     assert removals(ls) == brute_removals(ls)
 
 
-@pytest.mark.parametrize("name", ["cube", "box-2x1x1", "l-shape"])
+@pytest.mark.parametrize("name", ["cube", "box-2x1x1", pytest.param("l-shape", marks=pytest.mark.slow)])
 def test_pruning_loses_nothing(name):
     ls = load_example(name).dualize()
     assert brute_additions(ls, prune=False) == brute_additions(ls, prune=True)

@@ -6,7 +6,8 @@ one-line message that names the file.
 
 from __future__ import annotations
 
-from pathlib import Path
+import os
+import stat
 
 from polyloops.core.examples import EXAMPLES, example_text
 from polyloops.core.formats import (
@@ -21,9 +22,10 @@ from polyloops.core.formats import (
 from polyloops.core.halfedge import FaceListError, MapError
 from polyloops.core.loops import OddFaceError
 from polyloops.core.polycube import Polycube
-from polyloops.core.structure import LabelError
+from polyloops.core.structure import LabelError, LoopStructure
 
 EXIT_OK, EXIT_INVALID, EXIT_USAGE = 0, 1, 2
+MAX_FILE_BYTES = 512 * 2**20
 
 
 class CliError(Exception):
@@ -47,15 +49,31 @@ def read_document(arg: str) -> Document:
             raise CliError(f"{arg}: unknown example; 'polyloops examples' lists them")
         text = example_text(name)
     else:
-        try:
-            text = Path(arg).read_text(encoding="utf-8")
-        except (OSError, UnicodeDecodeError) as err:
-            reason = err.strerror if isinstance(err, OSError) and err.strerror else str(err)
-            raise CliError(f"{arg}: cannot read: {reason}") from None
+        text = read_text_file(arg)
     try:
         return parse_document(text)
     except FormatError as err:
         raise CliError(f"{arg}: {err}") from None
+
+
+def read_text_file(arg: str, limit: int = MAX_FILE_BYTES) -> str:
+    """The text of a regular file of at most ``limit`` bytes.  A FIFO, a device such as
+    ``/dev/zero`` or a directory is refused rather than read (it could block or never end)."""
+    try:
+        # O_NONBLOCK: opening a FIFO with no writer must not wait; regular files ignore it.
+        fd = os.open(arg, os.O_RDONLY | os.O_NONBLOCK)
+        with os.fdopen(fd, "rb") as fh:
+            if not stat.S_ISREG(os.fstat(fd).st_mode):
+                raise CliError(f"{arg}: not a regular file")
+            data = fh.read(limit + 1)
+    except OSError as err:
+        raise CliError(f"{arg}: cannot read: {err.strerror or err}") from None
+    if len(data) > limit:
+        raise CliError(f"{arg}: larger than {limit // 2**20} MiB; polyloops reads files up to that size")
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as err:
+        raise CliError(f"{arg}: cannot read: not UTF-8 text ({err.reason} at byte {err.start})") from None
 
 
 def build(arg: str, doc: Document) -> Structure:
@@ -77,6 +95,32 @@ def read_structure(arg: str, fix_orientation: bool = False) -> Structure:
             return obj.inverse()
         raise CliError(f"{arg}: the polycube is inside out (faces clockwise seen from outside); "
                        f"repair it with 'polyloops convert {arg} OUT --fix-orientation'", EXIT_INVALID)
+    return obj
+
+
+def first_violation(report) -> str:
+    """The first violation of a report, for a one-line message."""
+    v = report.violations[0]
+    n = len(report.violations)
+    more = f" (and {n - 1} more; see 'polyloops verify')" if n > 1 else ""
+    return f"{v.definition} condition {v.condition}: {v.message}{more}"
+
+
+def read_loop_structure(arg: str, oriented: bool = False) -> LoopStructure:
+    """A FILE argument as a loop structure: a polycube must pass Definition 1 and is dualized
+    (exit 1 naming its first violation otherwise); with ``oriented``, a structure without
+    sides is refused."""
+    from polyloops.core.duality import dualize
+    from polyloops.verify import check_polycube
+
+    obj = read_structure(arg)
+    if isinstance(obj, Polycube):
+        report = check_polycube(obj)
+        if not report.valid:
+            raise CliError(f"{arg}: not a polycube: {first_violation(report)}", EXIT_INVALID)
+        obj = dualize(obj)
+    if oriented and not obj.oriented:
+        raise CliError(f"{arg}: is a labelled loop structure without sides; orient it first")
     return obj
 
 

@@ -10,6 +10,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import signal
 import sys
 from collections.abc import Callable, Sequence
 from typing import Any
@@ -20,8 +21,11 @@ from polyloops.cli.load import (
     EXIT_OK,
     EXIT_USAGE,
     CliError,
+    first_violation,
     read_document,
+    read_loop_structure,
     read_structure,
+    read_text_file,
     write_output,
     write_text,
 )
@@ -74,13 +78,6 @@ def cmd_verify(args: argparse.Namespace) -> int:
     return EXIT_OK if report.valid else EXIT_INVALID
 
 
-def _first_violation(report: Report) -> str:
-    v = report.violations[0]
-    n = len(report.violations)
-    more = f" (and {n - 1} more; see 'polyloops verify')" if n > 1 else ""
-    return f"{v.definition} condition {v.condition}: {v.message}{more}"
-
-
 def cmd_primalize(args: argparse.Namespace) -> int:
     ls = read_structure(args.file)
     if isinstance(ls, Polycube):
@@ -89,7 +86,7 @@ def cmd_primalize(args: argparse.Namespace) -> int:
         raise CliError(f"{args.file}: is a labelled loop structure without sides; orient it first")
     report = verify(ls)
     if not report.valid:
-        raise CliError(f"{args.file}: not a polycube loop structure: {_first_violation(report)}",
+        raise CliError(f"{args.file}: not a polycube loop structure: {first_violation(report)}",
                        EXIT_INVALID)
     # A structure and its mirror have one polycube; write it outward, as the format says.
     text = write_output(args.output, primalize(ls).outward())
@@ -104,7 +101,7 @@ def cmd_dualize(args: argparse.Namespace) -> int:
         raise CliError(f"{args.file}: is a loop structure; dualize takes a polycube (try primalize)")
     report = verify(q)
     if not report.valid:
-        raise CliError(f"{args.file}: not a polycube: {_first_violation(report)}", EXIT_INVALID)
+        raise CliError(f"{args.file}: not a polycube: {first_violation(report)}", EXIT_INVALID)
     try:
         ls = dualize(q)
     except DualityError as err:  # pragma: no cover - Definition 1 rules this out (Lemma 1)
@@ -188,8 +185,7 @@ def cmd_orient(args: argparse.Namespace) -> int:
     from polyloops.solvers.base import count as count_solutions
     from polyloops.solvers.base import feasible_locally
 
-    obj = read_structure(args.file)
-    ls = dualize(obj) if isinstance(obj, Polycube) else obj
+    ls = read_loop_structure(args.file)
     problem = OrientationProblem(ls)
     solver = make_solver(args.solver)
     info: dict[str, Any] = {"solver": args.solver, "k": problem.k, "components": _components_json(problem)}
@@ -256,13 +252,10 @@ def cmd_orient(args: argparse.Namespace) -> int:
 
 
 def _oriented_structure(arg: str):
-    obj = read_structure(arg)
-    ls = dualize(obj) if isinstance(obj, Polycube) else obj
-    if not ls.oriented:
-        raise CliError(f"{arg}: is a labelled loop structure without sides; orient it first")
+    ls = read_loop_structure(arg, oriented=True)
     report = verify(ls)
     if not report.valid:
-        raise CliError(f"{arg}: not a polycube loop structure: {_first_violation(report)}", EXIT_INVALID)
+        raise CliError(f"{arg}: not a polycube loop structure: {first_violation(report)}", EXIT_INVALID)
     return ls
 
 
@@ -385,6 +378,8 @@ def cmd_catalog(args: argparse.Namespace) -> int:
     out = Path(args.output)
     if out.exists() and not out.is_dir():
         raise CliError(f"{out}: exists and is not a directory")
+    if not out.absolute().parent.is_dir():  # like every other -o: the directory above must exist
+        raise CliError(f"{out}: the directory {out.absolute().parent} does not exist")
     jobs = plan_jobs(args.min_corners, args.max_corners, args.res, args.mod, args.workers)
     from tqdm import tqdm
 
@@ -435,7 +430,7 @@ def cmd_catalog_query(args: argparse.Namespace) -> int:
 def cmd_signature(args: argparse.Namespace) -> int:
     from polyloops.core.canonical import canonical_form
 
-    form = canonical_form(read_structure(args.file), args.symmetry)
+    form = canonical_form(read_loop_structure(args.file), args.symmetry)
     data = {"signature": form.signature, "symmetry": args.symmetry, "automorphisms": form.automorphisms}
     if form.achiral is not None:
         data["chiral"] = not form.achiral
@@ -445,14 +440,16 @@ def cmd_signature(args: argparse.Namespace) -> int:
 
 
 def _picture_path(path: str) -> str:
-    if not path.lower().endswith((".png", ".svg")):
-        raise CliError(f"{path}: pictures are written as .png or .svg")
+    from pathlib import Path
+
+    if Path(path).suffix.lower() not in (".png", ".svg"):  # ".png" alone has no suffix
+        raise CliError(f"{path}: pictures are written as NAME.png or NAME.svg")
     return path
 
 
 def cmd_render(args: argparse.Namespace) -> int:
     from polyloops.render.level_graphs import render_level_graphs
-    from polyloops.render.polycube import render_polycube
+    from polyloops.render.polycube import PictureError, render_polycube
 
     out = _picture_path(args.output)
     obj = read_structure(args.file)
@@ -466,13 +463,15 @@ def cmd_render(args: argparse.Namespace) -> int:
                 raise CliError(f"{args.file}: not a polycube, so it has no loop structure", EXIT_INVALID)
             render_level_graphs(ls, out)
         else:
-            title = None if report.valid else f"not valid: {_first_violation(report)}"[:110]
+            title = None if report.valid else f"not valid: {first_violation(report)}"[:110]
             try:
                 render_polycube(obj, out, views=args.views, loops=args.loops, title=title)
             except DualityError as err:
                 render_level_graphs(obj, out)  # type: ignore[arg-type]
                 print(f"polyloops render: {args.file}: no polycube ({err}); drew the level graphs instead",
                       file=sys.stderr)
+    except PictureError as err:
+        raise CliError(f"{args.file}: {err}") from None
     except OSError as err:
         raise CliError(f"{out}: cannot write: {err.strerror or err}") from None
     return EXIT_OK
@@ -481,7 +480,8 @@ def cmd_render(args: argparse.Namespace) -> int:
 def cmd_sheet(args: argparse.Namespace) -> int:
     from pathlib import Path
 
-    from polyloops.core.canonical import SignatureError, from_signature
+    from polyloops.core.canonical import from_signature
+    from polyloops.render.polycube import PictureError
     from polyloops.render.sheet import render_sheet
 
     out = _picture_path(args.output)
@@ -492,13 +492,14 @@ def cmd_sheet(args: argparse.Namespace) -> int:
             listing = path / "catalog.jsonl"
             if not listing.is_file():
                 raise CliError(f"{source}: a directory, but no catalog.jsonl in it")
-            for i, line in enumerate(listing.read_text().splitlines()):
-                rec = json.loads(line)
+            for i, line in enumerate(read_text_file(str(listing)).splitlines()):
                 try:
+                    rec = json.loads(line)
                     obj = from_signature(rec["signature"])
-                except (SignatureError, KeyError) as err:
-                    raise CliError(f"{listing}: bad record: {err}") from None
-                items.append((f"#{i} {rec['corners']}c ..{rec['signature'][-8:]}", obj))
+                    caption = f"#{i} {int(rec['corners'])}c"
+                except (ValueError, KeyError, TypeError) as err:  # SignatureError is a ValueError
+                    raise CliError(f"{listing}: line {i + 1}: not a catalog record: {err}") from None
+                items.append((caption, obj))
         else:
             obj = read_structure(source)
             name = source[:24] if source.startswith(("example:", "sig:")) else Path(source).name
@@ -511,6 +512,8 @@ def cmd_sheet(args: argparse.Namespace) -> int:
         render_sheet(items, out, columns=args.columns)
     except DualityError as err:
         raise CliError(f"cannot draw: {err}", EXIT_INVALID) from None
+    except PictureError as err:
+        raise CliError(f"cannot draw: {err}") from None
     except OSError as err:
         raise CliError(f"{out}: cannot write: {err.strerror or err}") from None
     print(f"drew {len(items)} polycubes to {out}")
@@ -527,6 +530,23 @@ class _Parser(argparse.ArgumentParser):
 
     def error(self, message: str) -> None:  # type: ignore[override]
         self.exit(EXIT_USAGE, f"{self.prog}: {message} (see --help)\n")
+
+
+def count_arg(low: int, high: int | None = None) -> Callable[[str], int]:
+    """An argparse type: an integer in ``low..high``; anything else is a usage error (exit 2)
+    rather than a value quietly changed."""
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{text!r} is not an integer") from None
+        if value < low or (high is not None and value > high):
+            span = f"at least {low}" if high is None else f"from {low} to {high}"
+            raise argparse.ArgumentTypeError(f"{value} is out of range: must be {span}")
+        return value
+
+    parse.__name__ = "count"
+    return parse
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -584,7 +604,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--add", choices=("X", "Y", "Z", "all"), help="list additions of this label "
                    "(default: all labels, together with removals)")
     p.add_argument("--remove", action="store_true", help="list the loops and whether each is removable")
-    p.add_argument("--limit", type=int, metavar="N", help="stop after N additions (per label with --count)")
+    p.add_argument("--limit", type=count_arg(0), metavar="N",
+                   help="stop after N additions (per label with --count)")
     p.add_argument("--count", action="store_true", help="only count the moves")
     p = command("add", cmd_add, "add one loop: MOVE is an index from 'polyloops moves' (Y3: the "
                 "fourth valid Y-loop; a plain N counts through X, Y and Z), or AXIS:c0,c1,... (the "
@@ -593,7 +614,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("-o", "--output", metavar="OUT", help="write the new structure here")
     p = command("remove", cmd_remove, "remove one loop, if that leaves a polycube loop structure",
                 json_flag=False)
-    p.add_argument("loop", metavar="LOOP", type=int, help="a loop id from 'polyloops moves --remove'")
+    p.add_argument("loop", metavar="LOOP", type=count_arg(0),
+                   help="a loop id from 'polyloops moves --remove'")
     p.add_argument("-o", "--output", metavar="OUT", help="write the new structure here")
     p = command("signature", cmd_signature, "a canonical name: equal exactly for isomorphic "
                 "structures (mirror images of the surface identified); use it as sig:NAME anywhere")
@@ -603,13 +625,13 @@ def build_parser() -> argparse.ArgumentParser:
     p = command("catalog", cmd_catalog, "the catalog of genus-0 polycubes up to order-equivalence, by "
                 "number of corners, from plantri's quadrangulations ('polyloops catalog query DIR "
                 "WHERE' searches one)", file_arg=False)
-    p.add_argument("--max-corners", type=int, required=True, metavar="N")
-    p.add_argument("--min-corners", type=int, default=8, metavar="M")
+    p.add_argument("--max-corners", type=count_arg(0), required=True, metavar="N")
+    p.add_argument("--min-corners", type=count_arg(8), default=8, metavar="M")
     p.add_argument("--symmetry", choices=("labelled", "rotation", "full"), default="full",
                    help="which classes the records list (summary.json counts all three); default full")
-    p.add_argument("--workers", type=int, default=1, metavar="K", help="local worker processes")
-    p.add_argument("--res", type=int, metavar="R", help="only plantri's slice R of M (with --mod)")
-    p.add_argument("--mod", type=int, metavar="M")
+    p.add_argument("--workers", type=count_arg(1), default=1, metavar="K", help="local worker processes")
+    p.add_argument("--res", type=count_arg(0), metavar="R", help="only plantri's slice R of M (with --mod)")
+    p.add_argument("--mod", type=count_arg(1), metavar="M")
     p.add_argument("--dask", metavar="ADDRESS", help="run the jobs on a Dask cluster (an address, or local)")
     p.add_argument("--plantri", metavar="PATH", help="the plantri to use (default: the one from "
                    "passagemath-plantri, $POLYLOOPS_PLANTRI, or PATH)")
@@ -621,7 +643,8 @@ def build_parser() -> argparse.ArgumentParser:
     p = command("render", cmd_render, "draw the polycube in 3D with its loops (a loop structure is "
                 "primalized first), or its three level graphs", json_flag=False)
     p.add_argument("-o", "--output", metavar="OUT", required=True, help="OUT.png or OUT.svg")
-    p.add_argument("--views", type=int, default=1, metavar="N", help="N views from different octants")
+    p.add_argument("--views", type=count_arg(1, 8), default=1, metavar="N",
+                   help="N views from different octants (1 to 8)")
     p.add_argument("--loops", action=argparse.BooleanOptionalAction, default=True,
                    help="draw the loops on the surface (default) or not")
     p.add_argument("--level-graphs", action="store_true", help="draw the X-, Y- and Z-graphs instead")
@@ -630,8 +653,8 @@ def build_parser() -> argparse.ArgumentParser:
                        "a catalog directory")
     p.add_argument("sources", metavar="DIR|FILE", nargs="+", help="catalog directories or " + FILE_HELP)
     p.add_argument("-o", "--output", metavar="OUT", required=True, help="OUT.png or OUT.svg")
-    p.add_argument("--columns", type=int, default=6)
-    p.add_argument("--limit", type=int, metavar="N", help="draw at most N")
+    p.add_argument("--columns", type=count_arg(1), default=6, metavar="N", help="pictures per row")
+    p.add_argument("--limit", type=count_arg(1), metavar="N", help="draw at most N")
     p.set_defaults(func=cmd_sheet)
     command("info", cmd_info, "corners, faces, loops, genus, zones, level graphs and corner degrees")
     return parser
@@ -644,10 +667,11 @@ def main(argv: Sequence[str] | None = None) -> int:
         argv = ["catalog-query", *argv[2:]]
     args = parser.parse_args(argv)
     name = "catalog query" if args.command == "catalog-query" else args.command
+    previous = _terminate_cleanly()
     try:
         return args.func(args)
     except CliError as err:
-        print(f"polyloops {name}: {err}", file=sys.stderr)
+        print(f"polyloops {name}: {_clip_words(str(err))}", file=sys.stderr)
         return err.status
     except BrokenPipeError:  # output piped into head, for example
         return EXIT_OK
@@ -657,9 +681,30 @@ def main(argv: Sequence[str] | None = None) -> int:
     except Exception as err:  # a bug, not bad input: one line, the traceback on request
         if os.environ.get("POLYLOOPS_DEBUG"):
             raise
-        print(f"polyloops {name}: internal error: {type(err).__name__}: {err} "
+        print(f"polyloops {name}: internal error: {type(err).__name__}: {_clip_words(str(err))} "
               "(set POLYLOOPS_DEBUG=1 to see where)", file=sys.stderr)
         return EXIT_INTERNAL
+    finally:
+        if previous is not None:
+            signal.signal(signal.SIGTERM, previous)
+
+
+def _terminate_cleanly():
+    """Turn SIGTERM into an exception, so that temporary files are removed and worker
+    processes stopped on the way out, as for Ctrl-C.  Returns the previous handler (``None``
+    outside the main thread, where handlers cannot be set)."""
+    def stop(signum: int, frame: object) -> None:
+        raise KeyboardInterrupt
+
+    try:
+        return signal.signal(signal.SIGTERM, stop)
+    except ValueError:
+        return None
+
+
+def _clip_words(message: str, width: int = 256) -> str:
+    """Messages name their inputs; a huge argument (a 100 kB sig:...) is shown shortened."""
+    return " ".join(w if len(w) <= width else w[: width - 40] + "..." + w[-8:] for w in message.split(" "))
 
 
 __all__ = ["build_parser", "main"]

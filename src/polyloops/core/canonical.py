@@ -168,10 +168,23 @@ def is_isomorphic(a: LoopStructure | Polycube, b: LoopStructure | Polycube, mode
 
 
 # -- encoding --------------------------------------------------------------------------------
-# A signature is: "o" (oriented) or "l" (labelled); one character for the digit width w; the
-# number of darts in w base-64 digits; then per dart one character holding its label and
-# whether its next and twin are new darts in BFS order, followed by w digits for each of
-# next and twin that is not new.
+# A signature (version 1) is: the version "1"; "o" (oriented) or "l" (labelled); one character
+# for the digit width w; the number of darts in w base-64 digits; then per dart one character
+# holding its label and whether its next and twin are new darts in BFS order, followed by w
+# digits for each of next and twin that is not new; then two check characters.  The check is
+# sum((i mod 4092 + 1) * value(char_i)) mod 4093 over every character before it: 4093 is prime
+# and exceeds every difference of two values times any weight, so changing any one character,
+# or swapping two neighbours, always changes it.  Signatures of polyloops 0.1 had no version
+# and no check (they start with "o" or "l") and are refused by name.
+
+SIGNATURE_VERSION = "1"
+_CHECK_MODULUS = 4093
+_MAX_WIDTH = 5  # 64**5 darts: far beyond any structure a signature is read for
+
+
+def _check(text: str) -> str:
+    total = sum((i % (_CHECK_MODULUS - 1) + 1) * _INDEX[ch] for i, ch in enumerate(text))
+    return _digits(total % _CHECK_MODULUS, 2)
 
 
 def _digits(x: int, w: int) -> str:
@@ -187,7 +200,7 @@ def _encode(code: tuple[int, ...], oriented: bool) -> str:
     w = 1
     while 64 ** w <= n:
         w += 1
-    parts = ["o" if oriented else "l", ALPHABET[w], _digits(n, w)]
+    parts = [SIGNATURE_VERSION, "o" if oriented else "l", ALPHABET[w], _digits(n, w)]
     seen = 1  # darts discovered so far: the root
     for i in range(n):
         nx_, tw, lab = code[3 * i: 3 * i + 3]
@@ -201,15 +214,37 @@ def _encode(code: tuple[int, ...], oriented: bool) -> str:
                 refs.append(ref)
         parts.append(ALPHABET[lab * 4 + flags])
         parts.extend(_digits(r, w) for r in refs)
-    return "".join(parts)
+    body = "".join(parts)
+    return body + _check(body)
+
+
+def _unwrap(sig: str) -> str:
+    """The signature without its version and check, after testing both."""
+    if not sig:
+        raise SignatureError("an empty signature")
+    if sig[0] in "ol":
+        raise SignatureError("an unversioned signature of polyloops 0.1 (no check characters); "
+                             "make it again with 'polyloops signature'")
+    if sig[0] != SIGNATURE_VERSION:
+        raise SignatureError(f"signature version {sig[0]!r} is not one this polyloops reads "
+                             f"(version {SIGNATURE_VERSION})")
+    if any(ch not in _INDEX for ch in sig):
+        bad = next(ch for ch in sig if ch not in _INDEX)
+        raise SignatureError(f"a signature has no character {bad!r}")
+    if len(sig) < 6 or _check(sig[:-2]) != sig[-2:]:
+        raise SignatureError("the check characters do not match: the signature was changed or cut")
+    return sig[1:-2]
 
 
 def _decode(sig: str) -> tuple[list[int], list[int], list[int], bool]:
+    sig = _unwrap(sig)
     try:
         if sig[0] not in "ol":
-            raise SignatureError("a signature starts with 'o' or 'l'")
+            raise SignatureError("a signature's kind is 'o' or 'l'")
         oriented = sig[0] == "o"
         w = _INDEX[sig[1]]
+        if not 1 <= w <= _MAX_WIDTH:
+            raise SignatureError(f"a digit width of {w} is out of range")
         pos = 2
 
         def read(k: int) -> int:
@@ -224,6 +259,8 @@ def _decode(sig: str) -> tuple[list[int], list[int], list[int], bool]:
             return x
 
         n = read(w)
+        if n > len(sig) - pos:  # each dart takes at least one character
+            raise SignatureError(f"the signature is too short for {n} darts")
         nxt, twin, lab = [0] * n, [0] * n, [0] * n
         seen = 1
         for i in range(n):

@@ -1,7 +1,7 @@
 """Bundled examples, shipped as JSON files and named ``example:NAME`` on the command line.
 
 >>> sorted(EXAMPLES)[:3]
-['box-2x1x1', 'cube', 'degree-two']
+['box-2x1x1', 'bridged-ring', 'cube']
 >>> load_example("cube")
 Polycube(corners=8, faces=6, genus=0)
 """

@@ -129,10 +129,14 @@ def parse_document(text: str) -> Document:
         data = json.loads(text)
     except json.JSONDecodeError as err:
         raise FormatError(f"not valid JSON: {err.msg} at line {err.lineno} column {err.colno}") from None
+    except RecursionError:
+        raise FormatError("not a polyloops file: JSON nested too deeply") from None
     if not isinstance(data, dict):
         raise FormatError("the top level must be a JSON object")
-    if data.get("polyloops") != FORMAT_VERSION:
-        raise FormatError(f'missing or unsupported "polyloops" version (expected {FORMAT_VERSION})')
+    version = data.get("polyloops")
+    if not (_is_int(version) and version == FORMAT_VERSION):  # not 1.0, not true
+        raise FormatError(f'missing or unsupported "polyloops" version {version!r} '
+                          f'(expected the integer {FORMAT_VERSION})')
     kind = data.get("kind")
     if kind not in KINDS:
         raise FormatError(f'"kind" must be "polycube" or "loop-structure", not {kind!r}')

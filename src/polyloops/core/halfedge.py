@@ -70,10 +70,10 @@ def _validate_faces(faces: Sequence[Sequence[int]]) -> tuple[tuple[int, ...], ..
             raise FaceListError(f"face {f} has a corner id that is not a non-negative integer")
         out.append(t)
     used = {c for t in out for c in t}
-    n = max(used) + 1
-    if len(used) != n:
-        missing = sorted(set(range(n)) - used)
-        raise FaceListError(f"corner ids must be 0..{n - 1}; corner {missing[0]} is in no face")
+    n = len(used)
+    if max(used) != n - 1:  # then some id below n is unused; find it in O(n), whatever the ids
+        missing = next(c for c in range(n) if c not in used)
+        raise FaceListError(f"corner ids must be 0..{n - 1} for {n} corners; corner {missing} is in no face")
     return tuple(out)
 
 

@@ -108,16 +108,33 @@ def execute(jobs: list[Job], out: Path, plantri: str, workers: int = 1, dask: st
         for result in _run_dask(todo, plantri, dask):
             finish(result)
     elif workers > 1 and len(todo) > 1:
-        from concurrent.futures import ProcessPoolExecutor, as_completed
+        import multiprocessing
 
-        with ProcessPoolExecutor(max_workers=workers) as pool:
-            futures = [pool.submit(run_job, job, plantri) for job in todo]
-            for fut in as_completed(futures):
-                finish(fut.result())
+        # Leaving the block for any reason (Ctrl-C, SIGTERM, an error) terminates the workers;
+        # _die_with_parent covers a parent killed outright.
+        with multiprocessing.Pool(workers, initializer=_die_with_parent) as pool:
+            for result in pool.imap_unordered(_run_job_star, [(job, plantri) for job in todo]):
+                finish(result)
     else:
         for job in todo:
             finish(run_job(job, plantri))
     return [done[job] for job in jobs]  # type: ignore[misc]
+
+
+def _run_job_star(args: tuple[Job, str]) -> dict[str, Any]:
+    return run_job(*args)
+
+
+def _die_with_parent() -> None:
+    """In a worker on Linux: ask the kernel to send SIGTERM when the parent dies."""
+    import contextlib
+    import ctypes
+    import signal
+    import sys
+
+    if sys.platform.startswith("linux"):
+        with contextlib.suppress(OSError):
+            ctypes.CDLL("libc.so.6", use_errno=True).prctl(1, signal.SIGTERM)  # PR_SET_PDEATHSIG
 
 
 def _run_dask(jobs: list[Job], plantri: str, address: str) -> Iterable[dict[str, Any]]:

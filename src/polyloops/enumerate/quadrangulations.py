@@ -63,8 +63,10 @@ def plantri_batches(n: int, plantri: str, res: int = 0, mod: int = 1,
     with subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE) as proc:
         assert proc.stdout is not None
         head = proc.stdout.read(len(HEADER))
-        if head and head != HEADER:
-            raise PlantriError(f"unexpected plantri output: {head!r}")
+        if head != HEADER:  # plantri writes the header even when there are no maps
+            proc.kill()
+            raise PlantriError(f"{plantri} did not write planar code (is it plantri?): "
+                               f"its output began {head[:20]!r}")
         while True:
             chunk = proc.stdout.read(size * batch)
             if not chunk:

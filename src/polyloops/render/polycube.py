@@ -207,18 +207,47 @@ def draw_polycube(ax, q: Polycube, view: View, loops: LoopStructure | None) -> N
     ax.axis("off")
 
 
+MAX_EXTENT = 256  # unit cells per axis that a picture draws; beyond, the compact form is drawn
+
+
+class PictureError(ValueError):
+    """A structure that cannot be drawn."""
+
+
+def _extent(q: Polycube) -> int:
+    lo, hi = q.bounding_box()
+    return max(h - low for h, low in zip(hi, lo, strict=True))
+
+
 def as_polycube(obj: Polycube | LoopStructure) -> tuple[Polycube, LoopStructure | None]:
     """The polycube to draw and its loop structure (``None`` if it has none); raises
-    :class:`DualityError` when a loop structure has no polycube (a cyclic level graph)."""
+    :class:`DualityError` when a loop structure has no polycube (a cyclic level graph).
+
+    A polycube wider than ``MAX_EXTENT`` unit cells is drawn in its compact order-equivalent
+    form (Theorem 2's coordinates), which shows the same polycube; one that has no loop
+    structure and is that wide raises :class:`PictureError`."""
     if isinstance(obj, Polycube):
         q = obj.outward()
         try:
-            return q, dualize(q)
+            ls = dualize(q)
         except DualityError:
-            return q, None
+            ls = None
+        if _extent(q) <= MAX_EXTENT:
+            return q, ls
+        try:
+            compact = primalize(ls).outward() if ls is not None else None
+        except DualityError:
+            compact = None
+        if compact is None or _extent(compact) > MAX_EXTENT:
+            raise PictureError(f"too large to draw: {_extent(q)} unit cells across "
+                               f"(pictures draw at most {MAX_EXTENT})")
+        return compact, dualize(compact)
     if not obj.oriented:
         raise DualityError("a labelled loop structure has no polycube; orient it first")
     q = primalize(obj).outward()
+    if _extent(q) > MAX_EXTENT:
+        raise PictureError(f"too large to draw: {_extent(q)} unit cells across "
+                           f"(pictures draw at most {MAX_EXTENT})")
     return q, dualize(q) if q.map is not obj.map else obj
 
 

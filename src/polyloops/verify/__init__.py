@@ -10,9 +10,10 @@ True
 from __future__ import annotations
 
 from polyloops.core.formats import Document, Structure
-from polyloops.core.halfedge import MapError
+from polyloops.core.halfedge import FaceListError, MapError
+from polyloops.core.loops import OddFaceError
 from polyloops.core.polycube import Polycube
-from polyloops.verify.definition1 import check_polycube, check_polycube_faces
+from polyloops.verify.definition1 import POLYGONS, check_polycube, check_polycube_faces
 from polyloops.verify.loop_structure import (
     GenusBalance,
     check_polycube_loop_structure,
@@ -52,5 +53,11 @@ def verify_document(doc: Document) -> Report:
     except MapError as err:
         rb = ReportBuilder("loop-structure", "surface")
         add_surface_checks(rb, err.problems)
+        return rb.build()
+    except (FaceListError, OddFaceError) as err:
+        rb = ReportBuilder("loop-structure", "surface")
+        rb.condition("polygons", POLYGONS if isinstance(err, FaceListError) else
+                     "every face has an even number of sides, so loops can cross it", [
+                         rb.violation("polygons", str(err))])
         return rb.build()
     return verify(obj)

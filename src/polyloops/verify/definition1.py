@@ -14,12 +14,13 @@ from collections import defaultdict
 from collections.abc import Sequence
 
 from polyloops.core.directions import Direction
-from polyloops.core.halfedge import HalfEdgeMap, MapError
+from polyloops.core.halfedge import FaceListError, HalfEdgeMap, MapError
 from polyloops.core.polycube import Polycube, signed_volume
 from polyloops.verify.report import Report, ReportBuilder
 from polyloops.verify.surface import add_surface_checks
 
 DEF1 = "Definition 1"
+POLYGONS = "faces are polygons over the corner ids 0..n-1, each visiting distinct corners"
 CONVENTION = "file convention"
 OUTWARD = "faces are counter-clockwise seen from outside (positive signed volume)"
 
@@ -39,6 +40,9 @@ def check_polycube_faces(faces: Sequence[Sequence[int]], positions: Sequence[Seq
         problems = None
     except MapError as err:
         problems = err.problems
+    except FaceListError as err:
+        rb.condition("polygons", POLYGONS, [rb.violation("polygons", str(err))])
+        return rb.build()
     add_surface_checks(rb, problems)
 
     rb.condition("1", "each corner has a position in Z^3", [
