@@ -265,3 +265,10 @@ def test_every_listed_index_adds_the_listed_loop(capsys, tmp_path, which):
             out = tmp_path / f"{n}.json"
             assert main(["add", "example:box-2x1x1", str(n), "-o", str(out)]) == 0
             assert loads(out.read_text()) == loads((tmp_path / f"{row['index']}.json").read_text())
+
+
+@settings(max_examples=20)
+@given(polycubes(kinds=("blob",), max_size=2), st.integers(3, 8))
+def test_max_length_keeps_exactly_the_short_loops(q, k):
+    ls = q.dualize()
+    assert list(additions(ls, max_length=k)) == [mv for mv in additions(ls) if len(mv.cycle) <= k]

@@ -124,6 +124,18 @@ def read_loop_structure(arg: str, oriented: bool = False) -> LoopStructure:
     return obj
 
 
+def read_valid_structure(arg: str) -> LoopStructure:
+    """A FILE argument as a polycube loop structure (Definition 4): exit 1 naming the first
+    violation otherwise."""
+    from polyloops.verify import verify
+
+    ls = read_loop_structure(arg, oriented=True)
+    report = verify(ls)
+    if not report.valid:
+        raise CliError(f"{arg}: not a polycube loop structure: {first_violation(report)}", EXIT_INVALID)
+    return ls
+
+
 def write_output(path: str | None, obj: Structure) -> str | None:
     """Write ``obj`` to ``path`` (OBJ if it ends in ``.obj``, else JSON), or return the JSON text."""
     if path is None:

@@ -26,6 +26,7 @@ from polyloops.cli.load import (
     read_loop_structure,
     read_structure,
     read_text_file,
+    read_valid_structure,
     write_output,
     write_text,
 )
@@ -69,6 +70,11 @@ def format_report(source: str, report: Report) -> str:
 
 
 def cmd_verify(args: argparse.Namespace) -> int:
+    from polyloops.cli.reach import read_path_file, verify_path_file
+
+    path_doc = read_path_file(args.file)
+    if path_doc is not None:
+        return verify_path_file(args.file, path_doc, args.json)
     doc = read_document(args.file)
     try:
         report = verify_document(doc)
@@ -251,19 +257,11 @@ def cmd_orient(args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
-def _oriented_structure(arg: str):
-    ls = read_loop_structure(arg, oriented=True)
-    report = verify(ls)
-    if not report.valid:
-        raise CliError(f"{arg}: not a polycube loop structure: {first_violation(report)}", EXIT_INVALID)
-    return ls
-
-
 def cmd_moves(args: argparse.Namespace) -> int:
     from polyloops.core.directions import Axis
     from polyloops.enumerate.moves import addition_index, additions, check_removal, count_additions
 
-    ls = _oriented_structure(args.file)
+    ls = read_valid_structure(args.file)
     want_add = args.add is not None or not args.remove
     want_remove = args.remove or args.add is None
     axes = list(Axis) if args.add in (None, "all") else [Axis.parse(args.add)]
@@ -336,7 +334,7 @@ def _clip(text: str, width: int = 40) -> str:
 def cmd_add(args: argparse.Namespace) -> int:
     from polyloops.enumerate.moves import add_loop
 
-    ls = _oriented_structure(args.file)
+    ls = read_valid_structure(args.file)
     result = add_loop(ls, _parse_move(args.file, ls, args.move))
     text = write_output(args.output, result)
     if text is not None:
@@ -347,7 +345,7 @@ def cmd_add(args: argparse.Namespace) -> int:
 def cmd_remove(args: argparse.Namespace) -> int:
     from polyloops.enumerate.moves import check_removal, remove_loop
 
-    ls = _oriented_structure(args.file)
+    ls = read_valid_structure(args.file)
     if not 0 <= args.loop < len(ls.loops):
         raise CliError(f"{args.file}: there is no loop {args.loop} (loops are 0..{len(ls.loops) - 1})")
     check = check_removal(ls, args.loop)
@@ -566,6 +564,7 @@ def build_parser() -> argparse.ArgumentParser:
         return p
 
     command("examples", cmd_examples, "list the bundled examples", file_arg=False)
+    # verify also checks path files ({"kind": "path"}) step by step
     command("verify", cmd_verify, "check a file against the paper's definitions "
             "(Definition 1 for a polycube, Definitions 3 and 4 and Theorem 3 for a loop structure)")
     p = command("primalize", cmd_primalize, "the polycube of a polycube loop structure (Theorem 2), "
@@ -657,7 +656,61 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--limit", type=count_arg(1), metavar="N", help="draw at most N")
     p.set_defaults(func=cmd_sheet)
     command("info", cmd_info, "corners, faces, loops, genus, zones, level graphs and corner degrees")
+    _reach_commands(command)
     return parser
+
+
+def _reach_commands(command: Callable[..., argparse.ArgumentParser]) -> None:
+    from polyloops.cli import reach
+
+    modes = ("labelled", "rotation", "full")
+    moves_help = "add, remove, or add,remove (default)"
+    p = command("reach", reach.cmd_reach, "breadth-first search over loop additions and removals from "
+                "START (default: the cube), every state within --max-corners", file_arg=False)
+    p.add_argument("start", metavar="START", nargs="?", default="example:cube", help=FILE_HELP)
+    p.add_argument("--max-corners", type=count_arg(8), required=True, metavar="M")
+    p.add_argument("--max-depth", type=count_arg(0), metavar="D", help="stop after D moves")
+    p.add_argument("--moves", default="add,remove", help=moves_help)
+    p.add_argument("--symmetry", choices=modes, default="labelled",
+                   help="states up to renumbering (labelled, default), rotations, or all 48 symmetries")
+    p.add_argument("-o", "--output", metavar="DIR", help="store the states in DIR/reach.sqlite "
+                   "(resumable level by level) and the counts in DIR/summary.json")
+    p.add_argument("--workers", type=count_arg(1), default=1, metavar="K", help="local worker processes")
+    p.add_argument("--dask", metavar="ADDRESS", help="expand levels on a Dask cluster (an address, or local)")
+    p = command("path", reach.cmd_path, "a shortest sequence of loop additions and removals from SOURCE "
+                "to TARGET, every structure within --max-corners (exit 1 when there is none)",
+                file_arg=False)
+    p.add_argument("source", metavar="SOURCE", help=FILE_HELP)
+    p.add_argument("target", metavar="TARGET", help=FILE_HELP)
+    p.add_argument("--max-corners", type=count_arg(8), required=True, metavar="M")
+    p.add_argument("--moves", default="add,remove", help=moves_help)
+    p.add_argument("-o", "--output", metavar="OUT.json", help="write the path: every step as a loop "
+                   "structure ('polyloops verify OUT.json' checks it)")
+    p = command("conjecture", reach.cmd_conjecture_genus0, "the genus-0 reachability conjecture: "
+                "'conjecture genus0' settles every catalog class, 'conjecture check' re-checks a "
+                "certificate", file_arg=False, json_flag=False)
+    sub = p.add_subparsers(dest="which", metavar="WHICH", parser_class=_Parser)
+    sub.required = True
+    g = sub.add_parser("genus0", help="settle every class of a genus-0 catalog up to N corners",
+                       description="settle every class of a genus-0 catalog up to N corners: a removable "
+                       "loop, or a detour to fewer corners within the slack; exit 1 if some class "
+                       "is not settled")
+    g.add_argument("--catalog", required=True, metavar="DIR", help="a catalog directory (catalogs/genus0)")
+    g.add_argument("--max-corners", type=count_arg(8), required=True, metavar="N")
+    g.add_argument("--slack", type=count_arg(2), default=10, metavar="K",
+                   help="detours may go up to K corners above the class (tried 2, 4, ..., K; default 10)")
+    g.add_argument("-o", "--output", required=True, metavar="CERT", help="the certificate (JSON lines)")
+    g.add_argument("--workers", type=count_arg(1), default=1, metavar="K", help="local worker processes")
+    g.add_argument("--dask", metavar="ADDRESS", help="a Dask cluster (an address, or local)")
+    g.add_argument("--json", action="store_true", help="print one JSON object for scripts")
+    g.set_defaults(func=reach.cmd_conjecture_genus0)
+    c = sub.add_parser("check", help="re-check a certificate without trusting the search",
+                       description="re-check a certificate against a catalog: every class present, "
+                       "every removal and detour replayed with the Definition-4 checker")
+    c.add_argument("certificate", metavar="CERT")
+    c.add_argument("--catalog", required=True, metavar="DIR")
+    c.add_argument("--json", action="store_true", help="print one JSON object for scripts")
+    c.set_defaults(func=reach.cmd_conjecture_check)
 
 
 def main(argv: Sequence[str] | None = None) -> int:

@@ -14,7 +14,7 @@ import os
 import sqlite3
 import tempfile
 import time
-from collections.abc import Callable, Iterable
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -22,6 +22,7 @@ from typing import Any
 from polyloops.core.formats import replace_atomic, write_atomic
 from polyloops.enumerate.catalog import MODES, map_classes
 from polyloops.enumerate.corners import CATEGORIES
+from polyloops.enumerate.parallel import run_jobs
 from polyloops.enumerate.quadrangulations import candidate_maps
 
 # Version 2: chirality and loops per axis fixed; parts of version 1 are recomputed.
@@ -104,52 +105,13 @@ def execute(jobs: list[Job], out: Path, plantri: str, workers: int = 1, dask: st
         if progress:
             progress(result)
 
-    if dask is not None:
-        for result in _run_dask(todo, plantri, dask):
-            finish(result)
-    elif workers > 1 and len(todo) > 1:
-        import multiprocessing
-
-        # Leaving the block for any reason (Ctrl-C, SIGTERM, an error) terminates the workers;
-        # _die_with_parent covers a parent killed outright.
-        with multiprocessing.Pool(workers, initializer=_die_with_parent) as pool:
-            for result in pool.imap_unordered(_run_job_star, [(job, plantri) for job in todo]):
-                finish(result)
-    else:
-        for job in todo:
-            finish(run_job(job, plantri))
+    for result in run_jobs(_run_job_star, [(job, plantri) for job in todo], workers, dask, ordered=False):
+        finish(result)
     return [done[job] for job in jobs]  # type: ignore[misc]
 
 
 def _run_job_star(args: tuple[Job, str]) -> dict[str, Any]:
     return run_job(*args)
-
-
-def _die_with_parent() -> None:
-    """In a worker on Linux: ask the kernel to send SIGTERM when the parent dies."""
-    import contextlib
-    import ctypes
-    import signal
-    import sys
-
-    if sys.platform.startswith("linux"):
-        with contextlib.suppress(OSError):
-            ctypes.CDLL("libc.so.6", use_errno=True).prctl(1, signal.SIGTERM)  # PR_SET_PDEATHSIG
-
-
-def _run_dask(jobs: list[Job], plantri: str, address: str) -> Iterable[dict[str, Any]]:
-    try:
-        from distributed import Client, LocalCluster, as_completed
-    except ImportError:
-        raise RuntimeError("--dask needs dask.distributed: pip install 'polyloops[dask]'") from None
-    cluster = LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                           dashboard_address=None) if address == "local" else None
-    with Client(cluster if cluster is not None else address) as client:
-        futures = client.map(run_job, jobs, plantri=plantri, pure=False)
-        for fut in as_completed(futures):
-            yield fut.result()
-    if cluster is not None:
-        cluster.close()
 
 
 # -- merging and storage ---------------------------------------------------------------------

@@ -103,17 +103,21 @@ class _AdditionGraph:
     def ok(self, arrive: int, leave: int) -> bool:
         return leave in self.succ.get(arrive, ())
 
-    def cycles(self) -> Iterator[tuple[int, ...]]:
+    def cycles(self, max_length: int | None = None) -> Iterator[tuple[int, ...]]:
         """Every simple cycle of corners (each once, walked in its direction), as corners,
-        starting at its lowest corner."""
+        starting at its lowest corner; with ``max_length``, only those of at most that many
+        corners (the search does not go deeper)."""
         m = self.ls.map
+        limit = m.num_corners if max_length is None else max_length
+        if limit < 3:
+            return
         for start in range(m.num_corners):
             for first in m.outgoing(start):
                 if self.ls.axis_of_dart(first) == self.axis or m.target(first) <= start:
                     continue
-                yield from self._extend(start, first)
+                yield from self._extend(start, first, limit)
 
-    def _extend(self, start: int, first: int) -> Iterator[tuple[int, ...]]:
+    def _extend(self, start: int, first: int, limit: int) -> Iterator[tuple[int, ...]]:
         m = self.ls.map
         path = [first]
         on_path = {start, m.target(first)}
@@ -129,7 +133,7 @@ class _AdditionGraph:
                 if len(path) >= 2 and self.ok(nxt, first):
                     yield (start, *(m.target(d) for d in path))
                 continue
-            if w < start or w in on_path:
+            if w < start or w in on_path or len(path) + 2 > limit:
                 continue
             path.append(nxt)
             on_path.add(w)
@@ -199,8 +203,10 @@ class _DisjointSets:
             self.parent[ra] = rb
 
 
-def additions(ls: LoopStructure, axis: Axis | None = None, limit: int | None = None) -> Iterator[Addition]:
+def additions(ls: LoopStructure, axis: Axis | None = None, limit: int | None = None,
+              max_length: int | None = None) -> Iterator[Addition]:
     """Every valid loop addition (one per combinatorial class), lazily; ``axis=None`` for all.
+    ``max_length`` keeps the loops past at most that many corners (each adds that many).
 
     A simple cycle of ``G_V^Delta`` is valid when its loop also separates its zone
     (:func:`separates_zone`); that is the only level-graph cycle an addition can close.
@@ -209,7 +215,7 @@ def additions(ls: LoopStructure, axis: Axis | None = None, limit: int | None = N
         raise ValueError("loop moves need an oriented loop structure")
     n = 0
     for a in (Axis if axis is None else [axis]):
-        for cycle in _AdditionGraph(ls, a).cycles():
+        for cycle in _AdditionGraph(ls, a).cycles(max_length):
             move = Addition(a, cycle)
             if not separates_zone(ls, move):
                 continue

@@ -1,0 +1,203 @@
+"""The reachability commands: ``reach``, ``path`` and ``conjecture``."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+from typing import Any
+
+from polyloops.cli.load import (
+    EXIT_INVALID,
+    EXIT_OK,
+    CliError,
+    read_text_file,
+    read_valid_structure,
+    write_text,
+)
+from polyloops.core.formats import to_data
+
+
+def _emit(args: argparse.Namespace, data: Any, text: str) -> None:
+    print(json.dumps(data, indent=2) if getattr(args, "json", False) else text)
+
+
+def _kinds(text: str):
+    from polyloops.enumerate.reach import parse_kinds
+
+    try:
+        return parse_kinds(text)
+    except ValueError as err:
+        raise CliError(f"--moves: {err}") from None
+
+
+def _output_dir(text: str) -> Path:
+    out = Path(text)
+    if out.exists() and not out.is_dir():
+        raise CliError(f"{out}: exists and is not a directory")
+    if not out.absolute().parent.is_dir():
+        raise CliError(f"{out}: the directory {out.absolute().parent} does not exist")
+    return out
+
+
+def cmd_reach(args: argparse.Namespace) -> int:
+    from tqdm import tqdm
+
+    from polyloops.core.formats import write_atomic
+    from polyloops.enumerate.reach import ReachError, explore
+
+    start = read_valid_structure(args.start)
+    kinds = _kinds(args.moves)
+    out = _output_dir(args.output) if args.output else None
+    bar = tqdm(desc="reach", unit="level", disable=None, file=sys.stderr)
+
+    def progress(p: dict[str, Any]) -> None:
+        bar.update(1)
+        rate = p["states"] / p["seconds"] if p["seconds"] else 0.0
+        bar.set_postfix(level=p["level"], states=p["states"], frontier=p["frontier"],
+                        rate=f"{rate:.0f}/s")
+
+    try:
+        result = explore(start, args.max_corners, args.max_depth, kinds, args.symmetry, out,
+                         args.workers, args.dask, progress)
+    except (ReachError, ValueError) as err:
+        raise CliError(f"{args.start}: {err}") from None
+    except RuntimeError as err:  # dask missing
+        raise CliError(str(err)) from None
+    finally:
+        bar.close()
+    data = result.to_json()
+    if out is not None:
+        write_atomic(out / "summary.json", json.dumps(data, indent=1) + "\n")
+    lines = [f"{result.states} states within {args.max_corners} corners "
+             f"({args.symmetry}, moves {','.join(k.value for k in kinds)}), "
+             f"largest distance {result.max_distance}, {result.seconds:.1f} s"
+             + ("" if result.complete else f"; stopped at depth {args.max_depth}")]
+    lines.append("corners  states")
+    lines += [f"{c:>7}  {n:>6}" for c, n in result.by_corners.items()]
+    if out is not None:
+        lines.append(f"wrote {out / 'reach.sqlite'} and {out / 'summary.json'}")
+    _emit(args, data, "\n".join(lines))
+    return EXIT_OK
+
+
+def cmd_path(args: argparse.Namespace) -> int:
+    from polyloops.enumerate.reach import shortest_path
+
+    source = read_valid_structure(args.source)
+    target = read_valid_structure(args.target)
+    for name, ls in ((args.source, source), (args.target, target)):
+        if ls.map.num_corners > args.max_corners:
+            raise CliError(f"{name}: has {ls.map.num_corners} corners, more than --max-corners")
+    steps = shortest_path(source, target, args.max_corners, _kinds(args.moves))
+    if steps is None:
+        raise CliError(f"{args.source} -> {args.target}: no path within {args.max_corners} corners",
+                       EXIT_INVALID)
+    doc = {"polyloops": 1, "kind": "path", "steps": [to_data(s) for s in steps]}
+    if args.output:
+        write_text(args.output, json.dumps(doc, separators=(",", ":")) + "\n")
+    corners = [s.map.num_corners for s in steps]
+    data = {"moves": len(steps) - 1, "corners": corners, "max_corners": max(corners)}
+    text = (f"{len(steps) - 1} moves; corners along the path: {' '.join(map(str, corners))}"
+            + (f"\nwrote {args.output}" if args.output else ""))
+    _emit(args, data, text)
+    return EXIT_OK
+
+
+def verify_path_file(source: str, data: dict[str, Any], as_json: bool) -> int:
+    """``polyloops verify`` on a path file: every step, then every consecutive pair."""
+    from polyloops.core.formats import FormatError, parse_document
+    from polyloops.enumerate.reach import check_path
+
+    steps = data.get("steps")
+    if not isinstance(steps, list) or not steps:
+        raise CliError(f"{source}: a path needs a non-empty list \"steps\"")
+    structures = []
+    for i, step in enumerate(steps):
+        try:
+            doc = parse_document(json.dumps(step))
+            if doc.kind != "loop-structure":
+                raise FormatError("a step must be a loop structure")
+            structures.append(doc.build())
+        except (ValueError, RecursionError) as err:
+            raise CliError(f"{source}: step {i}: {err}") from None
+    check = check_path(structures)
+    result = {"valid": check.valid, "kind": "path", "steps": check.steps, "bad_step": check.bad_step,
+              "reason": check.reason}
+    if as_json:
+        print(json.dumps(result, indent=2))
+    elif check.valid:
+        print(f"{source}: path: valid ({check.steps - 1} moves, every step a polycube loop structure)")
+    else:
+        print(f"{source}: path: INVALID at step {check.bad_step}: {check.reason}")
+    return EXIT_OK if check.valid else EXIT_INVALID
+
+
+def read_path_file(source: str) -> dict[str, Any] | None:
+    """The JSON of ``source`` if it is a path file, else ``None`` (and no error)."""
+    if source.startswith(("example:", "sig:")):
+        return None
+    try:
+        data = json.loads(read_text_file(source))
+    except (ValueError, RecursionError):
+        return None
+    return data if isinstance(data, dict) and data.get("kind") == "path" else None
+
+
+def cmd_conjecture_genus0(args: argparse.Namespace) -> int:
+    from tqdm import tqdm
+
+    from polyloops.enumerate.conjecture import (
+        CatalogError,
+        catalog_signatures,
+        certificate_lines,
+        settle_catalog,
+    )
+
+    catalog = Path(args.catalog)
+    try:
+        total = len(catalog_signatures(catalog, args.max_corners))
+    except CatalogError as err:
+        raise CliError(str(err)) from None
+    if args.slack < 2:
+        raise CliError("--slack must be at least 2")
+    bar = tqdm(total=total, desc="genus0", unit="class", disable=None, file=sys.stderr)
+    try:
+        result = settle_catalog(catalog, args.max_corners, args.slack, args.workers, args.dask,
+                                progress=lambda _: bar.update(1))
+    finally:
+        bar.close()
+    write_text(args.output, "\n".join(certificate_lines(result)) + "\n")
+    data = result.to_json()
+    lines = ["corners  classes  irreducible  settled  largest detour (extra corners, moves)"]
+    for row in result.table():
+        lines.append(f"{row.corners:>7}  {row.classes:>7}  {row.irreducible:>11}  "
+                     f"{row.settled_irreducible:>7}  "
+                     + (f"+{row.largest_detour_corners}, {row.largest_detour_moves}"
+                        if row.settled_irreducible else "-"))
+    lines.append(f"wrote {args.output}")
+    if result.unsettled:
+        lines.append("unsettled within slack " + str(args.slack) + ": "
+                     + ", ".join(r.signature for r in result.unsettled))
+    _emit(args, data, "\n".join(lines))
+    return EXIT_INVALID if result.unsettled else EXIT_OK
+
+
+def cmd_conjecture_check(args: argparse.Namespace) -> int:
+    from polyloops.enumerate.conjecture import CatalogError, check_certificate
+
+    text = read_text_file(args.certificate)
+    try:
+        header, problems = check_certificate(text.splitlines(), Path(args.catalog))
+    except CatalogError as err:
+        raise CliError(str(err)) from None
+    data = {"valid": not problems, "max_corners": header.get("max_corners"),
+            "problems": [str(p) for p in problems]}
+    if problems:
+        text = f"{args.certificate}: INVALID: {len(problems)} problems; first: {problems[0]}"
+    else:
+        text = (f"{args.certificate}: valid: every class through {header['max_corners']} corners "
+                "is reachable from the cube (each record replayed with the Definition-4 checker)")
+    _emit(args, data, text)
+    return EXIT_INVALID if problems else EXIT_OK

@@ -1,0 +1,440 @@
+"""Reachability: breadth-first search over loop additions and removals.
+
+The *move graph* has a node per polycube loop structure (up to the chosen symmetry) and an
+edge for each valid loop addition or removal.  It is undirected: if ``B`` is ``A`` with a loop
+added, removing that loop from ``B`` gives back ``A``, and conversely (both are polycube loop
+structures, so both moves are valid).  In genus 0 an addition past ``k`` corners adds ``k``
+corners and a removal takes some away, so a bound ``M`` on the corners of every state keeps
+the search finite.
+
+States are named by their signature in a symmetry mode (:mod:`polyloops.core.canonical`);
+a state is expanded from its canonical representative ``from_signature(sig)``, and a move is
+recorded in that representative's numbering: the axis and corner cycle of an addition, or
+the id of the removed loop.  So any path can be rebuilt from the stored parents without
+searching again.
+
+>>> from polyloops.core.examples import load_example
+>>> result = explore(load_example("cube").dualize(), max_corners=16)
+>>> result.by_corners
+{8: 1, 12: 3, 16: 15}
+"""
+
+from __future__ import annotations
+
+import json
+import sqlite3
+import time
+from collections.abc import Callable, Iterator, Sequence
+from dataclasses import dataclass, field
+from enum import StrEnum
+from pathlib import Path
+from typing import Any
+
+from polyloops.core.canonical import canonical_form, from_signature
+from polyloops.core.directions import Axis
+from polyloops.core.structure import LoopStructure
+from polyloops.enumerate.moves import (
+    Addition,
+    _AdditionGraph,
+    add_loop,
+    additions,
+    check_removal,
+    remove_loop,
+    try_remove,
+)
+from polyloops.enumerate.parallel import run_jobs
+
+MODES = ("labelled", "rotation", "full")
+
+
+class MoveKind(StrEnum):
+    ADD = "add"
+    REMOVE = "remove"
+
+
+@dataclass(frozen=True)
+class Move:
+    """One loop move, in the numbering of the structure it applies to."""
+
+    kind: MoveKind
+    axis: Axis | None = None
+    cycle: tuple[int, ...] = ()
+    loop: int | None = None
+
+    @classmethod
+    def add(cls, move: Addition) -> Move:
+        return cls(MoveKind.ADD, move.axis, tuple(move.cycle))
+
+    @classmethod
+    def remove(cls, loop: int) -> Move:
+        return cls(MoveKind.REMOVE, loop=loop)
+
+    def apply(self, ls: LoopStructure) -> LoopStructure:
+        """The structure after the move (validity is not checked here)."""
+        if self.kind is MoveKind.ADD:
+            assert self.axis is not None
+            return add_loop(ls, Addition(self.axis, self.cycle))
+        assert self.loop is not None
+        return remove_loop(ls, self.loop)
+
+    def to_json(self) -> dict[str, Any]:
+        if self.kind is MoveKind.ADD:
+            return {"add": str(self.axis), "corners": list(self.cycle)}
+        return {"remove": self.loop}
+
+    @classmethod
+    def from_json(cls, data: Any) -> Move:
+        """Parse ``{"add": "X", "corners": [...]}`` or ``{"remove": 3}``; ``ValueError`` else."""
+        if isinstance(data, dict) and set(data) == {"add", "corners"}:
+            corners = data["corners"]
+            if not (isinstance(corners, list) and all(type(c) is int and c >= 0 for c in corners)):
+                raise ValueError("an addition's corners must be a list of corner ids")
+            return cls(MoveKind.ADD, Axis.parse(str(data["add"])), tuple(corners))
+        if isinstance(data, dict) and set(data) == {"remove"} and type(data["remove"]) is int:
+            return cls(MoveKind.REMOVE, loop=data["remove"])
+        raise ValueError(f"not a move: {json.dumps(data)[:80]}")
+
+    def __str__(self) -> str:
+        if self.kind is MoveKind.ADD:
+            return f"add {self.axis}:{','.join(map(str, self.cycle))}"
+        return f"remove loop {self.loop}"
+
+
+BOTH = (MoveKind.ADD, MoveKind.REMOVE)
+
+
+def neighbours(ls: LoopStructure, max_corners: int,
+               kinds: Sequence[MoveKind] = BOTH) -> Iterator[tuple[Move, LoopStructure]]:
+    """Every valid move from ``ls`` whose result has at most ``max_corners`` corners, with the
+    result: additions first (X, Y, Z, in :func:`~polyloops.enumerate.moves.additions` order),
+    then removals by loop id."""
+    room = max_corners - ls.map.num_corners
+    if MoveKind.ADD in kinds and room >= 3:
+        for mv in additions(ls, max_length=room):
+            child = add_loop(ls, mv)
+            if child.map.num_corners <= max_corners:
+                yield Move.add(mv), child
+    if MoveKind.REMOVE in kinds:
+        for lp in ls.loops:
+            if check_removal(ls, lp.id).valid:
+                yield Move.remove(lp.id), remove_loop(ls, lp.id)
+
+
+def parse_kinds(text: str) -> tuple[MoveKind, ...]:
+    """``"add"`` or ``"add,remove"`` (any order) -> the move kinds; ``ValueError`` otherwise."""
+    parts = [p.strip() for p in text.split(",") if p.strip()]
+    try:
+        kinds = tuple(MoveKind(p) for p in parts)
+    except ValueError:
+        raise ValueError(f"moves must be add, remove or add,remove, not {text!r}") from None
+    if not kinds or len(set(kinds)) != len(kinds):
+        raise ValueError(f"moves must be add, remove or add,remove, not {text!r}")
+    return tuple(k for k in MoveKind if k in kinds)
+
+
+# -- one level of the search, as a job ----------------------------------------------------------
+
+@dataclass(frozen=True)
+class Child:
+    signature: str
+    corners: int
+    move: Move
+
+
+def expand(task: tuple[str, str, int, tuple[MoveKind, ...]]) -> list[Child]:
+    """The children of one state (a job for a worker): every valid move within the bound,
+    named by signature, duplicates kept in order of first appearance."""
+    sig, mode, max_corners, kinds = task
+    ls = from_signature(sig)
+    out: list[Child] = []
+    seen: set[str] = set()
+    for move, child in neighbours(ls, max_corners, kinds):
+        s = canonical_form(child, mode).signature
+        if s not in seen:
+            seen.add(s)
+            out.append(Child(s, child.map.num_corners, move))
+    return out
+
+
+# -- storage -------------------------------------------------------------------------------------
+
+SCHEMA = """
+CREATE TABLE IF NOT EXISTS states (
+    signature TEXT PRIMARY KEY, corners INTEGER NOT NULL, distance INTEGER NOT NULL,
+    parent TEXT, move TEXT);
+CREATE INDEX IF NOT EXISTS by_distance ON states (distance);
+CREATE TABLE IF NOT EXISTS meta (key TEXT PRIMARY KEY, value TEXT NOT NULL);
+"""
+
+
+class ReachError(ValueError):
+    """A reach directory that does not belong to this search, or bad parameters."""
+
+
+@dataclass(frozen=True)
+class State:
+    signature: str
+    corners: int
+    distance: int
+    parent: str | None
+    move: Move | None
+
+
+class ReachStore:
+    """``DIR/reach.sqlite``: one row per reached state; ``meta`` holds the search parameters
+    and the last level written.  Each level is written in one transaction, so an interrupted
+    run loses at most the level it was computing."""
+
+    def __init__(self, directory: Path, params: dict[str, Any]):
+        directory.mkdir(exist_ok=True)
+        self.path = directory / "reach.sqlite"
+        self.con = sqlite3.connect(self.path)
+        self.con.executescript(SCHEMA)
+        stored = dict(self.con.execute("SELECT key, value FROM meta"))
+        wanted = {k: json.dumps(v) for k, v in params.items()}
+        if stored:
+            differ = [k for k in wanted if stored.get(k) != wanted[k]]
+            if differ:
+                self.con.close()
+                raise ReachError(f"{self.path}: a search with other parameters ({', '.join(differ)}) "
+                                 "is stored here; use another directory")
+        else:
+            with self.con:
+                self.con.executemany("INSERT INTO meta VALUES (?, ?)", [*wanted.items(), ("level", "-1")])
+
+    @property
+    def level(self) -> int:
+        """The last complete level (-1 before the start state is written)."""
+        return int(self.con.execute("SELECT value FROM meta WHERE key = 'level'").fetchone()[0])
+
+    def write_level(self, level: int, states: list[State]) -> None:
+        with self.con:
+            self.con.executemany("INSERT INTO states VALUES (?, ?, ?, ?, ?)", [
+                (s.signature, s.corners, s.distance, s.parent,
+                 None if s.move is None else json.dumps(s.move.to_json())) for s in states])
+            self.con.execute("UPDATE meta SET value = ? WHERE key = 'level'", (str(level),))
+
+    def distances(self) -> dict[str, tuple[int, int]]:
+        """signature -> (distance, corners) of every stored state."""
+        return {s: (d, c) for s, d, c in self.con.execute("SELECT signature, distance, corners FROM states")}
+
+    def state(self, signature: str) -> State | None:
+        row = self.con.execute("SELECT signature, corners, distance, parent, move FROM states "
+                               "WHERE signature = ?", (signature,)).fetchone()
+        return None if row is None else _state(row)
+
+    def close(self) -> None:
+        self.con.close()
+
+
+def _state(row: tuple[Any, ...]) -> State:
+    sig, corners, distance, parent, move = row
+    return State(sig, corners, distance, parent, None if move is None else Move.from_json(json.loads(move)))
+
+
+def path_to(store_dir: Path, signature: str) -> list[State]:
+    """The stored states from the start to ``signature``, following parents; each state's
+    move applies to ``from_signature`` of the state before it."""
+    con = sqlite3.connect(f"file:{store_dir / 'reach.sqlite'}?mode=ro", uri=True)
+    try:
+        out = []
+        sig: str | None = signature
+        while sig is not None:
+            row = con.execute("SELECT signature, corners, distance, parent, move FROM states "
+                              "WHERE signature = ?", (sig,)).fetchone()
+            if row is None:
+                raise ReachError(f"{signature[:40]}...: not reached in {store_dir}")
+            out.append(_state(row))
+            sig = out[-1].parent
+        return out[::-1]
+    finally:
+        con.close()
+
+
+# -- the search ----------------------------------------------------------------------------------
+
+@dataclass
+class ReachResult:
+    start: str
+    mode: str
+    max_corners: int
+    kinds: tuple[MoveKind, ...]
+    by_corners: dict[int, int] = field(default_factory=dict)
+    by_distance: dict[int, int] = field(default_factory=dict)
+    seconds: float = 0.0
+    complete: bool = True  # False when --max-depth stopped a frontier that was not empty
+
+    @property
+    def states(self) -> int:
+        return sum(self.by_corners.values())
+
+    @property
+    def max_distance(self) -> int:
+        return max(self.by_distance, default=0)
+
+    def to_json(self) -> dict[str, Any]:
+        return {"start": self.start, "symmetry": self.mode, "max_corners": self.max_corners,
+                "moves": ",".join(k.value for k in self.kinds), "states": self.states,
+                "by_corners": {str(k): v for k, v in sorted(self.by_corners.items())},
+                "by_distance": {str(k): v for k, v in sorted(self.by_distance.items())},
+                "max_distance": self.max_distance, "complete": self.complete,
+                "seconds": round(self.seconds, 3)}
+
+
+def explore(start: LoopStructure, max_corners: int, max_depth: int | None = None,
+            kinds: Sequence[MoveKind] = BOTH, mode: str = "labelled",
+            directory: Path | None = None, workers: int = 1, dask: str | None = None,
+            progress: Callable[[dict[str, Any]], None] | None = None) -> ReachResult:
+    """Breadth-first search of the move graph from ``start`` (see the module docstring).
+
+    Levels are expanded in parallel with ``workers`` processes or on a Dask cluster; parents
+    are then chosen in signature order, so the result does not depend on how the work was
+    split.  With ``directory``, states go to ``directory/reach.sqlite`` level by level and a
+    rerun resumes after the last complete level.
+    """
+    if mode not in MODES:
+        raise ValueError(f"unknown symmetry mode {mode!r}; choose labelled, rotation or full")
+    if not start.oriented:
+        raise ValueError("reachability needs an oriented loop structure")
+    kinds = tuple(k for k in MoveKind if k in kinds)
+    began = time.perf_counter()
+    start_sig = canonical_form(start, mode).signature
+    result = ReachResult(start_sig, mode, max_corners, kinds)
+    if start.map.num_corners > max_corners:
+        raise ValueError(f"the start has {start.map.num_corners} corners, more than --max-corners "
+                         f"{max_corners}")
+    store = None
+    if directory is not None:
+        store = ReachStore(directory, {"start": start_sig, "mode": mode, "max_corners": max_corners,
+                                       "moves": [k.value for k in kinds]})
+    try:
+        known: dict[str, tuple[int, int]] = store.distances() if store else {}
+        level = store.level if store else -1
+        if level < 0:
+            known = {start_sig: (0, start.map.num_corners)}
+            if store:
+                store.write_level(0, [State(start_sig, start.map.num_corners, 0, None, None)])
+            level = 0
+        frontier = sorted(s for s, (d, _) in known.items() if d == level)
+        while frontier and (max_depth is None or level < max_depth):
+            tasks = [(sig, mode, max_corners, kinds) for sig in frontier]
+            new: list[State] = []
+            for sig, children in zip(frontier, run_jobs(expand, tasks, workers, dask), strict=True):
+                for child in children:
+                    if child.signature not in known:
+                        known[child.signature] = (level + 1, child.corners)
+                        new.append(State(child.signature, child.corners, level + 1, sig, child.move))
+            level += 1
+            if store:
+                store.write_level(level, new)
+            frontier = sorted(s.signature for s in new)
+            if progress:
+                progress({"level": level, "states": len(known), "frontier": len(frontier),
+                          "seconds": time.perf_counter() - began})
+        result.complete = not frontier
+    finally:
+        if store:
+            store.close()
+    for d, c in known.values():
+        result.by_corners[c] = result.by_corners.get(c, 0) + 1
+        result.by_distance[d] = result.by_distance.get(d, 0) + 1
+    result.by_corners = dict(sorted(result.by_corners.items()))
+    result.by_distance = dict(sorted(result.by_distance.items()))
+    result.seconds = time.perf_counter() - began
+    return result
+
+
+# -- shortest paths ------------------------------------------------------------------------------
+
+def shortest_path(source: LoopStructure, target: LoopStructure, max_corners: int,
+                  kinds: Sequence[MoveKind] = BOTH) -> list[LoopStructure] | None:
+    """A shortest sequence of structures from ``source`` to one isomorphic to ``target``
+    (labelled mode), each one move from the one before up to renumbering, all within
+    ``max_corners``; ``None`` when there is none.  Bidirectional: the move graph is
+    undirected, so the target side expands with the same moves."""
+    def sig(ls: LoopStructure) -> str:
+        return canonical_form(ls, "labelled").signature
+
+    # Per side: signature -> (structure, parent signature); structures are the actual results
+    # of applying a move to the parent's structure.
+    sides: list[dict[str, tuple[LoopStructure, str | None]]] = [{sig(source): (source, None)},
+                                                                   {sig(target): (target, None)}]
+    frontiers = [list(sides[0]), list(sides[1])]
+    meet = next((s for s in sides[0] if s in sides[1]), None)
+    while meet is None and frontiers[0] and frontiers[1]:
+        i = 0 if len(frontiers[0]) <= len(frontiers[1]) else 1
+        mine, other = sides[i], sides[1 - i]
+        nxt = []
+        for s in frontiers[i]:
+            ls = mine[s][0]
+            for _, child in neighbours(ls, max_corners, kinds):
+                c = sig(child)
+                if c not in mine:
+                    mine[c] = (child, s)
+                    nxt.append(c)
+                    if c in other and meet is None:
+                        meet = c
+        frontiers[i] = nxt
+    if meet is None:
+        return None
+
+    def chain(side: dict[str, tuple[LoopStructure, str | None]], s: str | None) -> list[LoopStructure]:
+        out = []
+        while s is not None:
+            ls, s = side[s]
+            out.append(ls)
+        return out
+
+    forward = chain(sides[0], meet)[::-1]
+    backward = chain(sides[1], meet)
+    return forward + backward[1:]
+
+
+# -- checking a path, without trusting how it was found ---------------------------------------
+
+@dataclass(frozen=True)
+class PathCheck:
+    valid: bool
+    steps: int
+    bad_step: int | None = None
+    reason: str = ""
+
+
+def one_move_apart(a: LoopStructure, b: LoopStructure) -> bool:
+    """Whether ``b`` is, up to renumbering, ``a`` with one loop added or removed.  Every
+    candidate is tried (every simple cycle of the paper's graphs of the right length, before
+    any separation test, and every loop) and compared by labelled signature; validity of both
+    ends is the caller's business, so this never trusts the fast move tests."""
+    target = canonical_form(b, "labelled").signature
+    grow = b.map.num_corners - a.map.num_corners
+    if grow >= 3:
+        for axis in Axis:
+            for cycle in _AdditionGraph(a, axis).cycles(grow):
+                if len(cycle) == grow:
+                    child = add_loop(a, Addition(axis, cycle))
+                    if canonical_form(child, "labelled").signature == target:
+                        return True
+    elif grow < 0:
+        for lp in a.loops:
+            child = try_remove(a, lp.id)
+            if child is not None and canonical_form(child, "labelled").signature == target:
+                return True
+    return False
+
+
+def check_path(steps: Sequence[LoopStructure]) -> PathCheck:
+    """Every step a polycube loop structure (Definition 4, full checker) and every consecutive
+    pair one move apart; the first bad step is named (0-based)."""
+    from polyloops.verify import check_polycube_loop_structure
+
+    for i, ls in enumerate(steps):
+        if not ls.oriented:
+            return PathCheck(False, len(steps), i, "a labelled structure without sides")
+        report = check_polycube_loop_structure(ls)
+        if not report.valid:
+            v = report.violations[0]
+            return PathCheck(False, len(steps), i, f"not a polycube loop structure: {v.definition} "
+                             f"condition {v.condition}: {v.message}")
+        if i and not one_move_apart(steps[i - 1], ls):
+            return PathCheck(False, len(steps), i, f"not one loop addition or removal from step {i - 1}")
+    return PathCheck(True, len(steps))

@@ -1,0 +1,241 @@
+"""Reachability: the breadth-first search equals a brute force, its counts equal the catalog's,
+it resumes and splits work without changing its answer; paths and certificates are checked
+by code that does not trust the search."""
+
+import itertools
+import json
+import sqlite3
+from functools import cache
+from pathlib import Path
+
+import networkx as nx
+import pytest
+
+from polyloops.cli import main
+from polyloops.core.canonical import from_signature, signature
+from polyloops.core.directions import Axis
+from polyloops.core.examples import load_example
+from polyloops.enumerate.conjecture import certificate_lines, check_certificate, settle_catalog
+from polyloops.enumerate.moves import Addition, add_loop, canonical_cycle, try_remove
+from polyloops.enumerate.reach import MoveKind, check_path, explore, neighbours, shortest_path
+from polyloops.verify import check_polycube_loop_structure
+
+ROOT = Path(__file__).resolve().parent.parent
+CATALOG = ROOT / "catalogs" / "genus0"
+CUBE = load_example("cube").dualize()
+
+
+def brute_neighbours(ls, max_corners, kinds):
+    """Every loop through every simple cycle of corners (both directions, every label, avoiding
+    edges of its own label) and every loop removal, each checked by the Definition-4 checker."""
+    n = ls.map.num_corners
+    m = ls.map
+    if MoveKind.ADD in kinds:
+        for axis in Axis:
+            g = nx.Graph((m.origin(d), m.target(d)) for d in range(m.num_darts) if ls.axis_of_dart(d) != axis)
+            for cycle in nx.simple_cycles(g, length_bound=max_corners - n):
+                if len(cycle) < 3:
+                    continue
+                for walk in (cycle, cycle[::-1]):
+                    child = add_loop(ls, Addition(axis, canonical_cycle(walk)))
+                    if check_polycube_loop_structure(child).valid:
+                        yield child
+    if MoveKind.REMOVE in kinds:
+        for lp in ls.loops:
+            child = try_remove(ls, lp.id)
+            if child is not None and check_polycube_loop_structure(child).valid:
+                yield child
+
+
+def brute_reach(start, max_corners, kinds):
+    seen = {signature(start, "labelled"): 0}
+    level, d = [start], 0
+    while level:
+        d += 1
+        nxt = []
+        for ls in level:
+            for child in brute_neighbours(ls, max_corners, kinds):
+                s = signature(child, "labelled")
+                if s not in seen:
+                    seen[s] = d
+                    nxt.append(child)
+        level = nxt
+    return seen
+
+
+@pytest.mark.parametrize("kinds", [(MoveKind.ADD,), (MoveKind.ADD, MoveKind.REMOVE)])
+def test_reach_equals_brute_force(kinds):
+    brute = brute_reach(CUBE, 18, kinds)
+    result = explore(CUBE, 18, kinds=kinds)
+    assert result.states == len(brute) > 10
+    by_distance = {}
+    for d in brute.values():
+        by_distance[d] = by_distance.get(d, 0) + 1
+    assert result.by_distance == by_distance
+
+
+def test_neighbours_equal_brute_force_on_a_larger_state():
+    ls = load_example("l-shape").dualize()
+    fast = sorted(signature(c, "labelled") for _, c in neighbours(ls, 26))
+    brute = sorted(signature(c, "labelled") for c in brute_neighbours(ls, 26, list(MoveKind)))
+    assert fast == brute
+
+
+@cache
+def catalog_counts():
+    return json.loads((CATALOG / "summary.json").read_text())["counts"]
+
+
+def test_counts_equal_the_catalog():
+    """Every labelled class through 22 corners is reached within 22 corners."""
+    result = explore(CUBE, 22)
+    for n in range(8, 23):
+        assert result.by_corners.get(n, 0) == catalog_counts()[str(n)]["labelled"], n
+
+
+@pytest.mark.slow
+def test_counts_equal_the_catalog_through_24_and_not_at_26():
+    result = explore(CUBE, 26, workers=2)
+    for n in range(8, 25):
+        assert result.by_corners.get(n, 0) == catalog_counts()[str(n)]["labelled"], n
+    # The non-incremental polycube's classes need a detour above 26 corners.
+    assert result.by_corners[26] < catalog_counts()["26"]["labelled"]
+
+
+def rows(directory):
+    con = sqlite3.connect(directory / "reach.sqlite")
+    try:
+        return sorted(con.execute("SELECT * FROM states"))
+    finally:
+        con.close()
+
+
+def test_workers_and_resume_give_the_same_rows(tmp_path):
+    one, two, resumed = tmp_path / "one", tmp_path / "two", tmp_path / "resumed"
+    a = explore(CUBE, 20, directory=one)
+    b = explore(CUBE, 20, directory=two, workers=2)
+    partial = explore(CUBE, 20, max_depth=2, directory=resumed)
+    assert not partial.complete and partial.max_distance == 2
+    c = explore(CUBE, 20, directory=resumed)
+    assert a.to_json() | {"seconds": 0} == b.to_json() | {"seconds": 0} == c.to_json() | {"seconds": 0}
+    assert rows(one) == rows(two) == rows(resumed)
+    with pytest.raises(ValueError, match="other parameters"):
+        explore(CUBE, 22, directory=one)
+
+
+def test_stored_paths_replay(tmp_path):
+    from polyloops.enumerate.reach import path_to
+
+    explore(CUBE, 20, directory=tmp_path)
+    con = sqlite3.connect(tmp_path / "reach.sqlite")
+    far = [s for s, d in con.execute("SELECT signature, distance FROM states WHERE distance = 3")]
+    con.close()
+    for sig in far[:5]:
+        states = path_to(tmp_path, sig)
+        assert [s.distance for s in states] == [0, 1, 2, 3]
+        for before, after in itertools.pairwise(states):
+            child = after.move.apply(from_signature(before.signature))
+            assert signature(child, "labelled") == after.signature
+
+
+def test_cli_reach_json(capsys, tmp_path):
+    assert main(["reach", "--max-corners", "16", "--json", "-o", str(tmp_path / "r")]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["states"] == 19 and data["by_corners"] == {"8": 1, "12": 3, "16": 15}
+    assert data["max_distance"] == 2 and data["seconds"] >= 0
+    assert json.loads((tmp_path / "r" / "summary.json").read_text())["states"] == 19
+    assert main(["reach", "--max-corners", "16", "--moves", "jump"]) == 2
+    assert main(["reach", "example:torus-cycle", "--max-corners", "40"]) == 1
+
+
+def test_path_and_its_check(tmp_path, capsys):
+    out = tmp_path / "p.json"
+    assert main(["path", "example:cube", "example:l-shape", "--max-corners", "20", "-o", str(out)]) == 0
+    doc = json.loads(out.read_text())
+    assert doc["kind"] == "path" and len(doc["steps"]) >= 3
+    assert main(["verify", str(out)]) == 0
+    # Corrupt the path: skip a step (a shortest path's ends are not one move apart).
+    bad = {**doc, "steps": [doc["steps"][0], *doc["steps"][2:]]}
+    (tmp_path / "bad.json").write_text(json.dumps(bad))
+    capsys.readouterr()
+    assert main(["verify", str(tmp_path / "bad.json"), "--json"]) == 1
+    assert json.loads(capsys.readouterr().out)["bad_step"] == 1
+    broken = {**doc, "steps": [doc["steps"][0], {"polyloops": 1, "kind": "loop-structure"}]}
+    (tmp_path / "broken.json").write_text(json.dumps(broken))
+    assert main(["verify", str(tmp_path / "broken.json")]) == 2
+    assert "step 1" in capsys.readouterr().err
+    # The non-incremental polycube has no move that stays within its own 26 corners.
+    assert main(["path", "example:cube", "example:non-incremental", "--max-corners", "26"]) == 1
+    assert "no path within 26 corners" in capsys.readouterr().err
+    assert main(["path", "example:cube", "example:l-shape", "--max-corners", "12"]) == 2
+
+
+def test_check_path_names_the_first_bad_step():
+    steps = shortest_path(CUBE, load_example("l-shape").dualize(), 20)
+    assert check_path(steps).valid
+    skipped = [steps[0], *steps[2:]]
+    result = check_path(skipped)
+    assert not result.valid and result.bad_step == 1
+    assert not check_path([steps[0], steps[0]]).valid
+
+
+def test_shortest_path_is_shortest():
+    target = load_example("l-shape").dualize()
+    steps = shortest_path(CUBE, target, 20)
+    distances = brute_reach(CUBE, 20, (MoveKind.ADD, MoveKind.REMOVE))
+    assert len(steps) - 1 == distances[signature(target, "labelled")]
+
+
+@cache
+def certificate():
+    return list(certificate_lines(settle_catalog(CATALOG, 26, 10)))
+
+
+def test_conjecture_settled_through_26_and_checked():
+    lines = certificate()
+    header, problems = check_certificate(lines, CATALOG)
+    assert header["max_corners"] == 26 and problems == []
+    records = [json.loads(line) for line in lines[1:]]
+    detours = [r for r in records if "detour" in r]
+    non_incremental = signature(load_example("non-incremental"), "full")
+    assert [r["signature"] for r in detours] == [non_incremental]
+
+
+def test_corrupted_certificates_are_rejected():
+    lines = certificate()
+    records = [json.loads(line) for line in lines[1:]]
+    i = next(k for k, r in enumerate(records) if "detour" in r)
+    bad = json.loads(json.dumps(records[i]))
+    bad["detour"]["moves"] = bad["detour"]["moves"][1:]  # drop the first move
+    corrupted = [lines[0], *lines[1:i + 1], json.dumps(bad), *lines[i + 2:]]
+    _, problems = check_certificate(corrupted, CATALOG)
+    assert len(problems) == 1 and problems[0].line == i + 2 and "step" in problems[0].message
+    j = next(k for k, r in enumerate(records) if "removable" in r)
+    ls = from_signature(records[j]["signature"])
+    wrong = next(lp.id for lp in ls.loops if try_remove(ls, lp.id) is None
+                 or not check_polycube_loop_structure(try_remove(ls, lp.id)).valid)
+    bad = {**records[j], "removable": wrong}
+    corrupted = [lines[0], *lines[1:j + 1], json.dumps(bad), *lines[j + 2:]]
+    _, problems = check_certificate(corrupted, CATALOG)
+    assert [p.line for p in problems] == [j + 2]
+    _, problems = check_certificate(lines[:-1], CATALOG)
+    assert problems and "missing" in problems[0].message
+
+
+def test_cli_conjecture(tmp_path, capsys):
+    cert = tmp_path / "c.jsonl"
+    assert main(["conjecture", "genus0", "--catalog", str(CATALOG), "--max-corners", "26", "--json",
+                 "-o", str(cert)]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["settled"] == data["classes"] == 55 and data["unsettled"] == []
+    assert main(["conjecture", "check", str(cert), "--catalog", str(CATALOG)]) == 0
+    assert main(["conjecture", "genus0", "--catalog", str(CATALOG), "--max-corners", "26", "--slack", "6",
+                 "-o", str(cert)]) == 1
+    assert main(["conjecture", "check", str(cert), "--catalog", str(CATALOG)]) == 1
+    assert main(["conjecture", "check", str(cert), "--catalog", str(tmp_path)]) == 2
+
+
+def test_reach_from_a_zone_with_a_handle_stays_valid():
+    ls = load_example("bridged-ring").dualize()
+    for _, child in neighbours(ls, ls.map.num_corners + 6):
+        assert check_polycube_loop_structure(child).valid
