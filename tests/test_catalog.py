@@ -209,6 +209,7 @@ def test_shipped_records_describe_their_own_signature():
     """Every column is recomputed from the structure that ``sig:SIGNATURE`` loads."""
     from polyloops.core.canonical import from_signature
     from polyloops.enumerate.corners import corner_histogram
+    from polyloops.enumerate.moves import removals
 
     for rec in shipped_records():
         ls = from_signature(rec["signature"])
@@ -220,6 +221,8 @@ def test_shipped_records_describe_their_own_signature():
         assert rec["corner_categories"] == {c: categories[c] for c in rec["corner_categories"]}
         assert rec["automorphisms"] == form.automorphisms
         assert rec["chiral"] == (not form.achiral)
+        assert rec["removable_loops"] == len(removals(ls))
+        assert rec["irreducible"] == (rec["removable_loops"] == 0)
 
 
 def chiral_identity_holds(summary, records):
@@ -243,3 +246,13 @@ def test_chiral_query_in_the_readme(capsys):
     rows = json.loads(capsys.readouterr().out)
     counts = json.loads((SHIPPED / "summary.json").read_text())["counts"]["24"]
     assert len(rows) == counts["rotation"] - counts["full"] > 0
+
+
+def test_irreducible_records_include_the_non_incremental_polycube(capsys):
+    from polyloops.core.canonical import signature
+    from polyloops.core.examples import load_example
+
+    assert main(["catalog", "query", str(SHIPPED), "irreducible", "--json"]) == 0
+    rows = json.loads(capsys.readouterr().out)
+    assert signature(load_example("non-incremental"), "full") in {r["signature"] for r in rows}
+    assert {r["signature"] for r in rows} == {r["signature"] for r in shipped_records() if r["irreducible"]}

@@ -177,9 +177,15 @@ def test_huge_coordinates_render(tmp_path):
     assert code == 0 and (tmp_path / "c.png").stat().st_size > 0
 
 
-def test_long_arguments_are_not_echoed():
+def test_long_arguments_are_not_echoed(tmp_path):
     code, err = assert_contract(["verify", "sig:1o" + "A" * 100000])
     assert code == 2 and len(err) < 400
+    long_sig = "sig:" + signature(load_example("non-incremental"))
+    assert len(long_sig) > 255  # longer than a file name may be
+    code, _ = assert_contract(["sheet", long_sig, "-o", str(tmp_path / "s.png")])
+    assert code == 0
+    code, _ = assert_contract(["verify", "x" * 5000])
+    assert code == 2
 
 
 def test_bad_catalog_line_for_sheet(tmp_path):

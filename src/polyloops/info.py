@@ -38,6 +38,9 @@ def _loop_part(ls: LoopStructure) -> dict[str, Any]:
                               "acyclic": nx.is_directed_acyclic_graph(g),
                               "arc_list": [[u, v, k] for u, v, k in sorted(g.edges(keys=True))]}
         out["level_graphs"] = graphs
+        from polyloops.core.holes import hole_orientation
+
+        out["hole_orientation"] = hole_orientation(ls).to_json()
     return out
 
 
@@ -105,4 +108,10 @@ def format_summary(s: dict[str, Any]) -> str:
             row += f"; Theorem 3: {t['E']} = {t['g']} + {t['V']} - 1 - {t['Gamma']}"
             row += "" if t["holds"] else " FAILS"
             lines.append(row)
+        if "hole_orientation" in s:
+            from polyloops.core.holes import HoleOrientation
+
+            holes = HoleOrientation({k: tuple(v) for k, v in s["hole_orientation"].items()})
+            lines.append(f"holes     {holes}   (intersection numbers of the loops of two axes; "
+                         "loop moves keep them)")
     return "\n".join(lines)

@@ -475,6 +475,13 @@ def cmd_render(args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
+def _is_dir(path) -> bool:
+    try:
+        return path.is_dir()
+    except OSError:  # a name too long for the file system, for example
+        return False
+
+
 def cmd_sheet(args: argparse.Namespace) -> int:
     from pathlib import Path
 
@@ -486,7 +493,7 @@ def cmd_sheet(args: argparse.Namespace) -> int:
     items = []
     for source in args.sources:
         path = Path(source)
-        if path.is_dir():
+        if not source.startswith(("sig:", "example:")) and _is_dir(path):
             listing = path / "catalog.jsonl"
             if not listing.is_file():
                 raise CliError(f"{source}: a directory, but no catalog.jsonl in it")

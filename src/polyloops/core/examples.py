@@ -33,6 +33,11 @@ NON_INCREMENTAL_CUBES = [(0, 0, 0), (0, 0, 1), (0, 1, 1), (1, 0, 0), (1, 1, 0), 
 BRIDGED_RING_CUBES = [(0, 0, 0), (0, 0, 1), (0, 1, 1), (0, 2, 0), (0, 2, 1), (1, 0, 0), (1, 2, 0),
                       (2, 0, 0), (2, 1, 0), (2, 2, 0)]
 
+# Two square rings sharing a bar: one in the plane z = 0 (hole along Z), one in y = 0 (hole
+# along Y); genus 2.
+TWO_AXIS_HOLES_CUBES = sorted({(x, y, 0) for x in range(3) for y in range(3) if (x, y) != (1, 1)}
+                              | {(x, 0, z) for x in range(3) for z in range(3) if (x, z) != (1, 1)})
+
 _ALL = [
     Example("cube", "the unit cube", True, lambda: builders.box(1, 1, 1)),
     Example("box-2x1x1", "two unit cubes in a row: two X-loops", True, lambda: builders.box(2, 1, 1)),
@@ -45,6 +50,9 @@ _ALL = [
     Example("bridged-ring", "a ring of ten cubes with a bridge (genus 1) whose Z-zone at z = 1 has "
             "a handle: a Z-loop around it is locally valid but closes a level-graph cycle", True,
             lambda: polycube_from_voxels(BRIDGED_RING_CUBES)),
+    Example("two-axis-holes", "two square rings sharing a bar (genus 2), one hole along Z and one "
+            "along Y: loop moves keep each hole's orientation", True,
+            lambda: polycube_from_voxels(TWO_AXIS_HOLES_CUBES)),
     Example("self-intersecting", "a slab whose dent reaches down to its own bottom face: a valid "
             "polycube whose surface meets itself", True, builders.dented_slab),
     Example("torus-cycle", "a flat 3x3 torus grid: its X- and Y-graphs are cycles (Condition 5)",

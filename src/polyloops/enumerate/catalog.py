@@ -31,6 +31,7 @@ from polyloops.core.directions import Axis
 from polyloops.core.halfedge import HalfEdgeMap
 from polyloops.core.structure import LoopStructure
 from polyloops.enumerate.corners import CATEGORIES, corner_histogram
+from polyloops.enumerate.moves import removals
 
 MODES = ("labelled", "rotation", "full")
 
@@ -128,11 +129,18 @@ class CatalogRecord:
     categories: dict[str, int]
     automorphisms: int
     chiral: bool
+    removable_loops: int  # loops whose removal leaves a polycube loop structure
+
+    @property
+    def irreducible(self) -> bool:
+        """No loop can be removed: additions alone cannot build it (the cube is one too)."""
+        return self.removable_loops == 0
 
     def to_json(self) -> dict[str, Any]:
         return {"signature": self.signature, "corners": self.corners, "faces": self.faces,
                 "loops": self.loops, "corner_categories": self.categories,
-                "automorphisms": self.automorphisms, "chiral": self.chiral}
+                "automorphisms": self.automorphisms, "chiral": self.chiral,
+                "removable_loops": self.removable_loops, "irreducible": self.irreducible}
 
 
 def map_classes(m: HalfEdgeMap) -> dict[str, list[CatalogRecord]]:
@@ -147,6 +155,7 @@ def map_classes(m: HalfEdgeMap) -> dict[str, list[CatalogRecord]]:
         chiral = not full.achiral
         forms = {"labelled": form, "rotation": canonical_form(ls, "rotation"), "full": full}
         _, categories, _ = corner_histogram(ls)
+        removable = len(removals(ls))  # the same for every image under a symmetry
         for mode, form in forms.items():
             key = form.signature
             if key not in out[mode]:
@@ -155,5 +164,5 @@ def map_classes(m: HalfEdgeMap) -> dict[str, list[CatalogRecord]]:
                 rep = ls if mode == "labelled" else form.structure
                 out[mode][key] = CatalogRecord(
                     key, m.num_corners, m.num_faces, {a.name: rep.axes.count(a) for a in Axis},
-                    {c: categories[c] for c in CATEGORIES}, form.automorphisms, chiral)
+                    {c: categories[c] for c in CATEGORIES}, form.automorphisms, chiral, removable)
     return {mode: list(v.values()) for mode, v in out.items()}

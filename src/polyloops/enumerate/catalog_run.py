@@ -25,8 +25,9 @@ from polyloops.enumerate.corners import CATEGORIES
 from polyloops.enumerate.parallel import run_jobs
 from polyloops.enumerate.quadrangulations import candidate_maps
 
-# Version 2: chirality and loops per axis fixed; parts of version 1 are recomputed.
-SCHEMA_VERSION = 2
+# Version 2: chirality and loops per axis fixed; version 3: removable loops, irreducible,
+# versioned signatures.  Parts of older versions are recomputed.
+SCHEMA_VERSION = 3
 
 
 @dataclass(frozen=True)
@@ -130,13 +131,14 @@ def summarize(results: list[dict[str, Any]], min_n: int, max_n: int, partial: bo
 
 
 COLUMNS = ["signature", "corners", "faces", "loops_x", "loops_y", "loops_z",
-           *[c.replace("-", "_") for c in CATEGORIES], "automorphisms", "chiral"]
+           *[c.replace("-", "_") for c in CATEGORIES], "automorphisms", "chiral", "removable_loops",
+           "irreducible"]
 
 
 def _row(rec: dict[str, Any]) -> list[Any]:
     return [rec["signature"], rec["corners"], rec["faces"], rec["loops"]["X"], rec["loops"]["Y"],
             rec["loops"]["Z"], *[rec["corner_categories"][c] for c in CATEGORIES],
-            rec["automorphisms"], int(rec["chiral"])]
+            rec["automorphisms"], int(rec["chiral"]), rec["removable_loops"], int(rec["irreducible"])]
 
 
 def write_catalog(out: Path, results: list[dict[str, Any]], symmetry: str, summary: dict[str, Any]) -> int:
