@@ -11,7 +11,8 @@ from polyloops.core.examples import EXAMPLES, load_example
 from polyloops.core.formats import dumps, loads
 
 COMMANDS = ["examples", "verify", "primalize", "dualize", "info", "corners", "orient", "moves", "add",
-            "remove", "signature", "catalog", "catalog-query", "render", "sheet", "convert"]
+            "remove", "signature", "catalog", "catalog-query", "render", "sheet", "convert", "reach", "path",
+            "conjecture"]
 
 
 def run(capsys, *argv):
@@ -168,3 +169,11 @@ def test_examples_listing(capsys):
     status, out, _ = run(capsys, "examples", "--json")
     assert status == 0
     assert {row["name"] for row in json.loads(out)} == set(EXAMPLES)
+
+
+@pytest.mark.parametrize("which", ["genus0", "check"])
+def test_conjecture_subcommand_help(capsys, which):
+    with pytest.raises(SystemExit) as exit_:
+        main(["conjecture", which, "--help"])
+    assert exit_.value.code == 0
+    assert "--catalog" in capsys.readouterr().out

@@ -239,3 +239,17 @@ def test_reach_from_a_zone_with_a_handle_stays_valid():
     ls = load_example("bridged-ring").dualize()
     for _, child in neighbours(ls, ls.map.num_corners + 6):
         assert check_polycube_loop_structure(child).valid
+
+
+def test_shipped_certificate_checks():
+    lines = (CATALOG / "reachability-certificate.jsonl").read_text().splitlines()
+    header, problems = check_certificate(lines, CATALOG)
+    assert problems == [] and header["max_corners"] == 26
+
+
+def test_dask_gives_the_same_rows(tmp_path):
+    pytest.importorskip("distributed")
+    a, b = tmp_path / "a", tmp_path / "b"
+    explore(CUBE, 18, directory=a)
+    explore(CUBE, 18, directory=b, dask="local")
+    assert rows(a) == rows(b)

@@ -1,4 +1,5 @@
-"""Write catalogs/README.md from catalogs/genus0/summary.json (a test checks they agree).
+"""Write the tables of catalogs/README.md from catalogs/genus0/summary.json and the shipped
+reachability certificate (a test checks they agree).
 
 Run from the repository root: ``python tools/catalog_readme.py``.
 """
@@ -8,6 +9,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 BEGIN, END = "<!-- table: begin -->", "<!-- table: end -->"
+REACH_BEGIN, REACH_END = "<!-- reachability: begin -->", "<!-- reachability: end -->"
 
 
 def table(summary: dict) -> str:
@@ -19,14 +21,54 @@ def table(summary: dict) -> str:
     return "\n".join(lines)
 
 
-def render(template: str, summary: dict) -> str:
-    head, _, rest = template.partition(BEGIN)
-    _, _, tail = rest.partition(END)
-    return f"{head}{BEGIN}\n{table(summary)}\n{END}{tail}"
+def reach_table(rows: list[dict]) -> str:
+    """Per number of corners: classes, irreducible classes, how many are settled, and the
+    largest detour (extra corners above the class, number of moves)."""
+    lines = ["| corners | classes | irreducible | settled by a detour "
+             "| largest detour (extra corners, moves) |", "|---:|---:|---:|---:|---:|"]
+    for r in rows:
+        detour = (f"+{r['largest_detour_corners']}, {r['largest_detour_moves']}"
+                  if r["settled_irreducible"] else "-")
+        lines.append(f"| {r['corners']} | {r['classes']} | {r['irreducible']} | {r['settled_irreducible']} "
+                     f"| {detour} |")
+    return "\n".join(lines)
+
+
+def _replace(text: str, begin: str, end: str, body: str) -> str:
+    head, _, rest = text.partition(begin)
+    _, _, tail = rest.partition(end)
+    return f"{head}{begin}\n{body}\n{end}{tail}"
+
+
+def render(template: str, summary: dict, reach_rows: list[dict] | None = None) -> str:
+    out = _replace(template, BEGIN, END, table(summary))
+    if reach_rows is not None:
+        out = _replace(out, REACH_BEGIN, REACH_END, reach_table(reach_rows))
+    return out
+
+
+def certificate_rows(path: Path) -> list[dict]:
+    """The per-corner table of a certificate, recomputed from its records."""
+    from polyloops.enumerate.conjecture import ClassRecord, ConjectureResult
+    from polyloops.enumerate.reach import Move
+
+    lines = path.read_text().splitlines()
+    header = json.loads(lines[0])
+    result = ConjectureResult(header["max_corners"], header["slack"])
+    for line in lines[1:]:
+        r = json.loads(line)
+        detour = r.get("detour")
+        result.records.append(ClassRecord(
+            r["signature"], r["corners"], base=r.get("base", False), removable=r.get("removable"),
+            detour=None if detour is None else [Move.from_json(m) for m in detour["moves"]],
+            slack=None if detour is None else detour["slack"],
+            max_corners=None if detour is None else detour["max_corners"]))
+    return [row.to_json() for row in result.table()]
 
 
 if __name__ == "__main__":
     readme = ROOT / "catalogs" / "README.md"
     summary = json.loads((ROOT / "catalogs" / "genus0" / "summary.json").read_text())
-    readme.write_text(render(readme.read_text(), summary))
+    rows = certificate_rows(ROOT / "catalogs" / "genus0" / "reachability-certificate.jsonl")
+    readme.write_text(render(readme.read_text(), summary, rows))
     print(f"wrote {readme}")
