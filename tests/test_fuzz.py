@@ -81,7 +81,8 @@ def mutated_documents(draw):
 
 
 COMMANDS = [["verify"], ["info"], ["dualize"], ["primalize"], ["signature"], ["orient"],
-            ["moves", "--count"], ["add", "{}", "X0"], ["remove", "{}", "0"], ["convert", "{}", "{out}"]]
+            ["moves", "--count"], ["add", "{}", "X0"], ["remove", "{}", "0"], ["convert", "{}", "{out}"],
+            ["reach", "{}", "--max-corners", "16"], ["path", "{}", "example:cube", "--max-corners", "16"]]
 
 
 @settings(max_examples=250, suppress_health_check=[HealthCheck.function_scoped_fixture])

@@ -253,3 +253,9 @@ def test_dask_gives_the_same_rows(tmp_path):
     explore(CUBE, 18, directory=a)
     explore(CUBE, 18, directory=b, dask="local")
     assert rows(a) == rows(b)
+
+
+def test_not_a_certificate_is_bad_input(tmp_path, capsys):
+    (tmp_path / "g.jsonl").write_text("garbage\n")
+    assert main(["conjecture", "check", str(tmp_path / "g.jsonl"), "--catalog", str(CATALOG)]) == 2
+    assert "not a reachability certificate" in capsys.readouterr().err

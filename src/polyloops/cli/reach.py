@@ -192,6 +192,8 @@ def cmd_conjecture_check(args: argparse.Namespace) -> int:
         header, problems = check_certificate(text.splitlines(), Path(args.catalog))
     except CatalogError as err:
         raise CliError(str(err)) from None
+    if not header:  # not a certificate at all: bad input, not a failed check
+        raise CliError(f"{args.certificate}: {problems[0].message}")
     data = {"valid": not problems, "max_corners": header.get("max_corners"),
             "problems": [str(p) for p in problems]}
     if problems:

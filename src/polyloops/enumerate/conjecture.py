@@ -180,8 +180,10 @@ def catalog_signatures(directory: Path, max_corners: int) -> list[tuple[str, int
     path = directory / "catalog.jsonl"
     try:
         lines = path.read_text(encoding="utf-8").splitlines()
-    except (OSError, UnicodeDecodeError) as err:
-        raise CatalogError(f"{path}: cannot read: {err}") from None
+    except OSError as err:
+        raise CatalogError(f"{path}: cannot read: {err.strerror or err}") from None
+    except UnicodeDecodeError as err:
+        raise CatalogError(f"{path}: cannot read: not UTF-8 text ({err.reason})") from None
     out = []
     for i, line in enumerate(lines):
         try:
