@@ -313,22 +313,17 @@ def _parse_move(arg: str, ls, text: str):
         try:
             move = Addition(Axis.parse(label.strip().upper()), parse_cycle(corners))
         except ValueError:
-            raise CliError(f"{arg}: move {_clip(text)!r}: {MOVE_HELP}") from None
+            raise CliError(f"{arg}: move {text!r}: {MOVE_HELP}") from None
         if not is_valid_addition(ls, move):
-            raise CliError(f"{arg}: move {_clip(text)!r} is not a valid loop addition here", EXIT_INVALID)
+            raise CliError(f"{arg}: move {text!r} is not a valid loop addition here", EXIT_INVALID)
         return move
     try:
         found = addition_at(ls, int(text) if text.strip().lstrip("-").isdigit() else text)
     except ValueError:
-        raise CliError(f"{arg}: move {_clip(text)!r}: {MOVE_HELP}") from None
+        raise CliError(f"{arg}: move {text!r}: {MOVE_HELP}") from None
     if found is None:
-        raise CliError(f"{arg}: there is no addition {_clip(text)} ('polyloops moves' lists them)")
+        raise CliError(f"{arg}: there is no addition {text} ('polyloops moves' lists them)")
     return found
-
-
-def _clip(text: str, width: int = 40) -> str:
-    """An argument as quoted in an error message: long ones are shortened."""
-    return text if len(text) <= width else text[: width - 3] + "..."
 
 
 def cmd_add(args: argparse.Namespace) -> int:

@@ -42,6 +42,7 @@ from itertools import islice
 from networkx.utils import UnionFind
 
 from polyloops.core.directions import Axis, Direction
+from polyloops.core.disjoint_sets import DisjointSets
 from polyloops.core.halfedge import FaceListError, MapError
 from polyloops.core.structure import LabelError, LoopStructure
 
@@ -168,7 +169,7 @@ def separates_zone(ls: LoopStructure, move: Addition) -> bool:
         while d != forward:  # strictly between back and forward (CCW): the right side
             copy[d] = plus_id[v]
             d = m.rotate(d)
-    parts = _DisjointSets()
+    parts = DisjointSets()
     for c in range(m.num_corners):
         if zones.zone_of[c] != zone:
             continue
@@ -181,26 +182,6 @@ def separates_zone(ls: LoopStructure, move: Addition) -> bool:
         parts.union(u, w)
         parts.union(plus_id[u], plus_id[w])
     return parts.find(cyc[0]) != parts.find(plus_id[cyc[0]])
-
-
-class _DisjointSets:
-    """A small union-find on integers (path halving)."""
-
-    def __init__(self) -> None:
-        self.parent: dict[int, int] = {}
-
-    def find(self, x: int) -> int:
-        p = self.parent
-        p.setdefault(x, x)
-        while p[x] != x:
-            p[x] = p[p[x]]
-            x = p[x]
-        return x
-
-    def union(self, a: int, b: int) -> None:
-        ra, rb = self.find(a), self.find(b)
-        if ra != rb:
-            self.parent[ra] = rb
 
 
 def additions(ls: LoopStructure, axis: Axis | None = None, limit: int | None = None,

@@ -19,6 +19,7 @@ group and 0 next to a boundary edge.  :func:`gf2_rank` is the slow twin used by 
 
 >>> from polyloops.core.examples import load_example
 >>> from polyloops.core.directions import Axis
+from polyloops.core.disjoint_sets import DisjointSets
 >>> ls = load_example("bridged-ring").dualize()
 >>> zone_genera(ls, Axis.Z)
 (0, 1, 0)
@@ -31,27 +32,8 @@ from collections.abc import Hashable, Iterable, Sequence
 from dataclasses import dataclass
 
 from polyloops.core.directions import Axis
+from polyloops.core.disjoint_sets import DisjointSets
 from polyloops.core.structure import LoopStructure
-
-
-class _Parts:
-    """Union-find over hashable items."""
-
-    def __init__(self) -> None:
-        self.parent: dict[Hashable, Hashable] = {}
-
-    def find(self, x: Hashable) -> Hashable:
-        p = self.parent
-        p.setdefault(x, x)
-        while p[x] != x:
-            p[x] = p[p[x]]
-            x = p[x]
-        return x
-
-    def union(self, a: Hashable, b: Hashable) -> None:
-        ra, rb = self.find(a), self.find(b)
-        if ra != rb:
-            self.parent[ra] = rb
 
 
 @dataclass(frozen=True)
@@ -64,7 +46,7 @@ class CellComplex:
 
     def betti1(self) -> int:
         """``dim ker d1 - rank d2`` (exact when every edge lies in at most two faces)."""
-        parts = _Parts()
+        parts = DisjointSets()
         for v in self.vertices:
             parts.find(v)
         for u, v in self.edges:
@@ -86,7 +68,7 @@ class CellComplex:
         """``dim ker d2``: groups of faces joined across edges in two faces, touching no edge
         that lies in one face only."""
         by_edge = self.faces_of_edge()
-        parts = _Parts()
+        parts = DisjointSets()
         for f in range(len(self.faces)):
             parts.find(f)
         for fs in by_edge.values():
@@ -97,7 +79,7 @@ class CellComplex:
 
     def boundary_circles(self) -> int:
         """Connected components of the edges that lie in exactly one face."""
-        parts = _Parts()
+        parts = DisjointSets()
         for e, fs in self.faces_of_edge().items():
             if len(fs) == 1:
                 u, v = self.edges[e]
@@ -161,7 +143,7 @@ def cut_zones(ls: LoopStructure, axis: Axis) -> dict[int, CellComplex]:
                 continue
             faces.append(tuple(edge(piece[i], piece[(i + 1) % len(piece)]) for i in range(len(piece))))
     vertices = sorted({v for uv in edges for v in uv}, key=repr)
-    parts = _Parts()
+    parts = DisjointSets()
     for v in vertices:
         parts.find(v)
     for u, v in edges:
