@@ -257,3 +257,75 @@ def test_irreducible_records_include_the_non_incremental_polycube(capsys):
     rows = json.loads(capsys.readouterr().out)
     assert signature(load_example("non-incremental"), "full") in {r["signature"] for r in rows}
     assert {r["signature"] for r in rows} == {r["signature"] for r in shipped_records() if r["irreducible"]}
+
+
+def test_degree_filter_equals_decoded_degrees():
+    from polyloops.enumerate.quadrangulations import Batch, max_degrees
+
+    for n in (12, 14, 16):
+        for rows in plantri_batches(n, plantri(), batch=50):
+            batch = Batch(rows)
+            for i, top in enumerate(max_degrees(rows)):
+                m = batch.map(i)
+                assert top == max(m.degree(c) for c in range(m.num_corners))
+
+
+def test_no_quadrangulation_with_odd_corners_has_only_simple_loops():
+    """The theorem behind skipping odd corner counts, checked where plantri is quick."""
+    from polyloops.enumerate.quadrangulations import Batch, odd_corners_have_no_polycube
+
+    for n in (9, 11, 13, 15, 17, 19, 21):
+        assert odd_corners_have_no_polycube(n)
+        for rows in plantri_batches(n, plantri()):
+            assert not Batch(rows).without_self_crossing().any(), n
+
+
+def test_odd_counts_are_not_generated(tmp_path):
+    from polyloops.enumerate.catalog_run import plan_jobs
+
+    assert {j.n for j in plan_jobs(8, 21, None, None, 2)} == {8, 10, 12, 14, 16, 18, 20}
+    assert main(["catalog", "--min-corners", "9", "--max-corners", "11", "-o", str(tmp_path / "c")]) == 0
+    summary = json.loads((tmp_path / "c" / "summary.json").read_text())
+    assert summary["quadrangulations"] == {"9": None, "10": 1, "11": None}
+    assert summary["counts"]["9"] == {"labelled": 0, "rotation": 0, "full": 0}
+
+
+def test_names_and_identify_every_shipped_record(tmp_path, capsys):
+    """Every record is found by its name from a renumbered, mirrored, moved copy."""
+    import random
+
+    from polyloops.core.canonical import from_signature, transformed
+    from polyloops.core.formats import dumps
+    from polyloops.core.symmetry import SIGNED_PERMUTATIONS
+    from polyloops.enumerate.catalog_run import identify
+    from test_canonical import mirror, renumber
+
+    rng = random.Random(7)
+    records = shipped_records()
+    assert len({r["name"] for r in records}) == len(records)
+    for r in records:
+        assert r["name"][0] == "P" and int(r["name"][1:].split(".")[0]) == r["corners"]
+        moved = transformed(from_signature(r["signature"]), rng.choice(SIGNED_PERMUTATIONS))
+        copy = renumber(mirror(moved), rng)
+        assert identify(copy, SHIPPED).name == r["name"]
+    ranks = {}
+    for r in records:  # ranks count up from 1 within a corner count, in signature order
+        ranks.setdefault(r["corners"], []).append((r["signature"], int(r["name"].split(".")[1])))
+    for rows in ranks.values():
+        assert [k for _, k in sorted(rows)] == list(range(1, len(rows) + 1))
+    path = tmp_path / "q.json"
+    path.write_text(dumps(from_signature(records[-1]["signature"]).primalize().outward()))
+    assert main(["identify", str(path), "--catalog", str(SHIPPED)]) == 0
+    assert records[-1]["name"] in capsys.readouterr().out
+    assert main(["identify", "example:ring", "--catalog", str(SHIPPED)]) == 1
+    assert "genus 1" in capsys.readouterr().out
+
+
+def test_csv_export(tmp_path):
+    import csv
+
+    out = tmp_path / "c.csv"
+    assert main(["catalog", "export", str(SHIPPED), "--csv", "-o", str(out)]) == 0
+    rows = list(csv.DictReader(out.read_text().splitlines()))
+    assert [r["signature"] for r in rows] == [r["signature"] for r in shipped_records()]
+    assert main(["catalog", "export", str(tmp_path), "--csv"]) == 2

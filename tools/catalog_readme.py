@@ -16,7 +16,8 @@ def table(summary: dict) -> str:
     lines = ["| corners | quadrangulations | labelled | up to rotation | up to rotation and reflection |",
              "|---:|---:|---:|---:|---:|"]
     for n, c in summary["counts"].items():
-        lines.append(f"| {n} | {summary['quadrangulations'][n]} | {c['labelled']} | {c['rotation']} "
+        maps = summary["quadrangulations"][n]
+        lines.append(f"| {n} | {'-' if maps is None else maps} | {c['labelled']} | {c['rotation']} "
                      f"| {c['full']} |")
     return "\n".join(lines)
 

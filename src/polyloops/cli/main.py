@@ -392,7 +392,8 @@ def cmd_catalog(args: argparse.Namespace) -> int:
         bar.close()
     summary = summarize(results, args.min_corners, args.max_corners, partial=args.mod is not None)
     n = write_catalog(out, results, args.symmetry, summary)
-    rows = [[k, summary["quadrangulations"][k], *v.values()] for k, v in summary["counts"].items()]
+    rows = [[k, "-" if summary["quadrangulations"][k] is None else summary["quadrangulations"][k],
+             *v.values()] for k, v in summary["counts"].items()]
     text = "corners  quadrangulations  labelled  rotation  full\n" + "\n".join(
         f"{r[0]:>7}  {r[1]:>16}  {r[2]:>8}  {r[3]:>8}  {r[4]:>4}" for r in rows)
     _emit(args, summary, f"{text}\nwrote {n} records ({args.symmetry}) to {out}")
@@ -418,6 +419,48 @@ def cmd_catalog_query(args: argparse.Namespace) -> int:
         for r in rows:
             print("\t".join(str(x) for x in r))
     return EXIT_OK
+
+
+def cmd_catalog_export(args: argparse.Namespace) -> int:
+    import sqlite3
+    from pathlib import Path
+
+    from polyloops.enumerate.catalog_run import export_csv
+
+    try:
+        text = export_csv(Path(args.dir))
+    except (FileNotFoundError, sqlite3.Error) as err:
+        raise CliError(f"{args.dir}: {err}") from None
+    if args.output:
+        write_text(args.output, text)
+    else:
+        print(text, end="")
+    return EXIT_OK
+
+
+def cmd_identify(args: argparse.Namespace) -> int:
+    from pathlib import Path
+
+    from polyloops.enumerate.catalog_run import default_catalog, identify
+
+    ls = read_loop_structure(args.file, oriented=True)
+    catalog = Path(args.catalog) if args.catalog else default_catalog()
+    try:
+        found = identify(ls, catalog)
+    except (OSError, ValueError, KeyError) as err:
+        raise CliError(f"{catalog}: not a catalog directory ({err})") from None
+    if found.name is not None:
+        text = f"{args.file}: {found.name}"
+    elif found.genus != found.catalog_genus:
+        text = (f"{args.file}: not in the catalog (genus {found.genus}; "
+                f"the catalog has genus {found.catalog_genus})")
+    elif found.beyond:
+        text = (f"{args.file}: not in the catalog (it has {found.corners} corners; "
+                f"the catalog goes to {found.max_corners})")
+    else:
+        text = f"{args.file}: not in the catalog"
+    _emit(args, found.to_json(), text)
+    return EXIT_OK if found.name is not None else EXIT_INVALID
 
 
 def cmd_signature(args: argparse.Namespace) -> int:
@@ -641,6 +684,15 @@ def build_parser() -> argparse.ArgumentParser:
                 file_arg=False)
     p.add_argument("dir", metavar="DIR")
     p.add_argument("where", metavar="WHERE", help='an SQL condition, e.g. "corners = 20 AND chiral"')
+    p = command("catalog-export", cmd_catalog_export, "a catalog's table as CSV "
+                "('polyloops catalog export DIR --csv')", file_arg=False, json_flag=False)
+    p.add_argument("dir", metavar="DIR")
+    p.add_argument("--csv", action="store_true", required=True, help="CSV (the only format so far)")
+    p.add_argument("-o", "--output", metavar="OUT.csv", help="write here instead of to standard output")
+    p = command("identify", cmd_identify, "the catalog name of a polycube or loop structure (any "
+                "numbering, position or mirror image); exit 1 when it is not in the catalog")
+    p.add_argument("--catalog", metavar="DIR", help="a catalog directory (default: catalogs/genus0 "
+                   "of this source tree)")
     p = command("render", cmd_render, "draw the polycube in 3D with its loops (a loop structure is "
                 "primalized first), or its three level graphs", json_flag=False)
     p.add_argument("-o", "--output", metavar="OUT", required=True, help="OUT.png or OUT.svg")
@@ -718,10 +770,10 @@ def _reach_commands(command: Callable[..., argparse.ArgumentParser]) -> None:
 def main(argv: Sequence[str] | None = None) -> int:
     parser = build_parser()
     argv = list(sys.argv[1:] if argv is None else argv)
-    if argv[:2] == ["catalog", "query"]:
-        argv = ["catalog-query", *argv[2:]]
+    if argv[:2] in (["catalog", "query"], ["catalog", "export"]):
+        argv = [f"catalog-{argv[1]}", *argv[2:]]
     args = parser.parse_args(argv)
-    name = "catalog query" if args.command == "catalog-query" else args.command
+    name = args.command.replace("-", " ")
     previous = _terminate_cleanly()
     try:
         return args.func(args)

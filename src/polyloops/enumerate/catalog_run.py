@@ -61,10 +61,14 @@ def run_job(job: Job, plantri: str) -> dict[str, Any]:
 
 
 def plan_jobs(min_n: int, max_n: int, res: int | None, mod: int | None, workers: int) -> list[Job]:
-    """One job per corner count, split further for large counts when several workers run;
-    with ``res/mod`` given, just that slice of each corner count."""
+    """One job per even corner count, split further for large counts when several workers
+    run; with ``res/mod`` given, just that slice of each corner count.  Odd counts have no
+    polycube (:func:`polyloops.enumerate.quadrangulations.odd_corners_have_no_polycube`) and
+    get no job."""
     jobs = []
     for n in range(min_n, max_n + 1):
+        if n % 2:
+            continue
         if mod is not None:
             jobs.append(Job(n, res or 0, mod))
         else:
@@ -119,9 +123,10 @@ def _run_job_star(args: tuple[Job, str]) -> dict[str, Any]:
 
 def summarize(results: list[dict[str, Any]], min_n: int, max_n: int, partial: bool) -> dict[str, Any]:
     counts = {str(n): dict.fromkeys(MODES, 0) for n in range(min_n, max_n + 1)}
-    quads = {str(n): 0 for n in range(min_n, max_n + 1)}
+    # Odd counts are not generated (no polycube has them): their number of maps is unknown.
+    quads: dict[str, int | None] = {str(n): None if n % 2 else 0 for n in range(min_n, max_n + 1)}
     for r in results:
-        quads[str(r["n"])] += r["quadrangulations"]
+        quads[str(r["n"])] = (quads[str(r["n"])] or 0) + r["quadrangulations"]
         for mode in MODES:
             counts[str(r["n"])][mode] += len(r["records"][mode])
     out: dict[str, Any] = {"genus": 0, "counts": counts, "quadrangulations": quads}
@@ -130,13 +135,28 @@ def summarize(results: list[dict[str, Any]], min_n: int, max_n: int, partial: bo
     return out
 
 
-COLUMNS = ["signature", "corners", "faces", "loops_x", "loops_y", "loops_z",
+NAME_PREFIX = {"full": "P", "rotation": "R", "labelled": "L"}
+
+
+def class_names(records: list[dict[str, Any]], symmetry: str) -> list[str]:
+    """Short stable names, like a census's: ``P26.3`` is the third class with 26 corners up to
+    all 48 symmetries (``R`` up to rotation, ``L`` labelled), classes of one corner count ranked
+    by signature (as strings).  A name never changes once its corner count is complete."""
+    out, rank, last = [], 0, None
+    for rec in records:
+        rank = rank + 1 if rec["corners"] == last else 1
+        last = rec["corners"]
+        out.append(f"{NAME_PREFIX[symmetry]}{rec['corners']}.{rank}")
+    return out
+
+
+COLUMNS = ["name", "signature", "corners", "faces", "loops_x", "loops_y", "loops_z",
            *[c.replace("-", "_") for c in CATEGORIES], "automorphisms", "chiral", "removable_loops",
            "irreducible"]
 
 
 def _row(rec: dict[str, Any]) -> list[Any]:
-    return [rec["signature"], rec["corners"], rec["faces"], rec["loops"]["X"], rec["loops"]["Y"],
+    return [rec["name"], rec["signature"], rec["corners"], rec["faces"], rec["loops"]["X"], rec["loops"]["Y"],
             rec["loops"]["Z"], *[rec["corner_categories"][c] for c in CATEGORIES],
             rec["automorphisms"], int(rec["chiral"]), rec["removable_loops"], int(rec["irreducible"])]
 
@@ -144,14 +164,17 @@ def _row(rec: dict[str, Any]) -> list[Any]:
 def write_catalog(out: Path, results: list[dict[str, Any]], symmetry: str, summary: dict[str, Any]) -> int:
     records = sorted((rec for r in results for rec in r["records"][symmetry]),
                      key=lambda rec: (rec["corners"], rec["signature"]))
+    names = class_names(records, symmetry)
+    records = [{"name": name, **rec} for name, rec in zip(names, records, strict=True)]
     lines = [json.dumps({**rec, "symmetry": symmetry}, separators=(",", ":")) for rec in records]
     write_atomic(out / "catalog.jsonl", "\n".join(lines) + ("\n" if lines else ""))
     fd, tmp = tempfile.mkstemp(dir=out, prefix=".catalog.sqlite.", suffix=".tmp")
     os.close(fd)
     try:
         con = sqlite3.connect(tmp)
-        cols = ", ".join(f"{c} {'TEXT' if c == 'signature' else 'INTEGER'}" for c in COLUMNS)
+        cols = ", ".join(f"{c} {'TEXT' if c in ('name', 'signature') else 'INTEGER'}" for c in COLUMNS)
         con.execute(f"CREATE TABLE polycubes ({cols}, PRIMARY KEY (signature))")
+        con.execute("CREATE UNIQUE INDEX by_name ON polycubes (name)")
         con.executemany(f"INSERT INTO polycubes VALUES ({', '.join('?' * len(COLUMNS))})",
                         [_row(rec) for rec in records])
         con.execute("CREATE TABLE meta (key TEXT PRIMARY KEY, value TEXT)")
@@ -178,3 +201,62 @@ def query(out: Path, where: str) -> tuple[list[str], list[tuple[Any, ...]]]:
         return [d[0] for d in cur.description], cur.fetchall()
     finally:
         con.close()
+
+
+def export_csv(out: Path) -> str:
+    """The whole ``polycubes`` table as CSV text (a header line, then one row per class)."""
+    import csv
+    import io
+
+    columns, rows = query(out, "1")
+    buf = io.StringIO()
+    writer = csv.writer(buf, lineterminator="\n")
+    writer.writerow(columns)
+    writer.writerows(rows)
+    return buf.getvalue()
+
+
+def default_catalog() -> Path:
+    """``catalogs/genus0`` of the source tree this package was installed from."""
+    return Path(__file__).resolve().parents[3] / "catalogs" / "genus0"
+
+
+@dataclass(frozen=True)
+class Identification:
+    name: str | None  # None: not in the catalog
+    signature: str
+    corners: int
+    genus: int
+    max_corners: int  # how far the catalog goes
+    catalog_genus: int
+
+    @property
+    def beyond(self) -> bool:
+        """Outside what the catalog lists (another genus, or more corners)."""
+        return self.name is None and (self.genus != self.catalog_genus or self.corners > self.max_corners)
+
+    def to_json(self) -> dict[str, Any]:
+        return {"name": self.name, "signature": self.signature, "corners": self.corners,
+                "genus": self.genus, "catalog_max_corners": self.max_corners,
+                "catalog_genus": self.catalog_genus, "in_catalog": self.name is not None}
+
+
+def identify(obj: Any, catalog: Path | None = None) -> Identification:
+    """The catalog name of a polycube or loop structure (any numbering, position or mirror
+    image): its signature up to the catalog's symmetry, looked up in ``DIR/catalog.jsonl``.
+
+    >>> from polyloops.core.examples import load_example
+    >>> identify(load_example("l-shape")).name
+    'P16.2'
+    """
+    from polyloops.core.canonical import canonical_form
+
+    directory = catalog or default_catalog()
+    lines = (directory / "catalog.jsonl").read_text(encoding="utf-8").splitlines()
+    summary = json.loads((directory / "summary.json").read_text(encoding="utf-8"))
+    records = [json.loads(line) for line in lines]
+    mode = records[0]["symmetry"] if records else "full"
+    sig = canonical_form(obj, mode).signature
+    by_signature = {r["signature"]: r["name"] for r in records}
+    return Identification(by_signature.get(sig), sig, obj.map.num_corners, obj.map.genus,
+                          max(int(n) for n in summary["counts"]), int(summary.get("genus", 0)))

@@ -154,15 +154,38 @@ class Batch:
         return HalfEdgeMap.from_faces(self.faces(i))
 
 
+MAX_DEGREE = 6  # a polycube corner has at most one edge per direction
+
+
+def max_degrees(rows: np.ndarray) -> np.ndarray:
+    """The largest vertex degree of each map of a planar-code batch: every vertex's list of
+    neighbours ends with a 0, so degrees are the gaps between consecutive zeros."""
+    b, width = rows.shape
+    n = int(rows[0, 0])
+    body = rows[:, 1:]
+    zeros = np.flatnonzero(body.ravel() == 0).reshape(b, n) - (np.arange(b) * (width - 1))[:, None]
+    return (np.diff(zeros, axis=1, prepend=-1) - 1).max(axis=1)
+
+
+def odd_corners_have_no_polycube(n: int) -> bool:
+    """Why odd corner counts are skipped.  In a map with no self-crossing loop each face is the
+    crossing of two different loops, and two simple closed curves on the sphere cross an even
+    number of times (Jordan), so the number of faces is even; a quadrangulation of the sphere has
+    ``faces = corners - 2``, so the number of corners is even too.  Returns ``n % 2 == 1``."""
+    return n % 2 == 1
+
+
 def candidate_maps(n: int, plantri: str, res: int = 0, mod: int = 1,
                    on_batch=None) -> Iterator[HalfEdgeMap]:
-    """The quadrangulations with ``n`` vertices that have no self-crossing loop.
+    """The quadrangulations with ``n`` vertices whose corners have degree at most 6 (Condition
+    3 allows one edge per direction) and that have no self-crossing loop.
 
     ``on_batch(k)`` is called with the number of maps in each batch read (for progress)."""
     for rows in plantri_batches(n, plantri, res, mod):
-        batch = Batch(rows)
-        keep = np.flatnonzero(batch.without_self_crossing())
-        for i in keep:
-            yield batch.map(int(i))
+        small = rows[max_degrees(rows) <= MAX_DEGREE]
+        if len(small):
+            batch = Batch(small)
+            for i in np.flatnonzero(batch.without_self_crossing()):
+                yield batch.map(int(i))
         if on_batch is not None:
-            on_batch(len(batch))
+            on_batch(len(rows))

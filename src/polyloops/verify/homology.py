@@ -19,7 +19,6 @@ group and 0 next to a boundary edge.  :func:`gf2_rank` is the slow twin used by 
 
 >>> from polyloops.core.examples import load_example
 >>> from polyloops.core.directions import Axis
-from polyloops.core.disjoint_sets import DisjointSets
 >>> ls = load_example("bridged-ring").dualize()
 >>> zone_genera(ls, Axis.Z)
 (0, 1, 0)
