@@ -272,3 +272,15 @@ def test_every_listed_index_adds_the_listed_loop(capsys, tmp_path, which):
 def test_max_length_keeps_exactly_the_short_loops(q, k):
     ls = q.dualize()
     assert list(additions(ls, max_length=k)) == [mv for mv in additions(ls) if len(mv.cycle) <= k]
+
+
+def test_count_of_one_label_counts_only_that_label(capsys, monkeypatch):
+    from polyloops.enumerate import moves
+
+    seen = []
+    original = moves.additions
+    monkeypatch.setattr(moves, "additions", lambda ls, axis=None, *a, **k: seen.append(axis) or original(
+        ls, axis, *a, **k))
+    assert main(["moves", "example:box-2x1x1", "--count", "--add", "Y", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["additions"] == {"Y": 6}
+    assert seen == [Axis.Y]

@@ -269,8 +269,7 @@ def cmd_moves(args: argparse.Namespace) -> int:
     lines = []
     if args.count:
         if want_add:
-            counts = count_additions(ls, args.limit)
-            data["additions"] = {a.name: counts[a.name] for a in axes}
+            data["additions"] = count_additions(ls, args.limit, axes)
             lines.append("additions " + "  ".join(f"{a}:{n}" for a, n in data["additions"].items()))
         if want_remove:
             data["removals"] = sum(1 for lp in ls.loops if check_removal(ls, lp.id).valid)

@@ -232,9 +232,10 @@ def addition_at(ls: LoopStructure, index: str | int) -> Addition | None:
     return next(islice(additions(ls, Axis.parse(text[0])), int(text[1:]), None), None)
 
 
-def count_additions(ls: LoopStructure, limit: int | None = None) -> dict[str, int]:
-    """The number of valid additions per label, counted without storing them."""
-    return {a.name: sum(1 for _ in additions(ls, a, limit)) for a in Axis}
+def count_additions(ls: LoopStructure, limit: int | None = None,
+                    axes: Sequence[Axis] = tuple(Axis)) -> dict[str, int]:
+    """The number of valid additions per label (of ``axes`` only), counted without storing them."""
+    return {a.name: sum(1 for _ in additions(ls, a, limit)) for a in axes}
 
 
 def is_valid_addition(ls: LoopStructure, move: Addition) -> bool:
