@@ -329,3 +329,14 @@ def test_csv_export(tmp_path):
     rows = list(csv.DictReader(out.read_text().splitlines()))
     assert [r["signature"] for r in rows] == [r["signature"] for r in shipped_records()]
     assert main(["catalog", "export", str(tmp_path), "--csv"]) == 2
+
+
+def test_counts_page_and_bfiles_are_the_summary():
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("counts_page", ROOT / "tools" / "counts_page.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    summary = json.loads((SHIPPED / "summary.json").read_text())
+    for path, text in mod.write_all(summary).items():
+        assert path.read_text() == text, "run: python tools/counts_page.py"

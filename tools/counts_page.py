@@ -1,0 +1,64 @@
+"""Write docs/counts.md and the b-files in docs/bfiles/ from catalogs/genus0/summary.json
+(a test checks they agree).
+
+Run from the repository root: ``python tools/counts_page.py``.
+"""
+
+import json
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+SEQUENCES = {
+    "labelled": "genus-0 polycubes with n corners up to order-equivalence (axes fixed; a polycube "
+                "and its inverse identified)",
+    "rotation": "genus-0 polycubes with n corners up to order-equivalence and the 24 rotations",
+    "full": "genus-0 polycubes with n corners up to order-equivalence and all 48 symmetries of the cube",
+}
+
+
+def bfile(summary: dict, mode: str) -> str:
+    """OEIS b-file: 'n a(n)' per line, n the number of corners."""
+    return "".join(f"{n} {c[mode]}\n" for n, c in summary["counts"].items())
+
+
+def page(summary: dict) -> str:
+    top = max(int(n) for n in summary["counts"])
+    lines = [
+        "# Counts of genus-0 polycubes",
+        "",
+        "Computed by `polyloops catalog` (see [catalog.md](catalog.md)) and regenerated from",
+        "`catalogs/genus0/summary.json` by `python tools/counts_page.py`. A polycube here is a closed",
+        "quad mesh with integer corners (Definition 1 of Snoep, Speckmann and Verbeek, *Polycubes via",
+        "Dual Loops*), possibly self-intersecting, counted up to order-equivalence (Definition 2) with a",
+        "polycube and its inverse identified. Odd numbers of corners have none (two simple loops on the",
+        f"sphere cross an even number of times). Through {top} corners:",
+        "",
+        "| corners | labelled | up to rotation | up to rotation and reflection |",
+        "|---:|---:|---:|---:|",
+    ]
+    for n, c in summary["counts"].items():
+        if int(n) % 2 == 0:
+            lines.append(f"| {n} | {c['labelled']} | {c['rotation']} | {c['full']} |")
+    lines += ["", "As sequences (even numbers of corners from 8), for submission:", ""]
+    for mode, text in SEQUENCES.items():
+        values = [c[mode] for n, c in summary["counts"].items() if int(n) % 2 == 0]
+        lines.append(f"- {text}: {', '.join(map(str, values))} ([b-file](bfiles/{mode}.txt))")
+    lines += ["", "The b-files list `n a(n)` for every number of corners `n` in range, zeros included.",
+              "The up-to-rotation count equals the up-to-all-symmetries count plus the number of",
+              "chiral classes, at every `n` (tested on the catalog).", ""]
+    return "\n".join(lines)
+
+
+def write_all(summary: dict) -> dict[Path, str]:
+    files = {ROOT / "docs" / "counts.md": page(summary)}
+    for mode in SEQUENCES:
+        files[ROOT / "docs" / "bfiles" / f"{mode}.txt"] = bfile(summary, mode)
+    return files
+
+
+if __name__ == "__main__":
+    summary = json.loads((ROOT / "catalogs" / "genus0" / "summary.json").read_text())
+    for path, text in write_all(summary).items():
+        path.parent.mkdir(exist_ok=True)
+        path.write_text(text)
+        print(f"wrote {path}")
