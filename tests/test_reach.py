@@ -244,7 +244,7 @@ def test_reach_from_a_zone_with_a_handle_stays_valid():
 def test_shipped_certificate_checks():
     lines = (CATALOG / "reachability-certificate.jsonl").read_text().splitlines()
     header, problems = check_certificate(lines, CATALOG)
-    assert problems == [] and header["max_corners"] == 26
+    assert problems == [] and header["max_corners"] == 28
 
 
 def test_dask_gives_the_same_rows(tmp_path):
