@@ -94,12 +94,13 @@ def test_counts_equal_the_catalog():
 
 
 @pytest.mark.slow
-def test_counts_equal_the_catalog_through_24_and_not_at_26():
-    result = explore(CUBE, 26, workers=2)
-    for n in range(8, 25):
-        assert result.by_corners.get(n, 0) == catalog_counts()[str(n)]["labelled"], n
-    # The non-incremental polycube's classes need a detour above 26 corners.
-    assert result.by_corners[26] < catalog_counts()["26"]["labelled"]
+def test_counts_equal_the_catalog_except_the_non_incremental_classes():
+    """Within 28 corners every labelled class through 28 is reached except the four of the
+    non-incremental polycube (26 corners), which need a detour through 34."""
+    result = explore(CUBE, 28, workers=2)
+    for n in range(8, 29):
+        missing = 4 if n == 26 else 0
+        assert result.by_corners.get(n, 0) == catalog_counts()[str(n)]["labelled"] - missing, n
 
 
 def rows(directory):
