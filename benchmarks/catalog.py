@@ -1,17 +1,24 @@
-"""The genus-0 catalog against plantri: total time through N corners, for N = 20, 22, 24, 26.
+"""The catalog's two strip filters, and plantri alone, per corner count.
 
-plantri's time is that of writing the quadrangulations the catalog reads (``plantri -qc2 n``
-for every even n through N, output discarded; odd counts carry no polycube and are skipped by
-both).  The catalog's time is a fresh ``polyloops catalog`` run through N with ``--workers 2``
-(this machine has 2 cores), as wall time and as CPU time of all its processes, so that the CPU
-ratio compares like with like (plantri runs in one process).
+For each even corner count n, three runs, each a fresh process:
 
-Usage: python benchmarks/catalog.py [--max N] [--workers K]
+- plantri alone: ``plantri -qc2 n`` split into the same slices as the catalog, output discarded
+  (the floor for any method that reads every quadrangulation);
+- ``polyloops catalog --min-corners n --max-corners n --method numpy`` (the reference filter);
+- the same with ``--method compiled``.
+
+Each catalog run uses ``--workers K`` (default 2, this machine's cores); its CPU time adds up
+all its processes (workers and plantri), so CPU columns compare like with like.  Objects
+visited: the maps plantri writes (both filters read all of them) and the candidates that pass
+the filter to the per-map work.
+
+Usage: python benchmarks/catalog.py [--min N] [--max N] [--workers K] [--skip-numpy-above N]
 """
 
 from __future__ import annotations
 
 import argparse
+import json
 import os
 import subprocess
 import sys
@@ -23,6 +30,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from _common import markdown_table
 
+from polyloops.enumerate.catalog_run import slices
 from polyloops.enumerate.quadrangulations import find_plantri
 
 
@@ -31,38 +39,67 @@ def children_cpu() -> float:
     return t.children_user + t.children_system
 
 
-def plantri_seconds(plantri: str, max_n: int) -> float:
-    start = time.perf_counter()
-    for n in range(8, max_n + 1, 2):
-        subprocess.run([plantri, "-qc2", str(n)], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                       check=True)
-    return time.perf_counter() - start
+def measure(cmd: list[str]) -> tuple[float, float]:
+    """Wall and CPU seconds of a command and everything it waited for."""
+    start, cpu = time.perf_counter(), children_cpu()
+    subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=True)
+    return time.perf_counter() - start, children_cpu() - cpu
 
 
-def catalog_seconds(max_n: int, workers: int) -> tuple[float, float]:
-    """Wall and CPU seconds (the command and its workers and plantri processes)."""
+def plantri_alone(plantri: str, n: int, workers: int) -> tuple[float, float]:
+    """plantri's slices, ``workers`` at a time, output discarded."""
+    parts = slices(n, workers)
+    args = [[plantri, "-qc2", str(n)] + ([f"{r}/{parts}"] if parts > 1 else []) for r in range(parts)]
+    start, cpu = time.perf_counter(), children_cpu()
+    running: list[subprocess.Popen] = []
+    for a in args:
+        if len(running) == workers:
+            running.pop(0).wait()
+        running.append(subprocess.Popen(a, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL))
+    for p in running:
+        p.wait()
+    return time.perf_counter() - start, children_cpu() - cpu
+
+
+def catalog(n: int, workers: int, method: str) -> tuple[float, float, dict]:
     with tempfile.TemporaryDirectory() as tmp:
-        start, cpu = time.perf_counter(), children_cpu()
-        subprocess.run([sys.executable, "-m", "polyloops", "catalog", "--max-corners", str(max_n),
-                        "--workers", str(workers), "-o", str(Path(tmp) / "c")],
-                       stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=True)
-        return time.perf_counter() - start, children_cpu() - cpu
+        out = Path(tmp) / "c"
+        wall, cpu = measure([sys.executable, "-m", "polyloops", "catalog", "--min-corners", str(n),
+                             "--max-corners", str(n), "--workers", str(workers), "--method", method,
+                             "-o", str(out)])
+        parts = [json.loads(p.read_text()) for p in (out / "parts").iterdir()]
+        visited = {"maps": sum(p["quadrangulations"] for p in parts),
+                   "candidates": sum(p["candidates"] for p in parts),
+                   "records": (out / "catalog.jsonl").read_bytes()}
+        return wall, cpu, visited
 
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--min", type=int, default=20)
     ap.add_argument("--max", type=int, default=26)
     ap.add_argument("--workers", type=int, default=2)
+    ap.add_argument("--skip-numpy-above", type=int, default=26, metavar="N",
+                    help="the numpy filter takes about 17 minutes at 28 corners")
     args = ap.parse_args()
     plantri = find_plantri()
     rows = []
-    for n in range(20, args.max + 1, 2):
-        p = plantri_seconds(plantri, n)
-        wall, cpu = catalog_seconds(n, args.workers)
-        rows.append([n, p, wall, cpu, wall / p, cpu / p])
-        print(f"through {n} done", file=sys.stderr)
-    print(markdown_table(["through N corners", "plantri s", "catalog wall s", "catalog CPU s",
-                          "wall ratio", "CPU ratio"], rows))
+    for n in range(args.min + args.min % 2, args.max + 1, 2):
+        p_wall, p_cpu = plantri_alone(plantri, n, args.workers)
+        c_wall, c_cpu, fast = catalog(n, args.workers, "compiled")
+        row = [n, fast["maps"], fast["candidates"], p_wall, p_cpu, c_wall, c_cpu]
+        if n <= args.skip_numpy_above:
+            n_wall, n_cpu, slow = catalog(n, args.workers, "numpy")
+            if slow["records"] != fast["records"] or slow["maps"] != fast["maps"]:
+                raise SystemExit(f"{n} corners: the two methods disagree")
+            row += [n_wall, n_cpu, n_cpu / c_cpu]
+        else:
+            row += ["-", "-", "-"]
+        rows.append([*row, c_cpu / p_cpu])
+        print(f"{n} corners done", file=sys.stderr)
+    print(markdown_table(["corners", "maps visited", "candidates", "plantri wall s", "plantri CPU s",
+                          "compiled wall s", "compiled CPU s", "numpy wall s", "numpy CPU s",
+                          "numpy/compiled CPU", "compiled/plantri CPU"], rows))
 
 
 if __name__ == "__main__":

@@ -384,17 +384,20 @@ def cmd_catalog(args: argparse.Namespace) -> int:
         bar.set_postfix(corners=result["n"], maps=maps[0])
 
     try:
-        results = execute(jobs, out, plantri, args.workers, args.dask, progress)
+        results = execute(jobs, out, plantri, args.workers, args.dask, progress, method=args.method)
     except (PlantriError, RuntimeError, OSError) as err:
         raise CliError(f"{out}: {err}") from None
     finally:
         bar.close()
     summary = summarize(results, args.min_corners, args.max_corners, partial=args.mod is not None)
     n = write_catalog(out, results, args.symmetry, summary)
-    rows = [[k, "-" if summary["quadrangulations"][k] is None else summary["quadrangulations"][k],
-             *v.values()] for k, v in summary["counts"].items()]
-    text = "corners  quadrangulations  labelled  rotation  full\n" + "\n".join(
-        f"{r[0]:>7}  {r[1]:>16}  {r[2]:>8}  {r[3]:>8}  {r[4]:>4}" for r in rows)
+    def shown(table: str, k: str) -> Any:
+        return "-" if summary[table][k] is None else summary[table][k]
+
+    rows = [[k, shown("quadrangulations", k), shown("simple_strips", k), *v.values()]
+            for k, v in summary["counts"].items()]
+    text = "corners  quadrangulations  simple strips  labelled  rotation  full\n" + "\n".join(
+        f"{r[0]:>7}  {r[1]:>16}  {r[2]:>13}  {r[3]:>8}  {r[4]:>8}  {r[5]:>4}" for r in rows)
     _emit(args, summary, f"{text}\nwrote {n} records ({args.symmetry}) to {out}")
     return EXIT_OK
 
@@ -678,6 +681,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--dask", metavar="ADDRESS", help="run the jobs on a Dask cluster (an address, or local)")
     p.add_argument("--plantri", metavar="PATH", help="the plantri to use (default: the one from "
                    "passagemath-plantri, $POLYLOOPS_PLANTRI, or PATH)")
+    p.add_argument("--method", choices=("auto", "compiled", "numpy"), default="auto",
+                   help="the strip filter: compiled (built at install when a C compiler is there), "
+                   "numpy (the reference twin), or auto (compiled when built); same output either way")
     p.add_argument("-o", "--output", metavar="DIR", required=True, help="catalog directory (resumable)")
     p = command("catalog-query", cmd_catalog_query, "rows of a catalog matching an SQL WHERE clause",
                 file_arg=False)

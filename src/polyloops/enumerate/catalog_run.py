@@ -23,11 +23,12 @@ from polyloops.core.formats import replace_atomic, write_atomic
 from polyloops.enumerate.catalog import MODES, map_classes
 from polyloops.enumerate.corners import CATEGORIES
 from polyloops.enumerate.parallel import run_jobs
-from polyloops.enumerate.quadrangulations import candidate_maps
+from polyloops.enumerate.quadrangulations import FilteredBatch, candidate_maps, resolve_method
 
 # Version 2: chirality and loops per axis fixed; version 3: removable loops, irreducible,
-# versioned signatures.  Parts of older versions are recomputed.
-SCHEMA_VERSION = 3
+# versioned signatures; version 4: the number of maps whose strips are all simple.  Parts of
+# older versions are recomputed.
+SCHEMA_VERSION = 4
 
 
 @dataclass(frozen=True)
@@ -41,23 +42,35 @@ class Job:
         return f"n{self.n:03d}-{self.res}of{self.mod}"
 
 
-def run_job(job: Job, plantri: str) -> dict[str, Any]:
-    """Generate and classify one slice of the quadrangulations with ``job.n`` vertices."""
+def run_job(job: Job, plantri: str, method: str = "auto") -> dict[str, Any]:
+    """Generate and classify one slice of the quadrangulations with ``job.n`` vertices.
+    ``method`` is the strip filter's (:func:`polyloops.enumerate.quadrangulations.filtered_batches`);
+    the result does not depend on it."""
     start = time.perf_counter()
-    maps = [0]
+    maps, simple = [0], [0]
     candidates = 0
     records: dict[str, list[dict[str, Any]]] = {mode: [] for mode in MODES}
 
-    def seen(k: int) -> None:
-        maps[0] += k
+    def seen(batch: FilteredBatch) -> None:
+        maps[0] += batch.maps
+        simple[0] += batch.simple_strips
 
-    for m in candidate_maps(job.n, plantri, job.res, job.mod, on_batch=seen):
+    for m in candidate_maps(job.n, plantri, job.res, job.mod, on_batch=seen, method=method):
         candidates += 1
         for mode, recs in map_classes(m).items():
             records[mode].extend(r.to_json() for r in recs)
     return {"version": SCHEMA_VERSION, "n": job.n, "res": job.res, "mod": job.mod,
-            "quadrangulations": maps[0], "candidates": candidates, "records": records,
-            "seconds": time.perf_counter() - start}
+            "quadrangulations": maps[0], "simple_strips": simple[0], "candidates": candidates,
+            "records": records, "seconds": time.perf_counter() - start}
+
+
+def slices(n: int, workers: int) -> int:
+    """How many plantri slices a corner count is split into.  Each slice of ``plantri -qc2 n
+    res/mod`` first regenerates the part of plantri's search tree above its split level, about
+    1.5 s whatever ``n`` (measured at 28 and 30 corners), so slices are kept long: the number of
+    maps grows about 3.6 times per corner, the slices about 2 times per two corners (about 15 s
+    of plantri each at 28 corners, 100 s at 30)."""
+    return 1 if workers <= 1 or n < 24 else workers * 2 ** ((n - 22) // 2)
 
 
 def plan_jobs(min_n: int, max_n: int, res: int | None, mod: int | None, workers: int) -> list[Job]:
@@ -72,7 +85,7 @@ def plan_jobs(min_n: int, max_n: int, res: int | None, mod: int | None, workers:
         if mod is not None:
             jobs.append(Job(n, res or 0, mod))
         else:
-            parts = 1 if workers <= 1 or n < 20 else 4 * workers * 3 ** max(0, (n - 20) // 2)
+            parts = slices(n, workers)
             jobs.extend(Job(n, r, parts) for r in range(parts))
     # Largest first, so that workers finish together.
     return sorted(jobs, key=lambda j: (-j.n, j.res))
@@ -94,8 +107,10 @@ def load_part(out: Path, job: Job) -> dict[str, Any] | None:
 
 
 def execute(jobs: list[Job], out: Path, plantri: str, workers: int = 1, dask: str | None = None,
-            progress: Callable[[dict[str, Any]], None] | None = None) -> list[dict[str, Any]]:
+            progress: Callable[[dict[str, Any]], None] | None = None,
+            method: str = "auto") -> list[dict[str, Any]]:
     """Run the jobs not yet in ``out/parts`` and return every job's result."""
+    method = resolve_method(method)  # once here: a missing compiled filter fails before any work
     (out / "parts").mkdir(parents=True, exist_ok=True)
     done = {job: load_part(out, job) for job in jobs}
     todo = [job for job, part in done.items() if part is None]
@@ -110,12 +125,13 @@ def execute(jobs: list[Job], out: Path, plantri: str, workers: int = 1, dask: st
         if progress:
             progress(result)
 
-    for result in run_jobs(_run_job_star, [(job, plantri) for job in todo], workers, dask, ordered=False):
+    tasks = [(job, plantri, method) for job in todo]
+    for result in run_jobs(_run_job_star, tasks, workers, dask, ordered=False):
         finish(result)
     return [done[job] for job in jobs]  # type: ignore[misc]
 
 
-def _run_job_star(args: tuple[Job, str]) -> dict[str, Any]:
+def _run_job_star(args: tuple[Job, str, str]) -> dict[str, Any]:
     return run_job(*args)
 
 
@@ -125,11 +141,16 @@ def summarize(results: list[dict[str, Any]], min_n: int, max_n: int, partial: bo
     counts = {str(n): dict.fromkeys(MODES, 0) for n in range(min_n, max_n + 1)}
     # Odd counts are not generated (no polycube has them): their number of maps is unknown.
     quads: dict[str, int | None] = {str(n): None if n % 2 else 0 for n in range(min_n, max_n + 1)}
+    simple = dict(quads)
     for r in results:
         quads[str(r["n"])] = (quads[str(r["n"])] or 0) + r["quadrangulations"]
+        simple[str(r["n"])] = (simple[str(r["n"])] or 0) + r["simple_strips"]
         for mode in MODES:
             counts[str(r["n"])][mode] += len(r["records"][mode])
-    out: dict[str, Any] = {"genus": 0, "counts": counts, "quadrangulations": quads}
+    # quadrangulations: plantri's simple ones with minimum degree 3; simple_strips: those of
+    # them whose strips are all simple closed curves (any degrees).
+    out: dict[str, Any] = {"genus": 0, "counts": counts, "quadrangulations": quads,
+                           "simple_strips": simple}
     if partial:
         out["partial"] = "only the plantri slice res/mod given on the command line"
     return out

@@ -14,12 +14,16 @@ T = TypeVar("T")
 
 
 def die_with_parent() -> None:
-    """In a worker on Linux: ask the kernel to send SIGTERM when the parent dies."""
+    """In a worker: stop quietly on SIGTERM (the pool's way to end it; a handler inherited from
+    the parent would print a traceback), and on Linux ask the kernel to send SIGTERM when the
+    parent dies."""
     import contextlib
     import ctypes
     import signal
     import sys
 
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's to handle
     if sys.platform.startswith("linux"):
         with contextlib.suppress(OSError):
             ctypes.CDLL("libc.so.6", use_errno=True).prctl(1, signal.SIGTERM)  # PR_SET_PDEATHSIG

@@ -18,7 +18,8 @@ import shutil
 import subprocess
 import sys
 import sysconfig
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -175,17 +176,76 @@ def odd_corners_have_no_polycube(n: int) -> bool:
     return n % 2 == 1
 
 
-def candidate_maps(n: int, plantri: str, res: int = 0, mod: int = 1,
-                   on_batch=None) -> Iterator[HalfEdgeMap]:
-    """The quadrangulations with ``n`` vertices whose corners have degree at most 6 (Condition
-    3 allows one edge per direction) and that have no self-crossing loop.
+METHODS = ("auto", "compiled", "numpy")
 
-    ``on_batch(k)`` is called with the number of maps in each batch read (for progress)."""
-    for rows in plantri_batches(n, plantri, res, mod):
-        small = rows[max_degrees(rows) <= MAX_DEGREE]
-        if len(small):
-            batch = Batch(small)
-            for i in np.flatnonzero(batch.without_self_crossing()):
-                yield batch.map(int(i))
+
+def compiled_filter_available() -> bool:
+    """Whether the install built the compiled strip filter (it needs a C compiler)."""
+    try:
+        from polyloops.enumerate import _strips  # noqa: F401
+    except ImportError:
+        return False
+    return True
+
+
+def resolve_method(method: str) -> str:
+    """``auto`` is ``compiled`` when that was built, else ``numpy``; asking for ``compiled``
+    without it is an error that says how to get it."""
+    if method not in METHODS:
+        raise ValueError(f"unknown filter method {method!r}: choose one of {', '.join(METHODS)}")
+    if method == "auto":
+        return "compiled" if compiled_filter_available() else "numpy"
+    if method == "compiled" and not compiled_filter_available():
+        raise PlantriError("the compiled strip filter was not built (a C compiler and the Python "
+                           "headers are needed at install time): reinstall with them, or use "
+                           "--method numpy")
+    return method
+
+
+@dataclass(frozen=True)
+class FilteredBatch:
+    """One batch of plantri's maps after the filter: the surviving planar-code rows, how many
+    maps were read and how many of those have only simple strips (whatever their degrees)."""
+
+    rows: np.ndarray
+    maps: int
+    simple_strips: int
+
+
+def _filter_numpy(rows: np.ndarray) -> FilteredBatch:
+    simple = Batch(rows).without_self_crossing()
+    keep = simple & (max_degrees(rows) <= MAX_DEGREE)
+    return FilteredBatch(rows[keep], len(rows), int(simple.sum()))
+
+
+def filtered_batches(n: int, plantri: str, res: int = 0, mod: int = 1,
+                     method: str = "auto") -> Iterator[FilteredBatch]:
+    """plantri's quadrangulations with ``n`` vertices, filtered batch by batch: a map survives
+    when its corners have degree at most 6 (Condition 3 allows one edge per direction) and none
+    of its loops crosses itself.  ``method`` picks the compiled filter or its numpy twin; the
+    two keep the same maps in the same order (tested)."""
+    method = resolve_method(method)
+    if method == "numpy":
+        for rows in plantri_batches(n, plantri, res, mod):
+            yield _filter_numpy(rows)
+        return
+    from polyloops.enumerate._strips import filter_maps
+
+    size = record_size(n)
+    for rows in plantri_batches(n, plantri, res, mod, batch=1 << 16):
+        kept, simple = filter_maps(rows, n, MAX_DEGREE)
+        yield FilteredBatch(np.frombuffer(kept, dtype=np.uint8).reshape(-1, size), len(rows), simple)
+
+
+def candidate_maps(n: int, plantri: str, res: int = 0, mod: int = 1,
+                   on_batch: Callable[[FilteredBatch], None] | None = None,
+                   method: str = "auto") -> Iterator[HalfEdgeMap]:
+    """The maps of :func:`filtered_batches`, decoded.  ``on_batch`` sees every batch (for
+    progress and counts)."""
+    for fb in filtered_batches(n, plantri, res, mod, method):
+        if len(fb.rows):
+            batch = Batch(fb.rows)
+            for i in range(len(batch)):
+                yield batch.map(i)
         if on_batch is not None:
-            on_batch(len(rows))
+            on_batch(fb)
