@@ -168,6 +168,7 @@ def test_shipped_catalog_regenerates(tmp_path):
     for n in range(8, 21):
         assert mine["counts"][str(n)] == shipped["counts"][str(n)]
         assert mine["quadrangulations"][str(n)] == shipped["quadrangulations"][str(n)]
+        assert mine["simple_strips"][str(n)] == shipped["simple_strips"][str(n)]
     ours = (out / "catalog.jsonl").read_text().splitlines()
     theirs = [line for line in (SHIPPED / "catalog.jsonl").read_text().splitlines()
               if json.loads(line)["corners"] <= 20]
@@ -287,6 +288,7 @@ def test_odd_counts_are_not_generated(tmp_path):
     assert main(["catalog", "--min-corners", "9", "--max-corners", "11", "-o", str(tmp_path / "c")]) == 0
     summary = json.loads((tmp_path / "c" / "summary.json").read_text())
     assert summary["quadrangulations"] == {"9": None, "10": 1, "11": None}
+    assert summary["simple_strips"] == {"9": 0, "10": 0, "11": 0}
     assert summary["counts"]["9"] == {"labelled": 0, "rotation": 0, "full": 0}
 
 
@@ -340,3 +342,44 @@ def test_counts_page_and_bfiles_are_the_summary():
     summary = json.loads((SHIPPED / "summary.json").read_text())
     for path, text in mod.write_all(summary).items():
         assert path.read_text() == text, "run: python tools/counts_page.py"
+
+
+def test_long_corner_counts_are_sliced():
+    from polyloops.enumerate.catalog_run import Job, plan_jobs
+
+    jobs = plan_jobs(24, 26, None, None, 2)
+    assert set(jobs) == {Job(24, r, 4) for r in range(4)} | {Job(26, r, 8) for r in range(8)}
+    assert all(j.mod == 1 for j in plan_jobs(8, 30, None, None, 1))
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("n", [24, 26, 28])
+def test_compiled_and_numpy_filters_agree_on_large_counts(n):
+    """The two strip filters keep the same maps, in order (28 corners: about 20 minutes)."""
+    from polyloops.enumerate.quadrangulations import compiled_filter_available, filtered_batches
+
+    if not compiled_filter_available():
+        pytest.skip("the compiled strip filter was not built")
+    import numpy as np
+
+    def run(method):
+        batches = list(filtered_batches(n, plantri(), method=method))
+        return (np.concatenate([b.rows for b in batches]), sum(b.maps for b in batches),
+                sum(b.simple_strips for b in batches))
+
+    fast, slow = run("compiled"), run("numpy")
+    assert np.array_equal(fast[0], slow[0]) and fast[1:] == slow[1:]
+
+
+@pytest.mark.slow
+def test_shipped_catalog_regenerates_through_28(tmp_path):
+    """About 4 minutes with two workers."""
+    out = tmp_path / "c"
+    assert main(["catalog", "--max-corners", "28", "--workers", "2", "-o", str(out)]) == 0
+    shipped = json.loads((SHIPPED / "summary.json").read_text())
+    mine = json.loads((out / "summary.json").read_text())
+    for table in ("counts", "quadrangulations", "simple_strips"):
+        assert mine[table] == {k: v for k, v in shipped[table].items() if int(k) <= 28}
+    theirs = [line for line in (SHIPPED / "catalog.jsonl").read_text().splitlines()
+              if json.loads(line)["corners"] <= 28]
+    assert (out / "catalog.jsonl").read_text().splitlines() == theirs

@@ -278,9 +278,111 @@ def test_count_of_one_label_counts_only_that_label(capsys, monkeypatch):
     from polyloops.enumerate import moves
 
     seen = []
-    original = moves.additions
-    monkeypatch.setattr(moves, "additions", lambda ls, axis=None, *a, **k: seen.append(axis) or original(
-        ls, axis, *a, **k))
+    original = moves._AdditionGraph.__init__
+
+    def spy(self, ls, axis):
+        seen.append(axis)
+        original(self, ls, axis)
+
+    monkeypatch.setattr(moves._AdditionGraph, "__init__", spy)
     assert main(["moves", "example:box-2x1x1", "--count", "--add", "Y", "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["additions"] == {"Y": 6}
-    assert seen == [Axis.Y]
+    assert seen == [Axis.Y]  # no addition graph was built for X or Z
+
+
+# -- moves on structures of real size: shortest, sampled, counted within a time ----------------
+
+@settings(max_examples=20)
+@given(polycubes(kinds=("blob", "smooth", "frame1"), max_size=3), st.integers(1, 12))
+def test_shortest_additions_are_the_shortest(q, k):
+    from polyloops.enumerate.moves import shortest_additions
+
+    ls = q.dualize()
+    for a in Axis:
+        found = shortest_additions(ls, a, k)
+        if not found:
+            assert next(additions(ls, a), None) is None
+            continue
+        # Every loop as short as the longest one found is in the listing bounded by its length.
+        bounded = list(additions(ls, a, max_length=len(found[-1].cycle)))
+        by_length = sorted(bounded, key=lambda mv: len(mv.cycle))  # stable: ties in listing order
+        assert found == by_length[:k]
+
+
+@settings(max_examples=20)
+@given(polycubes(kinds=("blob", "smooth", "frame1"), max_size=3), st.integers(0, 2**16), st.integers(1, 6))
+def test_sampled_additions_are_listed_valid_and_reproducible(q, seed, n):
+    from polyloops.enumerate.moves import sample_additions
+
+    ls = q.dualize()
+    for a in Axis:
+        picked = sample_additions(ls, a, n, seed)
+        assert len(picked) <= n and len({mv.cycle for mv in picked}) == len(picked)
+        small = ls.map.num_corners <= 40
+        listed = set(additions(ls, a)) if small else set()
+        for mv in picked:  # a valid cycle from its lowest corner: how the listing names it
+            assert is_valid_addition(ls, mv) and mv.cycle[0] == min(mv.cycle)
+            assert mv in listed or not small
+        assert picked == sample_additions(ls, a, n, seed)
+        if next(additions(ls, a), None) is not None:
+            assert picked, "some valid loop exists, so some walk should close within 200 n tries"
+
+
+def test_counting_within_a_time_limit_on_a_large_slab():
+    import time
+
+    from polyloops.core.builders import box
+    from polyloops.enumerate.moves import count_additions_within
+
+    ls = box(8, 8, 1).dualize()  # 162 corners; Z-loops: every cycle of a 9x9 grid
+    start = time.monotonic()
+    counted = count_additions_within(ls, seconds=1.0)
+    assert time.monotonic() - start < 3.0
+    assert not counted.complete["Z"]
+    small = load_example("l-shape").dualize()
+    full = count_additions_within(small, seconds=60)
+    assert all(full.complete.values()) and full.counts == count_additions(small)
+
+
+def test_moves_cli_on_a_large_slab(tmp_path, capsys):
+    import time
+
+    from polyloops.core.builders import box
+    from polyloops.core.formats import dumps
+
+    path = tmp_path / "slab.json"
+    path.write_text(dumps(box(8, 8, 1)))
+    start = time.monotonic()
+    assert main(["moves", str(path), "--count", "--add", "Z", "--time-limit", "1", "--json"]) == 0
+    assert time.monotonic() - start < 5.0
+    out = json.loads(capsys.readouterr().out)
+    assert out["complete"] == {"Z": False} and out["additions"]["Z"] >= 0
+    assert main(["moves", str(path), "--count", "--add", "Z", "--time-limit", "1"]) == 0
+    assert "lower bound" in capsys.readouterr().out
+    start = time.monotonic()
+    assert main(["moves", str(path), "--shortest", "5", "--json"]) == 0
+    assert time.monotonic() - start < 5.0
+    rows = json.loads(capsys.readouterr().out)["additions"]
+    assert len(rows) == 15 and all(len(r["corners"]) == 4 for r in rows)
+    # A picked loop's index is a move that 'polyloops add' takes as it is.
+    assert main(["add", str(path), rows[0]["index"], "-o", str(tmp_path / "more.json")]) == 0
+    capsys.readouterr()
+    assert main(["moves", str(path), "--sample", "3", "--seed", "7", "--add", "X", "--json"]) == 0
+    first = capsys.readouterr().out
+    assert main(["moves", str(path), "--sample", "3", "--seed", "7", "--add", "X", "--json"]) == 0
+    assert capsys.readouterr().out == first and len(json.loads(first)["additions"]) == 3
+
+
+@pytest.mark.parametrize("argv", [
+    ["--count", "--shortest", "2"], ["--sample", "2", "--shortest", "2"], ["--seed", "3"],
+    ["--shortest", "2", "--remove"], ["--time-limit", "0"], ["--time-limit", "nan"],
+    ["--time-limit", "x"], ["--shortest", "0"],
+])
+def test_moves_options_that_do_not_go_together(argv, capsys):
+    try:
+        code = main(["moves", "example:cube", *argv])
+    except SystemExit as stop:  # argparse's own checks
+        code = stop.code
+    assert code == 2
+    err = capsys.readouterr().err
+    assert len(err.strip().splitlines()) == 1 and "Traceback" not in err

@@ -83,6 +83,32 @@ def test_sheet_from_files_and_catalog(tmp_path, capsys):
     assert main(["sheet", str(catalog), "--limit", "4", "-o", str(out)]) == 0
 
 
+def test_sheet_captions_are_catalog_names(tmp_path, monkeypatch):
+    """Captions name classes as the census does (never a cut-off signature)."""
+    import json
+    from pathlib import Path
+
+    import polyloops.render.sheet as sheet
+    from polyloops.core.canonical import canonical_form
+
+    seen = []
+    monkeypatch.setattr(sheet, "render_sheet", lambda items, out, columns: seen.extend(items))
+    catalog = Path(__file__).resolve().parent.parent / "catalogs" / "genus0"
+    records = [json.loads(line) for line in (catalog / "catalog.jsonl").read_text().splitlines()[:5]]
+    l_shape = load_example("l-shape")
+    sig = canonical_form(l_shape, "labelled").signature
+    assert main(["sheet", str(catalog), "--limit", "5", "-o", str(tmp_path / "s.png")]) == 0
+    assert [c for c, _ in seen] == [r["name"] for r in records]
+    seen.clear()
+    sources = ["example:l-shape", f"sig:{sig}", "example:ring"]
+    assert main(["sheet", *sources, "-o", str(tmp_path / "s.png")]) == 0
+    full = canonical_form(l_shape, "full").signature
+    name = next(r["name"] for r in map(json.loads, (catalog / "catalog.jsonl").read_text().splitlines())
+                if r["signature"] == full)
+    ring = load_example("ring").map.num_corners  # genus 1: not in the catalog
+    assert [c for c, _ in seen] == [name, name, f"example:ring ({ring} corners)"]
+
+
 def test_bad_picture_arguments(capsys, tmp_path):
     assert main(["render", "example:cube", "-o", str(tmp_path / "x.jpg")]) == 2
     assert main(["sheet", str(tmp_path), "-o", str(tmp_path / "x.png")]) == 2

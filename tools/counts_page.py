@@ -14,10 +14,14 @@ SEQUENCES = {
     "rotation": "genus-0 polycubes with n corners up to order-equivalence and the 24 rotations",
     "full": "genus-0 polycubes with n corners up to order-equivalence and all 48 symmetries of the cube",
 }
+SIMPLE_STRIPS = ("simple quadrangulations of the sphere with n vertices and minimum degree 3 (mirror "
+                 "images identified) all of whose strips are simple closed curves")
 
 
 def bfile(summary: dict, mode: str) -> str:
     """OEIS b-file: 'n a(n)' per line, n the number of corners."""
+    if mode == "simple-strips":
+        return "".join(f"{n} {c}\n" for n, c in summary["simple_strips"].items())
     return "".join(f"{n} {c[mode]}\n" for n, c in summary["counts"].items())
 
 
@@ -33,17 +37,26 @@ def page(summary: dict) -> str:
         "polycube and its inverse identified. Odd numbers of corners have none (two simple loops on the",
         f"sphere cross an even number of times). Through {top} corners:",
         "",
-        "| corners | labelled | up to rotation | up to rotation and reflection |",
-        "|---:|---:|---:|---:|",
+        "| corners | labelled | up to rotation | up to rotation and reflection "
+        "| quadrangulations | with simple strips |",
+        "|---:|---:|---:|---:|---:|---:|",
     ]
     for n, c in summary["counts"].items():
         if int(n) % 2 == 0:
-            lines.append(f"| {n} | {c['labelled']} | {c['rotation']} | {c['full']} |")
+            lines.append(f"| {n} | {c['labelled']} | {c['rotation']} | {c['full']} "
+                         f"| {summary['quadrangulations'][n]} | {summary['simple_strips'][n]} |")
     lines += ["", "As sequences (even numbers of corners from 8), for submission:", ""]
     for mode, text in SEQUENCES.items():
         values = [c[mode] for n, c in summary["counts"].items() if int(n) % 2 == 0]
         lines.append(f"- {text}: {', '.join(map(str, values))} ([b-file](bfiles/{mode}.txt))")
+    strips = [c for n, c in summary["simple_strips"].items() if int(n) % 2 == 0]
+    lines.append(f"- {SIMPLE_STRIPS}: {', '.join(map(str, strips))} ([b-file](bfiles/simple-strips.txt))")
     lines += ["", "The b-files list `n a(n)` for every number of corners `n` in range, zeros included.",
+              "*Quadrangulations* are those plantri generates (`plantri -qc2 n`: simple, minimum",
+              "degree 3, mirror images identified), the maps the catalog reads; *with simple strips*",
+              "counts those of them whose strips (dual loops) are all simple closed curves, whatever",
+              "their degrees. Odd `n` has none with simple strips (the same theorem), so that b-file",
+              "lists 0 there.",
               "The up-to-rotation count equals the up-to-all-symmetries count plus the number of",
               "chiral classes, at every `n` (tested on the catalog).", ""]
     return "\n".join(lines)
@@ -51,7 +64,7 @@ def page(summary: dict) -> str:
 
 def write_all(summary: dict) -> dict[Path, str]:
     files = {ROOT / "docs" / "counts.md": page(summary)}
-    for mode in SEQUENCES:
+    for mode in (*SEQUENCES, "simple-strips"):
         files[ROOT / "docs" / "bfiles" / f"{mode}.txt"] = bfile(summary, mode)
     return files
 

@@ -259,45 +259,136 @@ def cmd_orient(args: argparse.Namespace) -> int:
 
 def cmd_moves(args: argparse.Namespace) -> int:
     from polyloops.core.directions import Axis
-    from polyloops.enumerate.moves import addition_index, additions, check_removal, count_additions
+    from polyloops.enumerate.moves import check_removal
 
+    if sum(map(bool, (args.count, args.shortest is not None, args.sample is not None))) > 1:
+        raise CliError("--count, --shortest and --sample are different questions: ask one")
+    if (args.shortest is not None or args.sample is not None) and args.remove:
+        raise CliError("--shortest and --sample choose additions; --remove lists loops")
+    if args.seed is not None and args.sample is None:
+        raise CliError("--seed goes with --sample")
     ls = read_valid_structure(args.file)
-    want_add = args.add is not None or not args.remove
-    want_remove = args.remove or args.add is None
+    picking = args.shortest is not None or args.sample is not None
+    want_add = args.add is not None or not args.remove or picking
+    want_remove = not picking and (args.remove or args.add is None)
     axes = list(Axis) if args.add in (None, "all") else [Axis.parse(args.add)]
     data: dict[str, Any] = {}
-    lines = []
+    lines: list[str] = []
     if args.count:
         if want_add:
-            data["additions"] = count_additions(ls, args.limit, axes)
-            lines.append("additions " + "  ".join(f"{a}:{n}" for a, n in data["additions"].items()))
+            counted = _count_additions(ls, axes, args)
+            data["additions"], data["complete"] = counted.counts, counted.complete
+            shown = [f"{a}:{'' if counted.complete[a] else '>='}{n}" for a, n in counted.counts.items()]
+            lines.append("additions " + "  ".join(shown))
+            if not all(counted.complete.values()):
+                why = "the time limit" if args.time_limit is not None and args.limit is None else "a limit"
+                lines.append(f"(>=: stopped by {why}; a lower bound)")
         if want_remove:
             data["removals"] = sum(1 for lp in ls.loops if check_removal(ls, lp.id).valid)
             lines.append(f"removals  {data['removals']}")
         _emit(args, data, "\n".join(lines))
         return EXIT_OK
     if want_add:
-        listed = []
-        per_axis = dict.fromkeys(Axis, 0)
-        for mv in additions(ls, axes[0] if len(axes) == 1 else None, args.limit):
-            index = addition_index(mv.axis, per_axis[mv.axis])
-            per_axis[mv.axis] += 1
-            row = {"index": index, **mv.to_json(ls)}
-            listed.append(row)
-            lines.append(f"add {index:>5}  {mv.axis}-loop past corners {list(mv.cycle)} "
-                         f"(+ side on the right), crossing segments {row['segments']}")
-        data["additions"] = listed
+        data["additions"], data["complete"] = _list_additions(ls, axes, args)
     if want_remove:
         rows = []
         for lp in ls.loops:
             check = check_removal(ls, lp.id)
             rows.append({"loop": lp.id, "axis": str(ls.axes[lp.id]), "segments": list(lp.edges),
                          "removable": check.valid, "reason": check.reason})
-            lines.append(f"remove {lp.id:>3}  {ls.axes[lp.id]}-loop of {len(lp)} segments: "
-                         + ("removable" if check.valid else f"not removable: {check.reason}"))
+            _stream(args, f"remove {lp.id:>3}  {ls.axes[lp.id]}-loop of {len(lp)} segments: "
+                    + ("removable" if check.valid else f"not removable: {check.reason}"))
         data["removals"] = rows
-    _emit(args, data, "\n".join(lines))
+    if args.json:
+        _emit(args, data, "")
     return EXIT_OK
+
+
+def _stream(args: argparse.Namespace, line: str) -> None:
+    """Text output goes out as it is found (flushed), so a long listing shows progress."""
+    if not args.json:
+        print(line, flush=True)
+
+
+def _count_additions(ls: Any, axes: list[Any], args: argparse.Namespace) -> Any:
+    from tqdm import tqdm
+
+    from polyloops.enumerate.moves import count_additions_within
+
+    bar = tqdm(unit=" loops", desc="counting", disable=None, file=sys.stderr, leave=False)
+    shown = dict.fromkeys((a.name for a in axes), 0)
+
+    def progress(label: str, n: int) -> None:
+        shown[label] = n
+        bar.n = sum(shown.values())
+        bar.set_postfix(label=label, refresh=False)
+        bar.refresh()
+
+    try:
+        return count_additions_within(ls, axes, args.limit, args.time_limit, progress)
+    finally:
+        bar.close()
+
+
+def _list_additions(ls: Any, axes: list[Any], args: argparse.Namespace) -> tuple[list[Any], dict[str, bool]]:
+    """List (and stream) additions: all of them, the shortest, or a random sample; the second
+    value says per label whether the listing is complete."""
+    import time
+
+    from polyloops.enumerate.moves import (
+        SearchStopped,
+        _valid_additions,
+        addition_index,
+        sample_additions,
+        shortest_additions,
+    )
+
+    listed: list[dict[str, Any]] = []
+    complete = {a.name: True for a in axes}
+
+    def show(index: str, mv: Any) -> None:
+        row = {"index": index, **mv.to_json(ls)}
+        listed.append(row)
+        _stream(args, f"add {index:>5}  {mv.axis}-loop past corners {list(mv.cycle)} "
+                f"(+ side on the right), crossing segments {row['segments']}")
+
+    deadline = None if args.time_limit is None else time.monotonic() + args.time_limit
+
+    def expired() -> bool:
+        return deadline is not None and time.monotonic() > deadline
+
+    if args.shortest is not None or args.sample is not None:
+        # Picked loops are named by their cycle: their index in the full listing is unknown.
+        for a in axes:
+            try:
+                picked = (shortest_additions(ls, a, args.shortest, expired) if args.shortest is not None
+                          else sample_additions(ls, a, args.sample, args.seed or 0))
+            except SearchStopped:
+                complete[a.name] = False
+                continue
+            for mv in picked:
+                show(f"{a.name}:" + ",".join(map(str, mv.cycle)), mv)
+        if not all(complete.values()):
+            _stream(args, "(stopped by the time limit: the listing is incomplete)")
+        return listed, complete
+
+    total = 0
+    for a in axes:
+        i = 0
+        try:
+            for mv in _valid_additions(ls, a, None, expired):
+                if (args.limit is not None and total >= args.limit) or expired():
+                    complete[a.name] = False
+                    break
+                show(addition_index(a, i), mv)
+                i += 1
+                total += 1
+        except SearchStopped:
+            complete[a.name] = False
+    if not all(complete.values()):
+        _stream(args, "(stopped by " + ("a limit" if args.limit is not None and total >= args.limit
+                                       else "the time limit") + ": the listing is incomplete)")
+    return listed, complete
 
 
 MOVE_HELP = "write an index from 'polyloops moves' (such as Y3), or AXIS:c0,c1,..."
@@ -522,6 +613,24 @@ def _is_dir(path) -> bool:
         return False
 
 
+def _caption(source: str, obj: Any) -> str:
+    """A structure's catalog name when the shipped catalog has it, else where it came from;
+    never a cut-off signature."""
+    from pathlib import Path
+
+    from polyloops.enumerate.catalog_run import identify
+
+    try:
+        found = identify(obj).name
+    except (OSError, ValueError, KeyError):  # no shipped catalog next to this install
+        found = None
+    if found:
+        return found
+    label = "signature" if source.startswith("sig:") else source if source.startswith("example:") \
+        else Path(source).name
+    return f"{label} ({obj.map.num_corners} corners)"
+
+
 def cmd_sheet(args: argparse.Namespace) -> int:
     from pathlib import Path
 
@@ -541,14 +650,13 @@ def cmd_sheet(args: argparse.Namespace) -> int:
                 try:
                     rec = json.loads(line)
                     obj = from_signature(rec["signature"])
-                    caption = f"#{i} {int(rec['corners'])}c"
+                    caption = f"{rec['name']}" if "name" in rec else f"#{i} {int(rec['corners'])}c"
                 except (ValueError, KeyError, TypeError) as err:  # SignatureError is a ValueError
                     raise CliError(f"{listing}: line {i + 1}: not a catalog record: {err}") from None
                 items.append((caption, obj))
         else:
             obj = read_structure(source)
-            name = source[:24] if source.startswith(("example:", "sig:")) else Path(source).name
-            items.append((f"{name} {obj.map.num_corners}c", obj))
+            items.append((_caption(source, obj), obj))
     if args.limit is not None:
         items = items[: args.limit]
     if not items:
@@ -592,6 +700,17 @@ def count_arg(low: int, high: int | None = None) -> Callable[[str], int]:
 
     parse.__name__ = "count"
     return parse
+
+
+def seconds_arg(text: str) -> float:
+    """An argparse type: a positive number of seconds."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number of seconds") from None
+    if not value > 0 or value == float("inf"):
+        raise argparse.ArgumentTypeError(f"{text} is out of range: must be a positive number of seconds")
+    return value
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -653,6 +772,16 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--limit", type=count_arg(0), metavar="N",
                    help="stop after N additions (per label with --count)")
     p.add_argument("--count", action="store_true", help="only count the moves")
+    p.add_argument("--time-limit", type=seconds_arg, metavar="SECONDS",
+                   help="stop counting or listing after this long; the answer then says it is a "
+                   "lower bound (incomplete)")
+    p.add_argument("--shortest", type=count_arg(1), metavar="K",
+                   help="the K valid additions past the fewest corners, per label, found without "
+                   "listing longer loops")
+    p.add_argument("--sample", type=count_arg(1), metavar="N",
+                   help="N different random valid additions per label (random walks: quick on large "
+                   "structures, reproducible with --seed, not uniform)")
+    p.add_argument("--seed", type=count_arg(0), metavar="S", help="the seed of --sample (default 0)")
     p = command("add", cmd_add, "add one loop: MOVE is an index from 'polyloops moves' (Y3: the "
                 "fourth valid Y-loop; a plain N counts through X, Y and Z), or AXIS:c0,c1,... (the "
                 "corners the loop walks past, + side on the right)", json_flag=False)

@@ -10,7 +10,8 @@
  * In a face, from the dart u->v the next dart is v->w with w the clockwise successor of u
  * at v.  A strip enters a quad through one edge and leaves through the opposite one, so the
  * strip continues from dart d to twin(next(next(d))).  A face is a self-crossing when the
- * strips through two consecutive edges are the same.
+ * strips through two consecutive edges are the same; the walk stops at the first one, which
+ * in almost every map comes early.
  */
 #define PY_SSIZE_T_CLEAN
 #include <Python.h>
@@ -19,10 +20,19 @@
 #define MAXN 255
 #define MAXD (4 * MAXN)
 
+/* next(e): at v = target(e), the dart to the clockwise successor of u = origin(e). */
+#define NEXT(e) next_dart(e, twin, origin, start, deg)
+
+static inline int next_dart(int e, const int *twin, const int *origin, const int *start, const int *deg)
+{
+    int t = twin[e], v = origin[t], i = t - start[v] + 1;
+    return start[v] + (i == deg[v] ? 0 : i);
+}
+
 static int check_map(const unsigned char *rec, int n, int max_degree, int *index, int *simple)
 {
     int start[MAXN + 1], deg[MAXN + 1];
-    int origin[MAXD], target[MAXD], twin[MAXD], nxt[MAXD], strip[MAXD];
+    int origin[MAXD], target[MAXD], twin[MAXD], strip[MAXD];
     int darts = 0, maxdeg = 0;
     const unsigned char *p = rec + 1, *end = rec + 5 * n - 7;
 
@@ -50,29 +60,24 @@ static int check_map(const unsigned char *rec, int n, int max_degree, int *index
         if (t < 0 || t >= darts || origin[t] != target[d] || target[t] != origin[d]) return -1;
         twin[d] = t;
     }
-    for (int d = 0; d < darts; d++) {
-        /* next(d): at v = target(d), the clockwise successor of u = origin(d). */
-        int t = twin[d], v = origin[t];
-        int i = t - start[v] + 1;
-        nxt[d] = start[v] + (i == deg[v] ? 0 : i);
-    }
+    /* Walk each strip once, labelling both darts of its edges with its first dart.  Entering
+     * a face through e, the other strip of the face crosses the edges of next(e) and
+     * next(next(next(e))): if those carry the current label, this strip crosses itself here
+     * (a strip passes each of its edges once, so it cannot meet a face twice the same way). */
     for (int d = 0; d < darts; d++) strip[d] = -1;
+    *simple = 0;
     for (int d = 0; d < darts; d++) {
         if (strip[d] >= 0) continue;
         int e = d;
         while (strip[e] < 0) {
             strip[e] = d;
             strip[twin[e]] = d;
-            e = twin[nxt[nxt[e]]];
+            int f = NEXT(e);
+            if (strip[f] == d) return 0;
+            e = twin[NEXT(f)];
         }
     }
     *simple = 1;
-    for (int d = 0; d < darts; d++) {
-        if (strip[d] == strip[nxt[d]]) {
-            *simple = 0;
-            break;
-        }
-    }
     return *simple && maxdeg <= max_degree;
 }
 

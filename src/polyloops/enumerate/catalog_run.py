@@ -141,7 +141,9 @@ def summarize(results: list[dict[str, Any]], min_n: int, max_n: int, partial: bo
     counts = {str(n): dict.fromkeys(MODES, 0) for n in range(min_n, max_n + 1)}
     # Odd counts are not generated (no polycube has them): their number of maps is unknown.
     quads: dict[str, int | None] = {str(n): None if n % 2 else 0 for n in range(min_n, max_n + 1)}
-    simple = dict(quads)
+    # Every map with an odd number of corners has a self-crossing strip (the theorem of
+    # odd_corners_have_no_polycube), so its count of all-simple maps is known: zero.
+    simple: dict[str, int | None] = {str(n): 0 for n in range(min_n, max_n + 1)}
     for r in results:
         quads[str(r["n"])] = (quads[str(r["n"])] or 0) + r["quadrangulations"]
         simple[str(r["n"])] = (simple[str(r["n"])] or 0) + r["simple_strips"]

@@ -34,9 +34,12 @@ corners and faces are then renumbered consecutively in their old order.
 
 from __future__ import annotations
 
+import random
+import time
 from collections import defaultdict
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
+from functools import cached_property
 from itertools import islice
 
 from networkx.utils import UnionFind
@@ -101,29 +104,73 @@ class _AdditionGraph:
             back = m.twin[d]
             self.succ[d] = [f for f in m.outgoing(v) if _split_ok(ls, axis, back, f)]
 
+    @cached_property
+    def pred(self) -> dict[int, list[int]]:
+        """The reverse of ``succ``: the darts that may arrive before leaving along a dart."""
+        pred: dict[int, list[int]] = defaultdict(list)
+        for d, nexts in self.succ.items():
+            for e in nexts:
+                pred[e].append(d)
+        return pred
+
     def ok(self, arrive: int, leave: int) -> bool:
         return leave in self.succ.get(arrive, ())
 
-    def cycles(self, max_length: int | None = None) -> Iterator[tuple[int, ...]]:
+    def cycles(self, max_length: int | None = None, stop: Callable[[], bool] | None = None
+               ) -> Iterator[tuple[int, ...]]:
         """Every simple cycle of corners (each once, walked in its direction), as corners,
         starting at its lowest corner; with ``max_length``, only those of at most that many
-        corners (the search does not go deeper)."""
+        corners.  A bounded search also skips every step from which the walk cannot get back
+        to its start within the bound (a breadth-first search per start gives the distance
+        back, ignoring simplicity: a lower bound), so it costs little more than the cycles it
+        finds.  ``stop()`` is asked now and then; when it says so, :class:`SearchStopped` is
+        raised."""
         m = self.ls.map
         limit = m.num_corners if max_length is None else max_length
         if limit < 3:
             return
+        ticks = [0]
         for start in range(m.num_corners):
-            for first in m.outgoing(start):
-                if self.ls.axis_of_dart(first) == self.axis or m.target(first) <= start:
+            firsts = [d for d in m.outgoing(start)
+                      if self.ls.axis_of_dart(d) != self.axis and m.target(d) > start]
+            if not firsts:
+                continue
+            back = self._distances_back(start, limit) if max_length is not None else None
+            for first in firsts:
+                if back is not None and 1 + back.get(first, limit + 1) > limit:
                     continue
-                yield from self._extend(start, first, limit)
+                yield from self._extend(start, first, limit, back, stop, ticks)
 
-    def _extend(self, start: int, first: int, limit: int) -> Iterator[tuple[int, ...]]:
+    def _distances_back(self, start: int, limit: int) -> dict[int, int]:
+        """For darts between corners above ``start``: the fewest darts, this one excluded, that
+        lead back to ``start`` (at most ``limit``)."""
+        m = self.ls.map
+        pred = self.pred
+        closing = (m.twin[d] for d in m.outgoing(start))
+        dist = {d: 1 for d in closing if d in self.succ and m.origin(d) > start}
+        frontier = list(dist)
+        while frontier and min(dist[d] for d in frontier) < limit:
+            nxt_frontier = []
+            for e in frontier:
+                for d in pred.get(e, ()):
+                    if d not in dist and m.origin(d) >= start and m.target(d) > start:
+                        dist[d] = dist[e] + 1
+                        nxt_frontier.append(d)
+            frontier = nxt_frontier
+        return {d: k - 1 for d, k in dist.items()}  # darts after d, the closing one included
+
+    def _extend(self, start: int, first: int, limit: int, back: dict[int, int] | None,
+                stop: Callable[[], bool] | None, ticks: list[int]) -> Iterator[tuple[int, ...]]:
         m = self.ls.map
         path = [first]
         on_path = {start, m.target(first)}
         stack = [iter(self.succ[first])]
+        far = limit + 1
         while stack:
+            if stop is not None:
+                ticks[0] += 1
+                if ticks[0] % 4096 == 0 and stop():
+                    raise SearchStopped
             nxt = next(stack[-1], None)
             if nxt is None:
                 stack.pop()
@@ -136,9 +183,15 @@ class _AdditionGraph:
                 continue
             if w < start or w in on_path or len(path) + 2 > limit:
                 continue
+            if back is not None and len(path) + 1 + back.get(nxt, far) > limit:
+                continue
             path.append(nxt)
             on_path.add(w)
             stack.append(iter(self.succ[nxt]))
+
+
+class SearchStopped(Exception):
+    """A cycle search was told to stop (a time limit); what it found so far stands."""
 
 
 def separates_zone(ls: LoopStructure, move: Addition) -> bool:
@@ -192,17 +245,22 @@ def additions(ls: LoopStructure, axis: Axis | None = None, limit: int | None = N
     A simple cycle of ``G_V^Delta`` is valid when its loop also separates its zone
     (:func:`separates_zone`); that is the only level-graph cycle an addition can close.
     """
-    if not ls.oriented:
-        raise ValueError("loop moves need an oriented loop structure")
     n = 0
     for a in (Axis if axis is None else [axis]):
-        for cycle in _AdditionGraph(ls, a).cycles(max_length):
-            move = Addition(a, cycle)
-            if not separates_zone(ls, move):
-                continue
+        for move in _valid_additions(ls, a, max_length):
             if limit is not None and n >= limit:
                 return
             n += 1
+            yield move
+
+
+def _valid_additions(ls: LoopStructure, axis: Axis, max_length: int | None = None,
+                     stop: Callable[[], bool] | None = None) -> Iterator[Addition]:
+    if not ls.oriented:
+        raise ValueError("loop moves need an oriented loop structure")
+    for cycle in _AdditionGraph(ls, axis).cycles(max_length, stop):
+        move = Addition(axis, cycle)
+        if separates_zone(ls, move):
             yield move
 
 
@@ -235,7 +293,126 @@ def addition_at(ls: LoopStructure, index: str | int) -> Addition | None:
 def count_additions(ls: LoopStructure, limit: int | None = None,
                     axes: Sequence[Axis] = tuple(Axis)) -> dict[str, int]:
     """The number of valid additions per label (of ``axes`` only), counted without storing them."""
-    return {a.name: sum(1 for _ in additions(ls, a, limit)) for a in axes}
+    return count_additions_within(ls, axes, limit).counts
+
+
+@dataclass(frozen=True)
+class AdditionCount:
+    """Valid additions per label, and per label whether the count is complete: ``False`` where
+    ``limit`` or the time limit stopped it, so that the number is only a lower bound."""
+
+    counts: dict[str, int]
+    complete: dict[str, bool]
+
+
+def count_additions_within(ls: LoopStructure, axes: Sequence[Axis] = tuple(Axis),
+                           limit: int | None = None, seconds: float | None = None,
+                           progress: Callable[[str, int], None] | None = None) -> AdditionCount:
+    """Count valid additions label by label, stopping a label at ``limit`` and everything when
+    ``seconds`` have passed (checked inside the cycle search too, so a search that finds
+    nothing for a long time still stops).  ``progress(label, count)`` is called now and then.
+
+    >>> from polyloops.core.examples import load_example
+    >>> count_additions_within(load_example("cube").dualize(), limit=1)
+    AdditionCount(counts={'X': 1, 'Y': 1, 'Z': 1}, complete={'X': False, 'Y': False, 'Z': False})
+    """
+    deadline = None if seconds is None else time.monotonic() + seconds
+
+    def expired() -> bool:
+        return deadline is not None and time.monotonic() > deadline
+
+    counts = dict.fromkeys((a.name for a in axes), 0)
+    complete = dict.fromkeys(counts, False)
+    for a in axes:
+        if expired():
+            break
+        found = 0
+        try:
+            for _ in _valid_additions(ls, a, None, expired):
+                if limit is not None and found >= limit:
+                    break
+                found += 1
+                if progress is not None and found % 256 == 0:
+                    progress(a.name, found)
+                    if expired():
+                        raise SearchStopped
+            else:
+                complete[a.name] = True
+        except SearchStopped:
+            pass
+        counts[a.name] = found
+        if progress is not None:
+            progress(a.name, found)
+    return AdditionCount(counts, complete)
+
+
+def shortest_additions(ls: LoopStructure, axis: Axis, k: int,
+                       stop: Callable[[], bool] | None = None) -> list[Addition]:
+    """The ``k`` valid ``axis``-additions past the fewest corners (ties in :func:`additions`
+    order), found by bounded searches of growing length, without listing longer loops.  When
+    an axis has fewer than ``k`` valid loops the last searches are as long as a full listing;
+    ``stop()`` is asked now and then, and :class:`SearchStopped` raised when it says so.
+
+    >>> from polyloops.core.examples import load_example
+    >>> box = load_example("box-2x1x1").dualize()
+    >>> [len(mv.cycle) for mv in additions(box, Axis.Y)]
+    [4, 6, 4, 6, 4, 4]
+    >>> [len(mv.cycle) for mv in shortest_additions(box, Axis.Y, 5)]
+    [4, 4, 4, 4, 6]
+    """
+    found: list[Addition] = []
+    if k <= 0:
+        return found
+    for length in range(3, ls.map.num_corners + 1):
+        found.extend(mv for mv in _valid_additions(ls, axis, length, stop) if len(mv.cycle) == length)
+        if len(found) >= k:
+            break
+    return found[:k]
+
+
+def sample_additions(ls: LoopStructure, axis: Axis, n: int, seed: int = 0,
+                     attempts: int | None = None) -> list[Addition]:
+    """Up to ``n`` different valid ``axis``-additions found by random self-avoiding walks in the
+    addition graph (closing the loop as soon as it can): reproducible for a seed, quick on
+    large structures, but not uniformly distributed (short loops are favoured).  Stops after
+    ``attempts`` walks (default ``200 * n``); each result is an addition that
+    :func:`additions` also lists, named the same way (its cycle starts at its lowest corner).
+
+    >>> from polyloops.core.examples import load_example
+    >>> box = load_example("box-2x1x1").dualize()
+    >>> picked = sample_additions(box, Axis.Z, 3, seed=1)
+    >>> len(picked), all(is_valid_addition(box, mv) for mv in picked)
+    (3, True)
+    """
+    if not ls.oriented:
+        raise ValueError("loop moves need an oriented loop structure")
+    rng = random.Random(seed)
+    g = _AdditionGraph(ls, axis)
+    m = ls.map
+    darts = sorted(d for d, nexts in g.succ.items() if nexts)
+    found: dict[tuple[int, ...], Addition] = {}
+    for _ in range(200 * n if attempts is None else attempts):
+        if len(found) >= n or not darts:
+            break
+        first = rng.choice(darts)
+        start = m.origin(first)
+        path, on_path = [first], {start, m.target(first)}
+        while True:
+            nexts = g.succ[path[-1]]
+            if len(path) >= 2 and any(m.target(e) == start and g.ok(e, first) for e in nexts):
+                corners = [start, *(m.target(d) for d in path)]
+                low = corners.index(min(corners))
+                move = Addition(axis, tuple(corners[low:] + corners[:low]))
+                if move.cycle not in found and separates_zone(ls, move):
+                    found[move.cycle] = move
+                break
+            options = [e for e in nexts if m.target(e) not in on_path]
+            if not options:
+                break
+            e = rng.choice(options)
+            path.append(e)
+            on_path.add(m.target(e))
+    return list(found.values())
 
 
 def is_valid_addition(ls: LoopStructure, move: Addition) -> bool:
