@@ -13,12 +13,12 @@ REACH_BEGIN, REACH_END = "<!-- reachability: begin -->", "<!-- reachability: end
 
 
 def table(summary: dict) -> str:
-    lines = ["| corners | quadrangulations | labelled | up to rotation | up to rotation and reflection |",
-             "|---:|---:|---:|---:|---:|"]
+    lines = ["| corners | quadrangulations | with simple strips | labelled | up to rotation "
+             "| up to rotation and reflection |", "|---:|---:|---:|---:|---:|---:|"]
     for n, c in summary["counts"].items():
         maps = summary["quadrangulations"][n]
-        lines.append(f"| {n} | {'-' if maps is None else maps} | {c['labelled']} | {c['rotation']} "
-                     f"| {c['full']} |")
+        lines.append(f"| {n} | {'-' if maps is None else maps} | {summary['simple_strips'][n]} "
+                     f"| {c['labelled']} | {c['rotation']} | {c['full']} |")
     return "\n".join(lines)
 
 

@@ -8,8 +8,10 @@ from __future__ import annotations
 
 import os
 import stat
+import sys
 
 from polyloops.core.examples import EXAMPLES, example_text
+from polyloops.core.exchange import apg_text, parse_apg, parse_obj
 from polyloops.core.formats import (
     Document,
     FormatError,
@@ -34,8 +36,10 @@ class CliError(Exception):
         self.status = status
 
 
-def read_document(arg: str) -> Document:
-    """Parse a FILE argument: a path, ``example:NAME`` or ``sig:SIGNATURE``."""
+def read_document(arg: str, given: str | None = None) -> Document:
+    """Parse a FILE argument: a path (polyloops JSON, an Abstract Polycube Graph ``.graph`` or
+    ``.apg``, or an OBJ quad mesh, by extension or by ``given``), ``example:NAME`` or
+    ``sig:SIGNATURE``."""
     if arg.startswith("sig:"):
         from polyloops.core.canonical import SignatureError, from_signature
 
@@ -48,12 +52,32 @@ def read_document(arg: str) -> Document:
         if name not in EXAMPLES:
             raise CliError(f"{arg}: unknown example; 'polyloops examples' lists them")
         text = example_text(name)
+        fmt = "json"
     else:
+        fmt = format_of(arg, given)
         text = read_text_file(arg)
     try:
-        return parse_document(text)
+        doc = READERS[fmt](text)
     except FormatError as err:
         raise CliError(f"{arg}: {err}") from None
+    for note in doc.notes:
+        print(f"{arg}: note: {note}", file=sys.stderr)
+    return doc
+
+
+# File formats by name and by extension; anything else is read as polyloops JSON.
+READERS = {"json": parse_document, "apg": parse_apg, "obj": parse_obj}
+FORMATS = tuple(READERS)
+SUFFIXES = {".json": "json", ".graph": "apg", ".apg": "apg", ".obj": "obj"}
+
+
+def format_of(path: str, given: str | None = None) -> str:
+    """The format named by ``given`` (``--from``/``--to``), else by the file's extension."""
+    if given is not None:
+        if given not in READERS:
+            raise CliError(f"{path}: unknown format {given!r} (choose from {', '.join(FORMATS)})")
+        return given
+    return SUFFIXES.get(os.path.splitext(path)[1].lower(), "json")
 
 
 def read_text_file(arg: str, limit: int = MAX_FILE_BYTES) -> str:
@@ -86,10 +110,10 @@ def build(arg: str, doc: Document) -> Structure:
         raise CliError(f"{arg}: {err}") from None
 
 
-def read_structure(arg: str, fix_orientation: bool = False) -> Structure:
+def read_structure(arg: str, fix_orientation: bool = False, given: str | None = None) -> Structure:
     """Read and build a FILE argument.  An inside-out polycube (faces clockwise seen from
     outside) is refused with exit status 1, or turned outward with ``fix_orientation``."""
-    obj = build(arg, read_document(arg))
+    obj = build(arg, read_document(arg, given))
     if isinstance(obj, Polycube) and obj.signed_volume() < 0:
         if fix_orientation:
             return obj.inverse()
@@ -136,14 +160,22 @@ def read_valid_structure(arg: str) -> LoopStructure:
     return ls
 
 
-def write_output(path: str | None, obj: Structure) -> str | None:
-    """Write ``obj`` to ``path`` (OBJ if it ends in ``.obj``, else JSON), or return the JSON text."""
+def write_output(path: str | None, obj: Structure, given: str | None = None) -> str | None:
+    """Write ``obj`` to ``path`` in the format its extension (or ``given``) names, or return
+    the JSON text."""
     if path is None:
         return dumps(obj)
-    if path.endswith(".obj"):
+    fmt = format_of(path, given)
+    if fmt == "obj":
         if not isinstance(obj, Polycube):
-            raise CliError(f"{path}: only a polycube can be written as OBJ")
+            raise CliError(f"{path}: only a polycube can be written as OBJ (make one with "
+                           "'polyloops primalize')")
         text = to_obj(obj)
+    elif fmt == "apg":
+        try:
+            text = apg_text(obj)
+        except ValueError as err:
+            raise CliError(f"{path}: {err}") from None
     else:
         text = dumps(obj)
     write_text(path, text)

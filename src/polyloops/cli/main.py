@@ -39,8 +39,8 @@ from polyloops.info import describe, format_summary
 from polyloops.verify import Report, verify, verify_document
 
 EXIT_INTERNAL = 3
-FILE_HELP = ("a JSON file, example:NAME for a bundled example ('polyloops examples' lists them), "
-             "or sig:SIGNATURE")
+FILE_HELP = ("a polyloops JSON file, a DualCube .graph/.apg file or an OBJ quad mesh, "
+             "example:NAME for a bundled example ('polyloops examples' lists them), or sig:SIGNATURE")
 
 
 def _emit(args: argparse.Namespace, data: Any, text: str) -> None:
@@ -119,8 +119,8 @@ def cmd_dualize(args: argparse.Namespace) -> int:
 
 
 def cmd_convert(args: argparse.Namespace) -> int:
-    obj = read_structure(args.file, fix_orientation=args.fix_orientation)
-    write_output(args.output, obj)
+    obj = read_structure(args.file, fix_orientation=args.fix_orientation, given=args.source_format)
+    write_output(args.output, obj, args.target_format)
     return EXIT_OK
 
 
@@ -739,9 +739,14 @@ def build_parser() -> argparse.ArgumentParser:
     p = command("dualize", cmd_dualize, "the oriented loop structure of a polycube (Theorem 1)",
                 json_flag=False)
     p.add_argument("-o", "--output", metavar="OUT", help="write JSON here instead of to standard output")
-    p = command("convert", cmd_convert, "write a polycube or loop structure in another format "
-                "(JSON, or OBJ for a polycube: chosen by OUT's extension)", json_flag=False)
-    p.add_argument("output", metavar="OUT", help="the file to write (.obj for Wavefront OBJ, else JSON)")
+    p = command("convert", cmd_convert, "write a polycube or loop structure in another format: "
+                "polyloops JSON, DualCube's Abstract Polycube Graph (.graph, .apg) or an OBJ quad mesh "
+                "(.obj, polycubes only), chosen by extension or by --from/--to", json_flag=False)
+    p.add_argument("output", metavar="OUT", help="the file to write (.graph/.apg, .obj, else JSON)")
+    p.add_argument("--from", dest="source_format", choices=("json", "apg", "obj"),
+                   help="the format of FILE (default: by its extension)")
+    p.add_argument("--to", dest="target_format", choices=("json", "apg", "obj"),
+                   help="the format of OUT (default: by its extension)")
     p.add_argument("--fix-orientation", action="store_true",
                    help="turn an inside-out polycube (faces clockwise seen from outside) outward")
     p = command("corners", cmd_corners, "the 126 polycube corner configurations, by category, "

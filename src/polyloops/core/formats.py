@@ -54,6 +54,7 @@ class Document:
     faces: list[list[int]]
     positions: list[tuple[int, int, int]] | None = None
     labels: dict[tuple[int, int], Direction | Axis] | None = None
+    notes: tuple[str, ...] = ()  # what a reader wants its user to know (not errors)
 
     def build(self) -> Structure:
         """The model; raises ``MapError``, ``LabelError`` or ``FaceListError``."""
