@@ -166,3 +166,53 @@ def test_bad_obj_files_name_the_line(text, words, tmp_path, capsys):
     assert main(["verify", str(path)]) == 2
     err = capsys.readouterr().err
     assert len(err.strip().splitlines()) == 1 and ("line" in err or "no faces" in err)
+
+
+# -- voxels ------------------------------------------------------------------------------------
+
+def test_from_voxels_text_and_npy(tmp_path, capsys):
+    import numpy as np
+
+    from polyloops.core.formats import loads
+    from polyloops.core.voxels import polycube_from_voxels
+
+    cells = [(0, 0, 0), (1, 0, 0), (2, 0, 0), (0, 1, 0), (2, 1, 0), (0, 2, 0), (1, 2, 0), (2, 2, 0)]
+    lines = "".join(f"{x} {y} {z}\n" for x, y, z in cells)
+    (tmp_path / "ring.txt").write_text("# a ring of eight cubes\n" + lines)
+    grid = np.zeros((3, 3, 1), dtype=bool)
+    for c in cells:
+        grid[c] = True
+    np.save(tmp_path / "ring.npy", grid)
+    want = polycube_from_voxels(cells)
+    for name in ("ring.txt", "ring.npy"):
+        assert main(["from-voxels", str(tmp_path / name), "-o", str(tmp_path / f"{name}.json")]) == 0
+        got = loads((tmp_path / f"{name}.json").read_text())
+        assert got == want and got.genus == 1
+    capsys.readouterr()
+    assert main(["from-voxels", str(tmp_path / "ring.txt")]) == 0
+    assert loads(capsys.readouterr().out) == want
+
+
+@pytest.mark.parametrize(("content", "code", "words"), [
+    ("0 0 0\n0 0\n", 2, "line 2"),
+    ("0 0 x\n", 2, "line 1"),
+    ("# nothing\n", 2, "no cubes"),
+    ("0 0 0\n1 1 0\n", 1, "components"),  # touching only along an edge: two surfaces
+])
+def test_from_voxels_bad_input(content, code, words, tmp_path, capsys):
+    path = tmp_path / "cubes.txt"
+    path.write_text(content)
+    assert main(["from-voxels", str(path)]) == code
+    err = capsys.readouterr().err
+    assert len(err.strip().splitlines()) == 1 and words in err and str(path) in err
+
+
+def test_from_voxels_refuses_other_npy(tmp_path, capsys):
+    import numpy as np
+
+    np.save(tmp_path / "flat.npy", np.ones((2, 2), dtype=bool))
+    (tmp_path / "junk.npy").write_bytes(b"not numpy")
+    for name in ("flat.npy", "junk.npy"):
+        assert main(["from-voxels", str(tmp_path / name)]) == 2
+        err = capsys.readouterr().err
+        assert len(err.strip().splitlines()) == 1 and name in err

@@ -83,6 +83,15 @@ def format_of(path: str, given: str | None = None) -> str:
 def read_text_file(arg: str, limit: int = MAX_FILE_BYTES) -> str:
     """The text of a regular file of at most ``limit`` bytes.  A FIFO, a device such as
     ``/dev/zero`` or a directory is refused rather than read (it could block or never end)."""
+    data = read_bytes_file(arg, limit)
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as err:
+        raise CliError(f"{arg}: cannot read: not UTF-8 text ({err.reason} at byte {err.start})") from None
+
+
+def read_bytes_file(arg: str, limit: int = MAX_FILE_BYTES) -> bytes:
+    """The bytes of a regular file of at most ``limit`` bytes (see :func:`read_text_file`)."""
     try:
         # O_NONBLOCK: opening a FIFO with no writer must not wait; regular files ignore it.
         fd = os.open(arg, os.O_RDONLY | os.O_NONBLOCK)
@@ -94,10 +103,7 @@ def read_text_file(arg: str, limit: int = MAX_FILE_BYTES) -> str:
         raise CliError(f"{arg}: cannot read: {err.strerror or err}") from None
     if len(data) > limit:
         raise CliError(f"{arg}: larger than {limit // 2**20} MiB; polyloops reads files up to that size")
-    try:
-        return data.decode("utf-8")
-    except UnicodeDecodeError as err:
-        raise CliError(f"{arg}: cannot read: not UTF-8 text ({err.reason} at byte {err.start})") from None
+    return data
 
 
 def build(arg: str, doc: Document) -> Structure:

@@ -22,6 +22,7 @@ from polyloops.cli.load import (
     EXIT_USAGE,
     CliError,
     first_violation,
+    read_bytes_file,
     read_document,
     read_loop_structure,
     read_structure,
@@ -121,6 +122,39 @@ def cmd_dualize(args: argparse.Namespace) -> int:
 def cmd_convert(args: argparse.Namespace) -> int:
     obj = read_structure(args.file, fix_orientation=args.fix_orientation, given=args.source_format)
     write_output(args.output, obj, args.target_format)
+    return EXIT_OK
+
+
+def cmd_from_voxels(args: argparse.Namespace) -> int:
+    import io
+
+    from polyloops.core.voxels import VoxelError, parse_voxel_text, polycube_from_voxels, voxels_from_grid
+
+    try:
+        if args.file.lower().endswith(".npy"):
+            import numpy as np
+
+            try:
+                grid = np.load(io.BytesIO(read_bytes_file(args.file)), allow_pickle=False)
+            except (ValueError, OSError, EOFError) as err:
+                raise ValueError(f"not a NumPy .npy array: {_clip_words(str(err))}") from None
+            cells = voxels_from_grid(grid)
+        else:
+            cells = parse_voxel_text(read_text_file(args.file))
+    except VoxelError as err:  # a ValueError too, but the input was read: exit 1
+        raise CliError(f"{args.file}: {err}", EXIT_INVALID) from None
+    except ValueError as err:
+        raise CliError(f"{args.file}: {err}") from None
+    try:
+        q = polycube_from_voxels(cells)
+    except VoxelError as err:
+        raise CliError(f"{args.file}: {err}", EXIT_INVALID) from None
+    text = write_output(args.output, q)
+    if text is not None:
+        print(text, end="")
+    else:
+        print(f"{len(cells)} cubes: a polycube with {q.map.num_corners} corners and {q.map.num_faces} faces, "
+              f"genus {q.genus}, written to {args.output}")
     return EXIT_OK
 
 
@@ -749,6 +783,13 @@ def build_parser() -> argparse.ArgumentParser:
                    help="the format of OUT (default: by its extension)")
     p.add_argument("--fix-orientation", action="store_true",
                    help="turn an inside-out polycube (faces clockwise seen from outside) outward")
+    p = command("from-voxels", cmd_from_voxels, "the polycube bounding a set of unit cubes: FILE is a "
+                "text file of 'x y z' lines or a 3D NumPy .npy grid of booleans; where cubes only "
+                "touch along an edge or at a corner the surface is split there", file_arg=False,
+                json_flag=False)
+    p.add_argument("file", metavar="FILE", help="cubes: 'x y z' per line (# comments), or a .npy grid")
+    p.add_argument("-o", "--output", metavar="OUT", help="write the polycube here (.json, .graph, .obj); "
+                   "default: JSON on standard output")
     p = command("corners", cmd_corners, "the 126 polycube corner configurations, by category, "
                 "or their classes under rotations or all signed permutations", file_arg=False)
     p.add_argument("--symmetry", choices=("none", "rotation", "full"), default="none",

@@ -100,3 +100,47 @@ def polycube_from_voxels(cells: Iterable[Cell]) -> Polycube:
         if len(set(dirs)) != len(dirs):
             raise VoxelError(f"the split surface meets itself at position {positions[c]}")
     return q
+
+
+def parse_voxel_text(text: str) -> list[Cell]:
+    """Cubes from text: one ``x y z`` (integers) per line; blank lines and ``#`` comments are
+    skipped.  Raises :class:`ValueError` naming the line of a problem.
+
+    >>> parse_voxel_text("# an L\\n0 0 0\\n1 0 0\\n0 1 0\\n")
+    [(0, 0, 0), (1, 0, 0), (0, 1, 0)]
+    """
+    cells: list[Cell] = []
+    for number, line in enumerate(text.splitlines(), 1):
+        words = line.split("#", 1)[0].split()
+        if not words:
+            continue
+        try:
+            if len(words) != 3:
+                raise ValueError
+            x, y, z = (int(w) for w in words)
+        except ValueError:
+            raise ValueError(f"line {number}: a cube is three integers 'x y z', "
+                             f"not {line.strip()!r}") from None
+        cells.append((x, y, z))
+    if not cells:
+        raise ValueError("no cubes: expected lines 'x y z'")
+    return cells
+
+
+def voxels_from_grid(grid: object) -> list[Cell]:
+    """Cubes from a 3D array: the indices ``(i, j, k)`` of its true (non-zero) entries.
+
+    >>> import numpy as np
+    >>> g = np.zeros((2, 2, 1), dtype=bool); g[0, 0, 0] = g[1, 0, 0] = True
+    >>> voxels_from_grid(g)
+    [(0, 0, 0), (1, 0, 0)]
+    """
+    import numpy as np
+
+    array = np.asarray(grid)
+    if array.ndim != 3 or array.dtype.kind not in "biu":
+        raise ValueError(f"expected a 3D array of booleans or integers, not {array.ndim}D {array.dtype}")
+    cells = [(int(i), int(j), int(k)) for i, j, k in np.argwhere(array)]
+    if not cells:
+        raise ValueError("no cubes: the grid is empty")
+    return cells
