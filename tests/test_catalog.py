@@ -355,7 +355,7 @@ def test_long_corner_counts_are_sliced():
 @pytest.mark.slow
 @pytest.mark.parametrize("n", [24, 26, 28])
 def test_compiled_and_numpy_filters_agree_on_large_counts(n):
-    """The two strip filters keep the same maps, in order (28 corners: about 20 minutes)."""
+    """The two strip filters keep the same maps, in order (28 corners: about 30 minutes)."""
     from polyloops.enumerate.quadrangulations import compiled_filter_available, filtered_batches
 
     if not compiled_filter_available():

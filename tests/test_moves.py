@@ -360,6 +360,12 @@ def test_moves_cli_on_a_large_slab(tmp_path, capsys):
     assert main(["moves", str(path), "--count", "--add", "Z", "--time-limit", "1"]) == 0
     assert "lower bound" in capsys.readouterr().out
     start = time.monotonic()
+    assert main(["moves", str(path), "--add", "Z", "--time-limit", "1", "--json"]) == 0
+    assert time.monotonic() - start < 5.0
+    listed = json.loads(capsys.readouterr().out)
+    assert listed["complete"] == {"Z": False}
+    assert all(len(r["corners"]) >= 3 and r["axis"] == "Z" for r in listed["additions"])
+    start = time.monotonic()
     assert main(["moves", str(path), "--shortest", "5", "--json"]) == 0
     assert time.monotonic() - start < 5.0
     rows = json.loads(capsys.readouterr().out)["additions"]

@@ -371,8 +371,8 @@ def _list_additions(ls: Any, axes: list[Any], args: argparse.Namespace) -> tuple
 
     from polyloops.enumerate.moves import (
         SearchStopped,
-        _valid_additions,
         addition_index,
+        additions,
         sample_additions,
         shortest_additions,
     )
@@ -410,7 +410,7 @@ def _list_additions(ls: Any, axes: list[Any], args: argparse.Namespace) -> tuple
     for a in axes:
         i = 0
         try:
-            for mv in _valid_additions(ls, a, None, expired):
+            for mv in additions(ls, a, stop=expired):
                 if (args.limit is not None and total >= args.limit) or expired():
                     complete[a.name] = False
                     break

@@ -238,16 +238,19 @@ def separates_zone(ls: LoopStructure, move: Addition) -> bool:
 
 
 def additions(ls: LoopStructure, axis: Axis | None = None, limit: int | None = None,
-              max_length: int | None = None) -> Iterator[Addition]:
+              max_length: int | None = None, stop: Callable[[], bool] | None = None
+              ) -> Iterator[Addition]:
     """Every valid loop addition (one per combinatorial class), lazily; ``axis=None`` for all.
     ``max_length`` keeps the loops past at most that many corners (each adds that many).
+    ``stop()`` is asked now and then during the search; when it says so, :class:`SearchStopped`
+    is raised (the additions yielded so far stand).
 
     A simple cycle of ``G_V^Delta`` is valid when its loop also separates its zone
     (:func:`separates_zone`); that is the only level-graph cycle an addition can close.
     """
     n = 0
     for a in (Axis if axis is None else [axis]):
-        for move in _valid_additions(ls, a, max_length):
+        for move in _valid_additions(ls, a, max_length, stop):
             if limit is not None and n >= limit:
                 return
             n += 1
