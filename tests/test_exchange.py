@@ -135,17 +135,6 @@ APG_ERRORS = [
 ]
 
 
-@pytest.mark.parametrize(("text", "words"), APG_ERRORS)
-def test_bad_apg_files_name_the_problem(text, words, tmp_path, capsys):
-    with pytest.raises(ExchangeError, match=words):
-        parse_apg(text)
-    path = tmp_path / "bad.graph"
-    path.write_text(text)
-    assert main(["verify", str(path)]) == 2
-    err = capsys.readouterr().err
-    assert len(err.strip().splitlines()) == 1 and str(path) in err and "Traceback" not in err
-
-
 OBJ_ERRORS = [
     ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "line 4: a face must be a quad"),
     ("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 1\nf 1 2 3 4\n",
@@ -157,15 +146,19 @@ OBJ_ERRORS = [
 ]
 
 
-@pytest.mark.parametrize(("text", "words"), OBJ_ERRORS)
-def test_bad_obj_files_name_the_line(text, words, tmp_path, capsys):
+@pytest.mark.parametrize(("suffix", "text", "words"), [(".graph", t, w) for t, w in APG_ERRORS]
+                         + [(".obj", t, w) for t, w in OBJ_ERRORS])
+def test_bad_files_name_the_problem(suffix, text, words, tmp_path, capsys):
+    parse = parse_apg if suffix == ".graph" else parse_obj
     with pytest.raises(ExchangeError, match=words):
-        parse_obj(text)
-    path = tmp_path / "bad.obj"
+        parse(text)
+    path = tmp_path / f"bad{suffix}"
     path.write_text(text)
     assert main(["verify", str(path)]) == 2
     err = capsys.readouterr().err
-    assert len(err.strip().splitlines()) == 1 and ("line" in err or "no faces" in err)
+    assert len(err.strip().splitlines()) == 1 and str(path) in err and "Traceback" not in err
+    if suffix == ".obj":  # OBJ problems name their line
+        assert "line" in err or "no faces" in err
 
 
 # -- voxels ------------------------------------------------------------------------------------

@@ -141,8 +141,6 @@ def cmd_from_voxels(args: argparse.Namespace) -> int:
             cells = voxels_from_grid(grid)
         else:
             cells = parse_voxel_text(read_text_file(args.file))
-    except VoxelError as err:  # a ValueError too, but the input was read: exit 1
-        raise CliError(f"{args.file}: {err}", EXIT_INVALID) from None
     except ValueError as err:
         raise CliError(f"{args.file}: {err}") from None
     try:

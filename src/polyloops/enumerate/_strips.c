@@ -78,7 +78,7 @@ static int check_map(const unsigned char *rec, int n, int max_degree, int *index
         }
     }
     *simple = 1;
-    return *simple && maxdeg <= max_degree;
+    return maxdeg <= max_degree;
 }
 
 static PyObject *filter_maps(PyObject *self, PyObject *args)

@@ -143,10 +143,10 @@ def summarize(results: list[dict[str, Any]], min_n: int, max_n: int, partial: bo
     quads: dict[str, int | None] = {str(n): None if n % 2 else 0 for n in range(min_n, max_n + 1)}
     # Every map with an odd number of corners has a self-crossing strip (the theorem of
     # odd_corners_have_no_polycube), so its count of all-simple maps is known: zero.
-    simple: dict[str, int | None] = {str(n): 0 for n in range(min_n, max_n + 1)}
+    simple = {str(n): 0 for n in range(min_n, max_n + 1)}
     for r in results:
         quads[str(r["n"])] = (quads[str(r["n"])] or 0) + r["quadrangulations"]
-        simple[str(r["n"])] = (simple[str(r["n"])] or 0) + r["simple_strips"]
+        simple[str(r["n"])] += r["simple_strips"]
         for mode in MODES:
             counts[str(r["n"])][mode] += len(r["records"][mode])
     # quadrangulations: plantri's simple ones with minimum degree 3; simple_strips: those of

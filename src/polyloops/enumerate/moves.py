@@ -258,10 +258,13 @@ def additions(ls: LoopStructure, axis: Axis | None = None, limit: int | None = N
 
 
 def _valid_additions(ls: LoopStructure, axis: Axis, max_length: int | None = None,
-                     stop: Callable[[], bool] | None = None) -> Iterator[Addition]:
+                     stop: Callable[[], bool] | None = None,
+                     graph: _AdditionGraph | None = None) -> Iterator[Addition]:
+    """The cycles of the addition graph (``graph``, built here if not given) whose loops
+    separate their zone."""
     if not ls.oriented:
         raise ValueError("loop moves need an oriented loop structure")
-    for cycle in _AdditionGraph(ls, axis).cycles(max_length, stop):
+    for cycle in (graph or _AdditionGraph(ls, axis)).cycles(max_length, stop):
         move = Addition(axis, cycle)
         if separates_zone(ls, move):
             yield move
@@ -337,8 +340,6 @@ def count_additions_within(ls: LoopStructure, axes: Sequence[Axis] = tuple(Axis)
                 found += 1
                 if progress is not None and found % 256 == 0:
                     progress(a.name, found)
-                    if expired():
-                        raise SearchStopped
             else:
                 complete[a.name] = True
         except SearchStopped:
@@ -366,8 +367,9 @@ def shortest_additions(ls: LoopStructure, axis: Axis, k: int,
     found: list[Addition] = []
     if k <= 0:
         return found
+    graph = _AdditionGraph(ls, axis)
     for length in range(3, ls.map.num_corners + 1):
-        found.extend(mv for mv in _valid_additions(ls, axis, length, stop) if len(mv.cycle) == length)
+        found.extend(mv for mv in _valid_additions(ls, axis, length, stop, graph) if len(mv.cycle) == length)
         if len(found) >= k:
             break
     return found[:k]
@@ -403,9 +405,7 @@ def sample_additions(ls: LoopStructure, axis: Axis, n: int, seed: int = 0,
         while True:
             nexts = g.succ[path[-1]]
             if len(path) >= 2 and any(m.target(e) == start and g.ok(e, first) for e in nexts):
-                corners = [start, *(m.target(d) for d in path)]
-                low = corners.index(min(corners))
-                move = Addition(axis, tuple(corners[low:] + corners[:low]))
+                move = Addition(axis, canonical_cycle([start, *(m.target(d) for d in path)]))
                 if move.cycle not in found and separates_zone(ls, move):
                     found[move.cycle] = move
                 break

@@ -1,4 +1,4 @@
-"""Genus-0 quad meshes from plantri, decoded and filtered in batches with numpy.
+"""Genus-0 quad meshes from plantri, filtered in batches and decoded.
 
 The quad mesh of a genus-0 polycube is a simple quadrangulation of the sphere with minimum
 degree 3, which ``plantri -qc2 N`` generates (one map per isomorphism class, mirror images
@@ -7,8 +7,9 @@ vertex, its neighbours in clockwise order ending with 0.  For a fixed number of 
 ``n`` every record has ``5n - 7`` bytes, so a batch is a 2D array.
 
 A loop (strip) that crosses itself rules a map out (Condition 3), and almost every
-quadrangulation has one, so the batch filter traces the strips of every map at once with
-numpy and keeps the rest for the per-map work.
+quadrangulation has one, so a batch filter drops those maps (and maps with a corner of degree
+above 6) before any per-map work: the compiled extension ``_strips`` when the install built
+it, else its numpy twin, which traces the strips of every map of a batch at once.
 """
 
 from __future__ import annotations
