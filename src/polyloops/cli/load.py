@@ -38,8 +38,8 @@ class CliError(Exception):
 
 def read_document(arg: str, given: str | None = None) -> Document:
     """Parse a FILE argument: a path (polyloops JSON, an Abstract Polycube Graph ``.graph`` or
-    ``.apg``, or an OBJ quad mesh, by extension or by ``given``), ``example:NAME`` or
-    ``sig:SIGNATURE``."""
+    ``.apg``, an OBJ quad mesh or plantri's planar code ``.pc``, by extension or by
+    ``given``), ``example:NAME`` or ``sig:SIGNATURE``."""
     if arg.startswith("sig:"):
         from polyloops.core.canonical import SignatureError, from_signature
 
@@ -55,6 +55,8 @@ def read_document(arg: str, given: str | None = None) -> Document:
         fmt = "json"
     else:
         fmt = format_of(arg, given)
+        if fmt == "planar":
+            return _planar_document(arg)
         text = read_text_file(arg)
     try:
         doc = READERS[fmt](text)
@@ -65,16 +67,41 @@ def read_document(arg: str, given: str | None = None) -> Document:
     return doc
 
 
-# File formats by name and by extension; anything else is read as polyloops JSON.
+def _planar_document(arg: str) -> Document:
+    """A planar-code file of one map: planar code has no axis labels, so the map must carry
+    exactly one polycube loop structure up to symmetry, which is then the one read."""
+    from polyloops.core.planar_code import read_planar_code
+    from polyloops.enumerate.catalog import polycube_classes_on
+
+    try:
+        maps = read_planar_code(read_bytes_file(arg))
+    except FormatError as err:
+        raise CliError(f"{arg}: {err}") from None
+    if len(maps) != 1:
+        raise CliError(f"{arg}: holds {len(maps)} maps; polyloops reads one map per file")
+    classes = polycube_classes_on(maps[0])
+    if not classes:
+        raise CliError(f"{arg}: the map carries no polycube loop structure", EXIT_INVALID)
+    if len(classes) > 1:
+        raise CliError(f"{arg}: planar code has no axis labels, and the map carries {len(classes)} "
+                       "different polycube loop structures; give the one you mean as JSON or .graph")
+    print(f"{arg}: note: planar code has no axis labels; read the map's only polycube loop structure "
+          "(up to symmetry)", file=sys.stderr)
+    return parse_document(dumps(classes[0]))
+
+
+# File formats by name and by extension; anything else is read as polyloops JSON.  Planar
+# code is binary and is read by _planar_document.
 READERS = {"json": parse_document, "apg": parse_apg, "obj": parse_obj}
-FORMATS = tuple(READERS)
-SUFFIXES = {".json": "json", ".graph": "apg", ".apg": "apg", ".obj": "obj"}
+FORMATS = (*READERS, "planar")
+SUFFIXES = {".json": "json", ".graph": "apg", ".apg": "apg", ".obj": "obj",
+            ".pc": "planar", ".plc": "planar", ".planarcode": "planar"}
 
 
 def format_of(path: str, given: str | None = None) -> str:
     """The format named by ``given`` (``--from``/``--to``), else by the file's extension."""
     if given is not None:
-        if given not in READERS:
+        if given not in FORMATS:
             raise CliError(f"{path}: unknown format {given!r} (choose from {', '.join(FORMATS)})")
         return given
     return SUFFIXES.get(os.path.splitext(path)[1].lower(), "json")
@@ -182,13 +209,20 @@ def write_output(path: str | None, obj: Structure, given: str | None = None) -> 
             text = apg_text(obj)
         except ValueError as err:
             raise CliError(f"{path}: {err}") from None
+    elif fmt == "planar":
+        from polyloops.core.planar_code import planar_code
+
+        try:
+            text = planar_code([obj.map])
+        except ValueError as err:
+            raise CliError(f"{path}: {err}") from None
     else:
         text = dumps(obj)
     write_text(path, text)
     return None
 
 
-def write_text(path: str, text: str) -> None:
+def write_text(path: str, text: str | bytes) -> None:
     """Write atomically; a failure becomes a one-line :class:`CliError`."""
     try:
         write_atomic(path, text)

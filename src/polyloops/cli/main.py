@@ -20,6 +20,7 @@ from polyloops.cli.load import (
     EXIT_INVALID,
     EXIT_OK,
     EXIT_USAGE,
+    FORMATS,
     CliError,
     first_violation,
     read_bytes_file,
@@ -772,12 +773,13 @@ def build_parser() -> argparse.ArgumentParser:
                 json_flag=False)
     p.add_argument("-o", "--output", metavar="OUT", help="write JSON here instead of to standard output")
     p = command("convert", cmd_convert, "write a polycube or loop structure in another format: "
-                "polyloops JSON, DualCube's Abstract Polycube Graph (.graph, .apg) or an OBJ quad mesh "
-                "(.obj, polycubes only), chosen by extension or by --from/--to", json_flag=False)
-    p.add_argument("output", metavar="OUT", help="the file to write (.graph/.apg, .obj, else JSON)")
-    p.add_argument("--from", dest="source_format", choices=("json", "apg", "obj"),
+                "polyloops JSON, DualCube's Abstract Polycube Graph (.graph, .apg), an OBJ quad mesh "
+                "(.obj, polycubes only) or plantri's planar code (.pc, .plc: the quad map alone), "
+                "chosen by extension or by --from/--to", json_flag=False)
+    p.add_argument("output", metavar="OUT", help="the file to write (.graph/.apg, .obj, .pc, else JSON)")
+    p.add_argument("--from", dest="source_format", choices=FORMATS,
                    help="the format of FILE (default: by its extension)")
-    p.add_argument("--to", dest="target_format", choices=("json", "apg", "obj"),
+    p.add_argument("--to", dest="target_format", choices=FORMATS,
                    help="the format of OUT (default: by its extension)")
     p.add_argument("--fix-orientation", action="store_true",
                    help="turn an inside-out polycube (faces clockwise seen from outside) outward")

@@ -196,13 +196,14 @@ def replace_atomic(tmp: str, target: str | os.PathLike[str]) -> None:
     os.replace(tmp, target)
 
 
-def write_atomic(path: str | os.PathLike[str], text: str) -> None:
-    """Write through a temporary file and rename, so no half-written file is ever left."""
+def write_atomic(path: str | os.PathLike[str], text: str | bytes) -> None:
+    """Write text (UTF-8) or bytes through a temporary file and rename, so no half-written
+    file is ever left."""
     target = Path(path)
     fd, tmp = tempfile.mkstemp(dir=target.parent or ".", prefix=f".{target.name}.", suffix=".tmp")
     try:
-        with os.fdopen(fd, "w", encoding="utf-8") as fh:
-            fh.write(text)
+        with os.fdopen(fd, "wb") as fh:
+            fh.write(text.encode("utf-8") if isinstance(text, str) else text)
         replace_atomic(tmp, target)
     except BaseException:
         if os.path.exists(tmp):

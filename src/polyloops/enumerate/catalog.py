@@ -118,6 +118,20 @@ def polycube_structures(m: HalfEdgeMap) -> Iterator[LoopStructure]:
             yield LoopStructure(m, axes, tuple(signs))
 
 
+def polycube_classes_on(m: HalfEdgeMap, mode: str = "full") -> list[LoopStructure]:
+    """One polycube loop structure on ``m`` (in ``m``'s own numbering) per class in a
+    symmetry mode, in the order :func:`polycube_structures` meets them.
+
+    >>> from polyloops.core.examples import load_example
+    >>> len(polycube_classes_on(load_example("cube").map))
+    1
+    """
+    found: dict[str, LoopStructure] = {}
+    for ls in polycube_structures(m):
+        found.setdefault(canonical_form(ls, mode).signature, ls)
+    return list(found.values())
+
+
 @dataclass(frozen=True)
 class CatalogRecord:
     """One polycube class in one symmetry mode."""
