@@ -891,6 +891,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(func=cmd_sheet)
     command("info", cmd_info, "corners, faces, loops, genus, zones, level graphs and corner degrees")
     _reach_commands(command)
+    from polyloops.cli import segmentation
+
+    segmentation.add_command(command)
     return parser
 
 

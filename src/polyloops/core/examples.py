@@ -13,7 +13,10 @@ from dataclasses import dataclass
 from importlib import resources
 
 from polyloops.core import builders
+from polyloops.core.directions import Direction
 from polyloops.core.formats import Structure, loads
+from polyloops.core.labelled_mesh import LabelledMesh, labelled_mesh_from_polycube
+from polyloops.core.polycube import Polycube
 from polyloops.core.voxels import polycube_from_voxels
 
 
@@ -66,6 +69,52 @@ _ALL = [
 EXAMPLES: dict[str, Example] = {e.name: e for e in _ALL}
 
 
+# -- labelled triangle meshes ------------------------------------------------------------
+
+@dataclass(frozen=True)
+class LabelledExample:
+    name: str
+    description: str
+    valid: bool
+    build: Callable[[], LabelledMesh]
+
+
+def _relabelled(cells: list[tuple[int, int, int]], old: Direction, new: Direction, level: int,
+                span: tuple[int, int]) -> LabelledMesh:
+    """The polycube of ``cells``, labelled by its normals except the quads of normal ``old``
+    at height ``z = level`` with ``x`` in ``span``, which get ``new``."""
+    q = polycube_from_voxels(cells)
+    labels = []
+    for f, face in enumerate(q.faces):
+        label = q.face_normal(f)
+        assert label is not None
+        xs = [q.positions[c][0] for c in face]
+        if label == old and all(q.positions[c][2] == level for c in face) and \
+                span[0] <= min(xs) and max(xs) <= span[1]:
+            label = new
+        labels.append(label)
+    return labelled_mesh_from_polycube(q, labels)
+
+
+# A block with two pillars (Z up): the charts of the polyhedron with three faces up and one
+# down.  Labelling the floor between the pillars -Z (the underside of a ramp) gives two up
+# and two down: every local criterion holds, but no polycube has these labels.
+U_CUBES = [(0, 0, 0), (1, 0, 0), (2, 0, 0), (0, 0, 1), (2, 0, 1)]
+# Three steps; the middle step's top labelled -Z is an overhang, which a polycube has.
+STAIR_CUBES = [(x, 0, z) for x in range(3) for z in range(3 - x)]
+
+_LABELLED = [
+    LabelledExample("sokolov-ramp", "a block with two pillars whose floor between them is labelled "
+                    "facing down: two charts up and two down, every local criterion holds, yet no "
+                    "polycube has these labels (in the manner of Sokolov's ramp)", False,
+                    lambda: _relabelled(U_CUBES, Direction.PZ, Direction.NZ, 1, (1, 2))),
+    LabelledExample("overhang", "three steps whose middle step is labelled facing down: not the "
+                    "mesh's own normals, but a polycube with an overhang has these labels", True,
+                    lambda: _relabelled(STAIR_CUBES, Direction.PZ, Direction.NZ, 2, (1, 2))),
+]
+LABELLED_EXAMPLES: dict[str, LabelledExample] = {e.name: e for e in _LABELLED}
+
+
 def example_text(name: str) -> str:
     """The shipped JSON text of an example; ``KeyError`` for an unknown name."""
     if name not in EXAMPLES:
@@ -75,3 +124,22 @@ def example_text(name: str) -> str:
 
 def load_example(name: str) -> Structure:
     return loads(example_text(name))
+
+
+def labelled_mesh_example(name: str) -> LabelledMesh:
+    """A bundled labelled mesh (shipped as ``NAME.obj`` and ``NAME.labels``), or a bundled
+    polycube's quads cut into triangles and labelled by their normals."""
+    from polyloops.core.labelled_mesh import parse_labels, read_triangle_mesh
+
+    if name in LABELLED_EXAMPLES:
+        folder = resources.files("polyloops.examples")
+        with resources.as_file(folder.joinpath(f"{name}.obj")) as path:
+            points, triangles = read_triangle_mesh(path)
+        labels = parse_labels(folder.joinpath(f"{name}.labels").read_text(encoding="utf-8"), len(triangles))
+        return LabelledMesh(points, triangles, labels)
+    if name in EXAMPLES and EXAMPLES[name].valid:
+        q = load_example(name)
+        if isinstance(q, Polycube):
+            return labelled_mesh_from_polycube(q)
+    raise KeyError(f"no labelled mesh of that name (bundled: {', '.join(LABELLED_EXAMPLES)}, or a valid "
+                   "polycube example from 'polyloops examples')")

@@ -171,10 +171,11 @@ def apg_text(obj: Structure) -> str:
     return "\n".join(lines) + "\n"
 
 
-def parse_obj(text: str) -> Document:
-    """Read a Wavefront OBJ quad mesh as a polycube; see the module docstring."""
+def obj_polygons(text: str) -> tuple[list[tuple[float, float, float]], list[tuple[int, list[int]]]]:
+    """The vertices and the faces (with their line numbers, as 0-based vertex ids) of a
+    Wavefront OBJ text; other lines are ignored."""
     vertices: list[tuple[float, float, float]] = []
-    raw_faces: list[tuple[int, list[int]]] = []
+    faces: list[tuple[int, list[int]]] = []
     for number, words in _content_lines(text, "#"):
         if words[0] == "v":
             if len(words) < 4:
@@ -198,9 +199,16 @@ def parse_obj(text: str) -> Document:
                 if not 0 <= i < len(vertices) or head == "0":
                     raise ExchangeError(f"line {number}: vertex {head} does not exist (yet)")
                 ids.append(i)
-            if len(ids) != 4:
-                raise ExchangeError(f"line {number}: a face must be a quad, not a {len(ids)}-gon")
-            raw_faces.append((number, ids))
+            faces.append((number, ids))
+    return vertices, faces
+
+
+def parse_obj(text: str) -> Document:
+    """Read a Wavefront OBJ quad mesh as a polycube; see the module docstring."""
+    vertices, raw_faces = obj_polygons(text)
+    for number, ids in raw_faces:
+        if len(ids) != 4:
+            raise ExchangeError(f"line {number}: a face must be a quad, not a {len(ids)}-gon")
     if not raw_faces:
         raise ExchangeError("no faces ('f' lines)")
     used = sorted({i for _, ids in raw_faces for i in ids})

@@ -87,6 +87,23 @@ class Polycube:
         """Directions of the edges at a corner, counter-clockwise seen from outside."""
         return tuple(self.direction(d) for d in self.map.outgoing(corner))
 
+    def face_normal(self, f: int) -> Direction | None:
+        """The normal of face ``f``, pointing outside when the faces are counter-clockwise seen
+        from outside; ``None`` for a face that is not an axis-parallel rectangle's plane.
+
+        >>> from polyloops.core.examples import load_example
+        >>> sorted(str(load_example("cube").face_normal(f)) for f in range(6))
+        ['+X', '+Y', '+Z', '-X', '-Y', '-Z']
+        """
+        p = [self.positions[c] for c in self.faces[f]]
+        a = [p[1][k] - p[0][k] for k in range(3)]
+        b = [p[2][k] - p[1][k] for k in range(3)]
+        n = (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+        nz = [i for i in range(3) if n[i]]
+        if len(nz) != 1:
+            return None
+        return Direction.of(nz[0], 1 if n[nz[0]] > 0 else -1)
+
     def bounding_box(self) -> tuple[Position, Position]:
         lo = tuple(min(p[i] for p in self.positions) for i in range(3))
         hi = tuple(max(p[i] for p in self.positions) for i in range(3))

@@ -201,3 +201,52 @@ def corner_histogram(obj: Polycube | LoopStructure) -> tuple[dict[int, int], dic
         ids[config.id] = ids.get(config.id, 0) + 1
         categories[config.category] += 1
     return dict(sorted(ids.items())), categories, unclassified
+
+
+# -- corners of labelled segmentations ----------------------------------------------------
+
+def cross(a: Direction, b: Direction) -> Direction:
+    """The cross product of two directions on different axes.
+
+    >>> str(cross(Direction.PX, Direction.PY)), str(cross(Direction.PY, Direction.PX))
+    ('+Z', '-Z')
+    """
+    if a.axis == b.axis:
+        raise ValueError(f"{a} and {b} are parallel")
+    third = 3 - a.axis - b.axis
+    right_handed = (b.axis - a.axis) % 3 == 1
+    return Direction.of(third, a.sign * b.sign * (1 if right_handed else -1))
+
+
+ChartCorner = tuple[tuple[Direction, Direction], ...]
+
+
+def chart_corner(directions: Sequence[Direction]) -> ChartCorner:
+    """A corner as a labelled segmentation sees it: the creased edges only, each as (its
+    direction, the normal of the face that follows it counter-clockwise), from the smallest
+    rotation.  The face between cyclically consecutive directions ``a, b`` has normal
+    ``a x b``; an edge between two faces of one normal is flat, so no boundary of charts.
+
+    >>> [(str(d), str(n)) for d, n in chart_corner([Direction.NX, Direction.NY, Direction.NZ])]
+    [('-X', '+Z'), ('-Y', '+X'), ('-Z', '+Y')]
+    """
+    k = len(directions)
+    normals = [cross(directions[i], directions[(i + 1) % k]) for i in range(k)]
+    pairs = tuple((directions[i], normals[i]) for i in range(k) if normals[i - 1] != normals[i])
+    return min(pairs[i:] + pairs[:i] for i in range(len(pairs))) if pairs else ()
+
+
+@cache
+def chart_corners() -> frozenset[ChartCorner]:
+    """Every corner of a labelled segmentation that a polycube can have: the chart views of
+    the 126 configurations with three or more creased edges (with two, the point lies
+    inside a boundary; with none, inside a chart)."""
+    return frozenset(c for c in (chart_corner(cfg.directions) for cfg in corner_configurations())
+                     if len(c) >= 3)
+
+
+@cache
+def chart_label_cycles() -> frozenset[tuple[Direction, ...]]:
+    """The cyclic sequences of chart labels, from the smallest rotation, that some corner of
+    :func:`chart_corners` has around it."""
+    return frozenset(canonical_rotation([n for _, n in c]) for c in chart_corners())

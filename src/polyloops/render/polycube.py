@@ -43,12 +43,7 @@ def _cross(a, b):
 
 def face_normal(q: Polycube, f: int) -> Direction | None:
     """The outward normal of a face (faces are counter-clockwise seen from outside)."""
-    p = [q.positions[c] for c in q.faces[f]]
-    n = _cross(_sub(p[1], p[0]), _sub(p[2], p[1]))
-    nz = [i for i in range(3) if n[i]]
-    if len(nz) != 1:
-        return None
-    return Direction.of(nz[0], 1 if n[nz[0]] > 0 else -1)
+    return q.face_normal(f)
 
 
 def candidate_views() -> list[tuple[float, float]]:

@@ -1,0 +1,105 @@
+"""The ``segmentation`` command: is a labelled triangle mesh a polycube segmentation?"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+from collections.abc import Callable
+
+from polyloops.cli.load import EXIT_INVALID, EXIT_OK, CliError, read_bytes_file, read_text_file, write_output
+from polyloops.core.formats import FormatError
+from polyloops.core.halfedge import MapError
+from polyloops.core.labelled_mesh import LabelledMesh, parse_labels, read_triangle_mesh
+
+
+def add_command(command: Callable[..., argparse.ArgumentParser]) -> None:
+    p = command("segmentation", cmd_segmentation, "check a labelled triangle mesh: the local criteria of "
+                "labelling methods, the global test of the level graphs, and a polycube that realises "
+                "the labels (exit 0 valid or undecided, 1 invalid)", file_arg=False)
+    p.add_argument("mesh", metavar="MESH", help="a closed triangle mesh (.obj, .stl or MEDIT .mesh), or "
+                   "example:NAME (a bundled labelled mesh, or any bundled polycube labelled by its normals)")
+    p.add_argument("labels", metavar="LABELS", nargs="?",
+                   help="one integer per triangle in face order, 0..5 for +X -X +Y -Y +Z -Z "
+                   "(not needed with example:NAME)")
+    p.add_argument("-o", "--output", metavar="POLYCUBE",
+                   help="write the polycube that realises the labels (.json, .graph, .obj)")
+    p.add_argument("--png", metavar="FILE", help="draw the labelled mesh, with the witness when invalid")
+
+
+def read_labelled_mesh(mesh_arg: str, labels_arg: str | None) -> LabelledMesh:
+    """The MESH and LABELS arguments as a labelled mesh; problems name the file."""
+    if mesh_arg.startswith("example:"):
+        from polyloops.core.examples import labelled_mesh_example
+
+        if labels_arg is not None:
+            raise CliError(f"{labels_arg}: an example brings its own labels; give MESH alone")
+        try:
+            return labelled_mesh_example(mesh_arg.removeprefix("example:"))
+        except KeyError as err:
+            raise CliError(f"{mesh_arg}: {err.args[0]}") from None
+    if labels_arg is None:
+        raise CliError(f"{mesh_arg}: give the LABELS file too (one integer per triangle)")
+    read_bytes_file(mesh_arg)  # a regular file of reasonable size, or a one-line error
+    try:
+        points, triangles = read_triangle_mesh(mesh_arg)
+    except FormatError as err:
+        raise CliError(f"{mesh_arg}: {err}") from None
+    except OSError as err:
+        raise CliError(f"{mesh_arg}: cannot read: {err.strerror or err}") from None
+    try:
+        labels = parse_labels(read_text_file(labels_arg), len(triangles))
+    except FormatError as err:
+        raise CliError(f"{labels_arg}: {err}") from None
+    return LabelledMesh(points, triangles, labels)
+
+
+def format_report(source: str, report) -> str:
+    seg = report.segmentation
+    verdict = {True: "valid", False: "INVALID", None: "undecided"}[report.valid]
+    lines = [f"{source}: labelled segmentation: {verdict}",
+             f"  charts {len(seg.charts)}  boundaries {len(seg.boundaries)}  corners {len(seg.corners)}"]
+    local = report.local
+    lines.append(f"  local criteria: {'pass' if local.valid else f'{len(local.violations)} violations'}")
+    lines += [f"    {v.rule}: {v.message}" for v in local.violations]
+    g = report.global_
+    state = {True: "pass", False: "FAIL", None: "not decided"}[g.valid]
+    why = f" ({g.reason})" if g.reason and g.valid is None else ""
+    lines.append(f"  global test (level graphs): {state}{why}")
+    if g.witness is not None:
+        charts = ", ".join(map(str, g.witness.charts(seg)))
+        lines.append(f"    witness: {g.witness.describe(seg)}; charts {charts}")
+    if report.polycube is not None:
+        q = report.polycube
+        lines.append(f"  realised by a polycube of {q.map.num_corners} corners and {q.map.num_faces} quads "
+                     "(Definition 1 holds)")
+    elif report.valid is None:
+        lines.append(f"  undecided: {report.reason}")
+    return "\n".join(lines)
+
+
+def cmd_segmentation(args: argparse.Namespace) -> int:
+    from polyloops.segmentation import check_segmentation
+
+    mesh = read_labelled_mesh(args.mesh, args.labels)
+    try:
+        report = check_segmentation(mesh)
+    except MapError as err:
+        raise CliError(f"{args.mesh}: not a closed oriented surface: {err}") from None
+    if args.output:
+        if report.polycube is None:
+            print(f"polyloops segmentation: {args.output}: not written: no polycube was built "
+                  f"({'invalid' if report.valid is False else 'undecided'})", file=sys.stderr)
+        else:
+            write_output(args.output, report.polycube)
+    if args.png:
+        from polyloops.render.segmentation import render_segmentation
+
+        try:
+            render_segmentation(report, args.png)
+        except OSError as err:
+            raise CliError(f"{args.png}: cannot write: {err.strerror or err}") from None
+    source = args.mesh if args.labels is None else f"{args.mesh} + {os.path.basename(args.labels)}"
+    print(json.dumps(report.to_json(), indent=2) if args.json else format_report(source, report))
+    return EXIT_INVALID if report.valid is False else EXIT_OK

@@ -1,0 +1,175 @@
+"""Labelled triangle meshes: a closed triangle mesh with one direction label per triangle.
+
+This is what polycube labelling methods produce: a triangle mesh (OBJ, STL or MEDIT
+``.mesh``; meshio reads the last two and keeps the order of the faces) and a labels file of one
+integer per triangle, in face order, ``0..5`` meaning ``+X, -X, +Y, -Y, +Z, -Z`` (the
+encoding of the LIHPC ``labeling.txt`` and DualCube ``.flag`` files, and of
+:class:`~polyloops.core.directions.Direction`).  Triangles are counter-clockwise seen from
+outside.
+
+>>> from polyloops.core.examples import load_example
+>>> mesh = labelled_mesh_from_polycube(load_example("cube"))
+>>> len(mesh.triangles), sorted({str(d) for d in mesh.labels})
+(12, ['+X', '+Y', '+Z', '-X', '-Y', '-Z'])
+>>> parse_labels(labels_text(mesh), 12) == mesh.labels
+True
+"""
+
+from __future__ import annotations
+
+import os
+import warnings
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+from polyloops.core.directions import Direction
+from polyloops.core.exchange import obj_polygons
+from polyloops.core.formats import FormatError
+from polyloops.core.polycube import Polycube
+
+__all__ = ["LabelledMesh", "LabelledMeshError", "labelled_mesh_from_polycube", "labels_text",
+           "parse_labels", "read_triangle_mesh", "triangle_obj_text", "write_triangle_mesh"]
+
+Point = tuple[float, float, float]
+Triangle = tuple[int, int, int]
+MESH_SUFFIXES = (".obj", ".stl", ".mesh")
+
+
+class LabelledMeshError(FormatError):
+    """A mesh or labels file that cannot be read; the message names the line or face."""
+
+
+@dataclass(frozen=True)
+class LabelledMesh:
+    """Triangles over ``points`` (counter-clockwise seen from outside) and a label each."""
+
+    points: tuple[Point, ...]
+    triangles: tuple[Triangle, ...]
+    labels: tuple[Direction, ...]
+
+    def __post_init__(self) -> None:
+        if len(self.labels) != len(self.triangles):
+            raise LabelledMeshError(f"{len(self.labels)} labels for {len(self.triangles)} triangles")
+
+
+def parse_labels(text: str, count: int | None = None) -> tuple[Direction, ...]:
+    """One integer ``0..5`` per non-blank line (``#`` starts a comment); ``count``, when
+    given, is the number of triangles they must match."""
+    labels = []
+    for number, line in enumerate(text.splitlines(), 1):
+        word = line.split("#", 1)[0].strip()
+        if not word:
+            continue
+        try:
+            value = int(word)
+        except ValueError:
+            raise LabelledMeshError(f"line {number}: a label is an integer 0..5, not {word!r}") from None
+        if not 0 <= value <= 5:
+            raise LabelledMeshError(f"line {number}: label {value} is not in 0..5 (+X, -X, +Y, -Y, +Z, -Z)")
+        labels.append(Direction(value))
+    if count is not None and len(labels) != count:
+        raise LabelledMeshError(f"{len(labels)} labels for {count} triangles (one label per triangle)")
+    return tuple(labels)
+
+
+def labels_text(mesh: LabelledMesh) -> str:
+    """The labels file: one integer per line."""
+    return "".join(f"{int(d)}\n" for d in mesh.labels)
+
+
+def read_triangle_mesh(path: str | os.PathLike[str]) -> tuple[tuple[Point, ...], tuple[Triangle, ...]]:
+    """Points and triangles of an OBJ, STL or MEDIT ``.mesh`` file, faces in file order.
+
+    OBJ is read by the same reader as OBJ quad meshes (so errors name the line); STL and
+    ``.mesh`` by meshio.  Only triangles may bound the surface: other faces are refused, and
+    the volume and line cells a ``.mesh`` file may hold are ignored.
+    """
+    if os.fspath(path).lower().endswith(".obj"):
+        with open(path, encoding="utf-8", errors="replace") as fh:
+            points, faces = obj_polygons(fh.read())
+        for number, ids in faces:
+            if len(ids) != 3:
+                raise LabelledMeshError(f"line {number}: a face must be a triangle, not a {len(ids)}-gon")
+        triangles = [(a, b, c) for _, (a, b, c) in faces]
+    else:
+        points, triangles = _read_with_meshio(path)
+    if not triangles:
+        raise LabelledMeshError("has no triangles")
+    return tuple(points), tuple(triangles)
+
+
+def _read_with_meshio(path: str | os.PathLike[str]) -> tuple[list[Point], list[Triangle]]:
+    import meshio
+    import numpy as np
+
+    try:
+        with warnings.catch_warnings():  # meshio's test for binary STL overflows on text files
+            warnings.simplefilter("ignore", RuntimeWarning)
+            mesh = meshio.read(os.fspath(path))
+    except Exception as err:  # meshio raises many kinds of errors for malformed files
+        message = " ".join(str(err).split()) or type(err).__name__
+        raise LabelledMeshError(f"not a readable triangle mesh: {message}") from None
+    triangles: list[Triangle] = []
+    for block in mesh.cells:
+        if block.type == "triangle":
+            triangles.extend((int(a), int(b), int(c)) for a, b, c in np.asarray(block.data))
+        elif block.type in ("quad", "polygon"):
+            raise LabelledMeshError(f"has {block.type} faces; a labelled mesh is made of triangles")
+    coords = np.asarray(mesh.points, dtype=float)
+    if coords.ndim != 2 or coords.shape[1] < 3 or not np.isfinite(coords).all():
+        raise LabelledMeshError("needs finite 3D coordinates")
+    points = [(float(x), float(y), float(z)) for x, y, z in coords[:, :3]]
+    for i, tri in enumerate(triangles):
+        if any(not 0 <= c < len(points) for c in tri):
+            raise LabelledMeshError(f"triangle {i + 1} uses a vertex that does not exist")
+    return points, triangles
+
+
+def triangle_obj_text(mesh: LabelledMesh) -> str:
+    """The triangles as Wavefront OBJ text (the labels go in their own file)."""
+    lines = [f"v {x:g} {y:g} {z:g}" for x, y, z in mesh.points]
+    lines += [f"f {a + 1} {b + 1} {c + 1}" for a, b, c in mesh.triangles]
+    return "\n".join(lines) + "\n"
+
+
+def write_triangle_mesh(path: str | os.PathLike[str], mesh: LabelledMesh) -> None:
+    """Write the triangles (format by extension: OBJ, STL or ``.mesh``) through a temporary
+    file, so a failure leaves nothing half-written."""
+    import tempfile
+
+    from polyloops.core.formats import replace_atomic, write_atomic
+
+    target = os.fspath(path)
+    suffix = os.path.splitext(target)[1].lower()
+    if suffix == ".obj":
+        write_atomic(target, triangle_obj_text(mesh))
+        return
+    import meshio
+    import numpy as np
+
+    fd, tmp = tempfile.mkstemp(dir=os.path.dirname(target) or ".", suffix=suffix)
+    os.close(fd)
+    try:
+        out = meshio.Mesh(np.asarray(mesh.points, dtype=float), [("triangle", np.asarray(mesh.triangles))])
+        if suffix == ".stl":
+            meshio.write(tmp, out, binary=False)
+        else:
+            meshio.write(tmp, out)
+        replace_atomic(tmp, target)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+
+
+def labelled_mesh_from_polycube(q: Polycube, labels: Sequence[Direction] | None = None) -> LabelledMesh:
+    """Each quad cut into two triangles, labelled by its normal (or by ``labels``, one per
+    quad, to make deliberately wrong labellings)."""
+    triangles = []
+    normals = []
+    for f, (a, b, c, d) in enumerate(q.faces):
+        triangles += [(a, b, c), (a, c, d)]
+        label = labels[f] if labels is not None else q.face_normal(f)
+        normals += [label, label]
+    points = tuple((float(x), float(y), float(z)) for x, y, z in q.positions)
+    return LabelledMesh(points, tuple(triangles), tuple(normals))
