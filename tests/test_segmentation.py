@@ -329,7 +329,10 @@ def test_cli_exit_codes_and_picture(tmp_path, capsys):
     (None, "0\n9\n", "shape.labels", "line 2: label 9"),
     (None, "0\n", "shape.labels", "1 labels for 12 triangles"),
     ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "0\n", "shape.obj", "not a closed oriented surface"),
-    ("solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0\n", "0\n", "shape.stl", "shape.stl"),
+    ("solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0\n", "0\n", "shape.stl",
+     "line 5: vertex"),
+    ("solid x\nfacet normal 0 0 1\nouter loop\nvortex 0 0 0\n", "0\n", "shape.stl", "line 4: unexpected"),
+    ("MeshVersionFormatted 1\nDimension 3\nVertices\n2\n0 0\n", "0\n", "shape.mesh", "shape.mesh"),
 ])
 def test_cli_bad_files_name_the_file_and_line(mesh_text, labels_text_, where, words, tmp_path, capsys):
     suffix = "." + where.split(".")[-1] if where != "shape.labels" else ".obj"
@@ -352,3 +355,24 @@ def test_cli_needs_labels(tmp_path, capsys):
     path.write_text("v 0 0 0\n")
     assert main(["segmentation", str(path)]) == 2
     assert "LABELS" in capsys.readouterr().err
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(polycubes(kinds=("blob", "frame1"), max_size=6), st.lists(st.sampled_from(Direction), min_size=1),
+       st.integers(0, 2**16))
+def test_any_labelling_gets_a_verdict_and_a_valid_verdict_is_backed(q, palette, seed):
+    """Random labels (drawn from a random palette, so that some charts merge) never crash the
+    check; a valid verdict always comes with a polycube that realises the same charts, and a
+    global failure always with a witness."""
+    import random
+
+    rng = random.Random(seed)
+    labels = [rng.choice(palette) if rng.random() < 0.3 else q.face_normal(f) for f in range(q.map.num_faces)]
+    report = check_segmentation(labelled_mesh_from_polycube(q, labels))
+    assert report.valid in (True, False, None)
+    if report.valid:
+        assert_realises_same_charts(report)
+    if report.global_.valid is False:
+        assert report.global_.witness is not None
+    if report.valid is None:
+        assert report.reason

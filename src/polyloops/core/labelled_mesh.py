@@ -17,6 +17,7 @@ True
 
 from __future__ import annotations
 
+import math
 import os
 import warnings
 from collections.abc import Sequence
@@ -98,9 +99,42 @@ def read_triangle_mesh(path: str | os.PathLike[str]) -> tuple[tuple[Point, ...],
     return tuple(points), tuple(triangles)
 
 
+def _check_text_stl(data: bytes) -> None:
+    """Name the first malformed line of an ASCII STL file (meshio does not say where)."""
+    if len(data) >= 84 and len(data) == 84 + 50 * int.from_bytes(data[80:84], "little"):
+        return  # binary STL, even if its header starts with "solid"
+    if not data.lstrip().lower().startswith(b"solid"):
+        return
+    shapes = {"solid": None, "endsolid": None, "outer": None, "endloop": 0, "endfacet": 0,
+              "facet": 4, "vertex": 3}  # numbers expected after the keyword(s)
+    for number, line in enumerate(data.decode("utf-8", errors="replace").splitlines(), 1):
+        words = line.split()
+        if not words:
+            continue
+        key = words[0].lower()
+        if key not in shapes:
+            raise LabelledMeshError(f"line {number}: unexpected {words[0]!r} in an ASCII STL file")
+        want = shapes[key]
+        numbers = words[2:] if key == "facet" else words[1:]
+        if key == "facet" and (len(words) < 2 or words[1].lower() != "normal"):
+            raise LabelledMeshError(f"line {number}: a facet line is 'facet normal nx ny nz'")
+        if want is not None and key in ("facet", "vertex"):
+            want -= key == "facet"
+            try:
+                ok = len(numbers) == want and all(map(math.isfinite, map(float, numbers)))
+            except ValueError:
+                ok = False
+            if not ok:
+                raise LabelledMeshError(f"line {number}: {key} needs {want} finite numbers")
+
+
 def _read_with_meshio(path: str | os.PathLike[str]) -> tuple[list[Point], list[Triangle]]:
     import meshio
     import numpy as np
+
+    if os.fspath(path).lower().endswith(".stl"):
+        with open(path, "rb") as fh:
+            _check_text_stl(fh.read())
 
     try:
         with warnings.catch_warnings():  # meshio's test for binary STL overflows on text files
