@@ -5,6 +5,7 @@ import subprocess
 
 import pytest
 from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from polyloops.cli import main
 from polyloops.core.builders import box
@@ -66,6 +67,7 @@ def test_large_maps_use_two_bytes_and_come_back():
     (b"\x03\x02\x03\x00\x03\x00\x01\x02\x00", "not the other way round"),
     (b"\x03\x01\x02\x00\x01\x03\x00\x01\x02\x00", "lists itself"),
     (b"\x02\x02\x00\x01\x00", "needs 3 or more"),
+    (bytes([6, 2, 3, 0, 3, 1, 0, 1, 2, 0, 5, 6, 0, 6, 4, 0, 4, 5, 0]), "2 components"),
 ])
 def test_bad_bytes_are_named(data, words):
     with pytest.raises(PlanarCodeError, match=words):
@@ -102,3 +104,16 @@ def test_cli_errors_name_the_file(tmp_path, capsys):
         assert str(path) in err and words in err and "\n" not in err
     assert main(["convert", "example:ring", str(tmp_path / "ring.pc")]) == 2
     assert "genus-0" in capsys.readouterr().err
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.binary(max_size=64), st.booleans())
+def test_any_bytes_read_or_fail_cleanly(data, with_header):
+    """Random bytes, and damaged real maps, give maps or a PlanarCodeError, nothing else."""
+    cube = planar_code([load_example("cube").map])
+    for blob in ((b">>planar_code<<" if with_header else b"") + data, cube[: len(data) % len(cube)] + data):
+        try:
+            maps = read_planar_code(blob)
+        except PlanarCodeError:
+            continue
+        assert all(isinstance(m, HalfEdgeMap) for m in maps)

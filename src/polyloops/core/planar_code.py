@@ -26,7 +26,7 @@ from __future__ import annotations
 from collections.abc import Iterable
 
 from polyloops.core.formats import FormatError
-from polyloops.core.halfedge import HalfEdgeMap
+from polyloops.core.halfedge import FaceListError, HalfEdgeMap, MapError
 
 __all__ = ["PlanarCodeError", "planar_code", "read_planar_code"]
 
@@ -112,7 +112,10 @@ def _map_from_rotation(rotation: list[list[int]], where: str) -> HalfEdgeMap:
             around = rotation[v]
             u, v = v, around[(position[(v, u)] + 1) % len(around)]
         faces.append(face)
-    return HalfEdgeMap.from_faces(faces)
+    try:
+        return HalfEdgeMap.from_faces(faces)
+    except (MapError, FaceListError) as err:
+        raise PlanarCodeError(f"{where}: not a closed connected surface: {err}") from None
 
 
 def planar_code(maps: Iterable[HalfEdgeMap], two_byte: bool | None = None) -> bytes:
