@@ -154,11 +154,14 @@ def transform_cells(cells: set[Cell], perm: tuple[int, int, int], signs: tuple[i
 def handle_zone_polycubes(draw, max_bumps: int = 2) -> Polycube:
     """Polycubes of genus 1 or 2 with a zone of positive genus, in any position in space:
     bridged rings (:func:`bridged_ring`) with drawn sizes, bumps and a signed permutation."""
-    cells = bridged_ring(draw(st.integers(3, 4)), draw(st.integers(3, 4)), draw(st.integers(1, 2)),
-                         draw(st.lists(st.integers(0, 60), max_size=max_bumps)))
+    size = (draw(st.integers(3, 4)), draw(st.integers(3, 4)), draw(st.integers(1, 2)))
+    bumps = draw(st.lists(st.integers(0, 60), max_size=max_bumps))
     perm = draw(st.permutations((0, 1, 2)))
     signs = draw(st.tuples(*[st.sampled_from((1, -1))] * 3))
-    return polycube_from_voxels(transform_cells(cells, tuple(perm), signs))
+    try:
+        return polycube_from_voxels(transform_cells(bridged_ring(*size, bumps), tuple(perm), signs))
+    except VoxelError:  # a bump that makes the surface meet itself: the ring without bumps
+        return polycube_from_voxels(transform_cells(bridged_ring(*size, []), tuple(perm), signs))
 
 
 @st.composite

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import re
 import sys
 from pathlib import Path
 from typing import Any
@@ -12,6 +13,7 @@ from polyloops.cli.load import (
     EXIT_INVALID,
     EXIT_OK,
     CliError,
+    format_of,
     read_text_file,
     read_valid_structure,
     write_text,
@@ -136,10 +138,13 @@ def verify_path_file(source: str, data: dict[str, Any], as_json: bool) -> int:
 
 def read_path_file(source: str) -> dict[str, Any] | None:
     """The JSON of ``source`` if it is a path file, else ``None`` (and no error)."""
-    if source.startswith(("example:", "sig:")):
+    if source.startswith(("example:", "sig:")) or format_of(source) != "json":
         return None
+    text = read_text_file(source)
+    if not re.search(r'"kind"\s*:\s*"path"', text):
+        return None  # not worth parsing a large structure twice
     try:
-        data = json.loads(read_text_file(source))
+        data = json.loads(text)
     except (ValueError, RecursionError):
         return None
     return data if isinstance(data, dict) and data.get("kind") == "path" else None

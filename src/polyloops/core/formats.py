@@ -29,6 +29,7 @@ import json
 import os
 import tempfile
 from dataclasses import dataclass
+from itertools import chain
 from pathlib import Path
 from typing import Any
 
@@ -72,7 +73,11 @@ def _is_int(x: object) -> bool:
 def _faces(raw: Any, quads: bool) -> list[list[int]]:
     if not isinstance(raw, list) or not raw:
         raise FormatError('"faces" must be a non-empty list of faces')
-    out = []
+    # The common case in one sweep of C loops; the per-face loop names the first bad face.
+    if set(map(type, raw)) == {list} and set(map(type, chain.from_iterable(raw))) == {int} \
+            and min(chain.from_iterable(raw), default=0) >= 0 and min(map(len, raw)) >= 3 \
+            and (not quads or set(map(len, raw)) == {4}):
+        return raw
     for f, face in enumerate(raw):
         if not isinstance(face, list) or not all(_is_int(c) and c >= 0 for c in face):
             raise FormatError(f"face {f} must be a list of non-negative integer corner ids")
@@ -80,8 +85,7 @@ def _faces(raw: Any, quads: bool) -> list[list[int]]:
             raise FormatError(f"face {f} has {len(face)} corners; polycube faces are quads")
         if len(face) < 3:
             raise FormatError(f"face {f} has {len(face)} corners; a face needs at least 3")
-        out.append(list(face))
-    return out
+    return raw
 
 
 def _positions(raw: Any, n: int) -> list[tuple[int, int, int]]:
@@ -100,19 +104,22 @@ def _positions(raw: Any, n: int) -> list[tuple[int, int, int]]:
     return out
 
 
+LABELS: dict[str, Direction | Axis] = {**{str(d): d for d in Direction}, **{a.name: a for a in Axis}}
+
+
 def _label(text: Any, i: int) -> Direction | Axis:
-    if isinstance(text, str):
-        for parse in (Direction.parse, Axis.parse):
-            try:
-                return parse(text)
-            except ValueError:
-                pass
-    raise FormatError(f"edge {i} has unknown label {text!r} (expected +X -X +Y -Y +Z -Z, or X Y Z)")
+    label = LABELS.get(text) if isinstance(text, str) else None
+    if label is None:
+        raise FormatError(f"edge {i} has unknown label {text!r} (expected +X -X +Y -Y +Z -Z, or X Y Z)")
+    return label
 
 
 def _labels(raw: Any) -> dict[tuple[int, int], Direction | Axis]:
     if not isinstance(raw, list):
         raise FormatError('"edges" must be a list of [u, v, label]')
+    fast = _labels_fast(raw)
+    if fast is not None:
+        return fast
     out: dict[tuple[int, int], Direction | Axis] = {}
     for i, item in enumerate(raw):
         if not (isinstance(item, list) and len(item) == 3 and _is_int(item[0]) and _is_int(item[1])):
@@ -122,6 +129,30 @@ def _labels(raw: Any) -> dict[tuple[int, int], Direction | Axis]:
             raise FormatError(f"edge ({u}, {v}) is listed twice")
         out[(u, v)] = _label(item[2], i)
     return out
+
+
+def _labels_fast(raw: list) -> dict[tuple[int, int], Direction | Axis] | None:
+    """The labels of a well-formed list in a few sweeps of C loops, or ``None`` (then the
+    item-by-item reader finds and names the first problem)."""
+    if not raw or set(map(type, raw)) != {list} or set(map(len, raw)) != {3}:
+        return None
+    us, vs, texts = zip(*raw, strict=True)
+    if set(map(type, us)) | set(map(type, vs)) != {int}:
+        return None
+    labels = [LABELS.get(t) if type(t) is str else None for t in texts]
+    if None in labels:
+        return None
+    import numpy as np
+
+    u = np.fromiter(us, dtype=np.int64, count=len(us))
+    v = np.fromiter(vs, dtype=np.int64, count=len(vs))
+    low, high = np.minimum(u, v), np.maximum(u, v)
+    if low.min() < 0:
+        return None
+    keys = np.sort(low * (int(high.max()) + 1) + high)
+    if np.any(keys[1:] == keys[:-1]):
+        return None  # an edge listed twice, in either direction
+    return dict(zip(zip(us, vs, strict=True), labels, strict=True))
 
 
 def parse_document(text: str) -> Document:

@@ -25,11 +25,15 @@ from collections import defaultdict
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
+from itertools import chain
 from typing import TYPE_CHECKING
 
 from networkx.utils import UnionFind
 
+from polyloops.core.arrays import LARGE
+
 if TYPE_CHECKING:
+    from polyloops.core.arrays import MapArrays
     from polyloops.core.loops import LoopSystem
 
 
@@ -98,8 +102,71 @@ class HalfEdgeMap:
     # -- construction -----------------------------------------------------------------
     @classmethod
     def from_faces(cls, faces: Iterable[Sequence[int]]) -> HalfEdgeMap:
-        """Build the map, or raise :class:`MapError` listing every problem."""
-        fs = _validate_faces(list(faces))
+        """Build the map, or raise :class:`MapError` listing every problem.
+
+        Large face lists go through array kernels (:mod:`polyloops.core.arrays`), which accept
+        a valid surface only; anything they would refuse is rebuilt by the tuple code, which
+        names every problem.  Both give the same map.
+        """
+        faces = list(faces)
+        if sum(len(f) for f in faces) >= LARGE:
+            m = cls._from_valid_faces_arrays(faces)
+            if m is not None:
+                return m
+        return cls._from_faces_tuples(faces)
+
+    @classmethod
+    def _from_valid_faces_arrays(cls, faces: list[Sequence[int]]) -> HalfEdgeMap | None:
+        """The map of a valid face list by array kernels, or ``None`` when anything is off."""
+        import numpy as np
+
+        from polyloops.core.arrays import components, cycles
+
+        if not faces or set(map(type, chain.from_iterable(faces))) != {int}:
+            return None
+        n_faces = len(faces)
+        lengths = np.fromiter(map(len, faces), dtype=np.int64, count=n_faces)
+        if lengths.min() < 3:
+            return None
+        origin = np.fromiter(chain.from_iterable(faces), dtype=np.int64, count=int(lengths.sum()))
+        if origin.min() < 0:
+            return None
+        n = int(origin.max()) + 1
+        if np.count_nonzero(np.bincount(origin, minlength=n)) != n:
+            return None
+        face_of = np.repeat(np.arange(n_faces), lengths)
+        face_start = np.cumsum(lengths) - lengths
+        base = face_start[face_of]
+        pos = np.arange(len(origin)) - base
+        k = lengths[face_of]
+        nxt = base + (pos + 1) % k
+        prv = base + (pos - 1) % k
+        # A face visits each corner once: no two darts of one face share an origin.
+        order = np.lexsort((origin, face_of))
+        if np.any((face_of[order][1:] == face_of[order][:-1]) & (origin[order][1:] == origin[order][:-1])):
+            return None
+        target = origin[nxt]
+        key = origin * n + target
+        sorted_keys = np.sort(key)
+        if np.any(sorted_keys[1:] == sorted_keys[:-1]):
+            return None  # an edge twice in one direction
+        by_key = np.argsort(key)
+        where = np.searchsorted(key[by_key], target * n + origin)
+        where[where == len(key)] = 0
+        if not np.array_equal(key[by_key[where]], target * n + origin):
+            return None  # an edge in one face only
+        twin = by_key[where]
+        if cycles(twin[prv])[0] != n:
+            return None  # some corner's faces form more than one fan
+        if components(n, origin, target)[0] != 1:
+            return None
+        return cls(tuple(map(tuple, faces)), n, tuple(origin.tolist()), tuple(face_of.tolist()),
+                   tuple(nxt.tolist()), tuple(prv.tolist()), tuple(twin.tolist()),
+                   tuple(face_start.tolist()))
+
+    @classmethod
+    def _from_faces_tuples(cls, faces: list[Sequence[int]]) -> HalfEdgeMap:
+        fs = _validate_faces(faces)
         origin: list[int] = []
         face_of: list[int] = []
         nxt: list[int] = []
@@ -251,7 +318,16 @@ class HalfEdgeMap:
         return self._edge_ids[d]
 
     @cached_property
+    def arrays(self) -> MapArrays:
+        """The dart permutations as numpy arrays (for the array kernels)."""
+        from polyloops.core.arrays import MapArrays
+
+        return MapArrays.of(self)
+
+    @cached_property
     def _edge_ids(self) -> tuple[int, ...]:
+        if self.num_darts >= LARGE:
+            return tuple(self.arrays.edge_id.tolist())
         ids = [-1] * self.num_darts
         k = 0
         for d in range(self.num_darts):

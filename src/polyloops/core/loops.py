@@ -21,6 +21,7 @@ from __future__ import annotations
 
 from collections import Counter
 from dataclasses import dataclass
+from functools import cached_property
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
@@ -62,6 +63,20 @@ class LoopSystem:
     # +1 if the dart points from the left to the right of its loop's stored walk, else -1.
     side_of_dart: tuple[int, ...]
 
+    @cached_property
+    def loop_array(self):
+        """``loop_of_dart`` as a numpy array."""
+        import numpy as np
+
+        return np.asarray(self.loop_of_dart, dtype=np.int64)
+
+    @cached_property
+    def side_array(self):
+        """``side_of_dart`` as a numpy array."""
+        import numpy as np
+
+        return np.asarray(self.side_of_dart, dtype=np.int64)
+
     def loops_of_face(self, m: HalfEdgeMap, f: int) -> tuple[int, ...]:
         """The loops crossing in face ``f``, one per pair of opposite edges."""
         darts = list(m.face_darts(f))
@@ -70,6 +85,61 @@ class LoopSystem:
 
 def trace_loops(m: HalfEdgeMap) -> LoopSystem:
     """Trace every loop of ``m``; raise :class:`OddFaceError` on an odd face."""
+    from polyloops.core.arrays import LARGE
+
+    if m.num_darts >= LARGE:
+        return _trace_loops_arrays(m)
+    return _trace_loops_tuples(m)
+
+
+def _odd_face(m: HalfEdgeMap) -> None:
+    for f, face in enumerate(m.faces):
+        if len(face) % 2:
+            raise OddFaceError(f"face {f} has {len(face)} sides; loops need faces with an even number")
+
+
+def _trace_loops_arrays(m: HalfEdgeMap) -> LoopSystem:
+    """:func:`trace_loops` with the crossing permutation and its cycles computed on arrays."""
+    import numpy as np
+
+    from polyloops.core.arrays import cycles
+
+    a = m.arrays
+    lengths = np.diff(np.append(a.face_start, m.num_darts))
+    if np.any(lengths % 2):
+        _odd_face(m)
+    half = (lengths // 2)[a.face_of]
+    e = np.arange(m.num_darts)
+    for step in range(int(half.max())):
+        e = np.where(step < half, a.next[e], e)
+    cross = a.twin[e]
+    count, cycle_of = cycles(cross)
+    lowest = np.full(count, m.num_darts, dtype=np.int64)
+    np.minimum.at(lowest, cycle_of, np.arange(m.num_darts))
+    # A loop is a cycle and the cycle of its twins; it walks the one with the lower dart.
+    other = cycle_of[a.twin[lowest]]
+    stored = np.flatnonzero(lowest < lowest[other])  # cycles that are a loop's stored walk
+    starts = lowest[stored]  # increasing, so loops are numbered by their lowest dart
+    cross_list = cross.tolist()
+    face_of, edge_ids, twin = m.face_of, m._edge_ids, m.twin
+    loop_of = [-1] * m.num_darts
+    side = [0] * m.num_darts
+    loops = []
+    for k, d in enumerate(starts.tolist()):
+        orbit = [d]
+        e = cross_list[d]
+        while e != d:
+            orbit.append(e)
+            e = cross_list[e]
+        for x in orbit:
+            loop_of[x] = loop_of[twin[x]] = k
+            side[x], side[twin[x]] = 1, -1
+        faces = tuple(face_of[x] for x in orbit)
+        loops.append(Loop(k, tuple(orbit), faces, tuple(edge_ids[x] for x in orbit)))
+    return LoopSystem(tuple(loops), tuple(loop_of), tuple(side))
+
+
+def _trace_loops_tuples(m: HalfEdgeMap) -> LoopSystem:
     half: list[int] = []
     for f, face in enumerate(m.faces):
         if len(face) % 2:

@@ -30,8 +30,10 @@ from __future__ import annotations
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from functools import cached_property
+from itertools import chain
 from typing import TYPE_CHECKING
 
+from polyloops.core.arrays import LARGE
 from polyloops.core.directions import Axis, Direction
 from polyloops.core.halfedge import HalfEdgeMap
 from polyloops.core.loops import Loop, LoopSystem
@@ -73,6 +75,73 @@ class LoopStructure:
         must all be signed or all unsigned, and agree along each loop.
         """
         m = HalfEdgeMap.from_faces(faces)
+        if m.num_darts >= LARGE:
+            found = cls._from_valid_edge_labels_arrays(m, labels)
+            if found is not None:
+                return found
+        return cls._from_edge_labels_tuples(m, labels)
+
+    @classmethod
+    def _from_valid_edge_labels_arrays(cls, m: HalfEdgeMap, labels: Mapping[tuple[int, int], Direction | Axis]
+                                       ) -> LoopStructure | None:
+        """:meth:`from_edge_labels` on arrays for valid labels, ``None`` when anything is off
+        (the tuple code then names the problem)."""
+        import numpy as np
+
+        from polyloops.core.arrays import all_distinct
+
+        a = m.arrays
+        n = m.num_corners
+        if len(labels) != m.num_edges:
+            return None
+        ends = np.fromiter(chain.from_iterable(labels), dtype=np.int64, count=2 * len(labels))
+        us, vs = ends[0::2], ends[1::2]
+        if ends.min() < 0 or ends.max() >= n:
+            return None
+        # Direction d as int(d) (0..5), Axis x as 6 + x; IntEnums hash as ints, so no dict here.
+        kinds = set(map(type, labels.values()))
+        if not kinds <= {Direction, Axis}:
+            return None
+        codes = np.fromiter(map(int, labels.values()), dtype=np.int64, count=len(labels))
+        if kinds == {Axis}:
+            codes += 6
+        if len(kinds) != 1:
+            return None  # signed and unsigned mixed
+        dart_keys = a.origin * n + a.target
+        order = np.argsort(dart_keys)
+        where = np.searchsorted(dart_keys[order], us * n + vs)
+        where[where == len(order)] = 0
+        darts = order[where]
+        if not np.array_equal(dart_keys[darts], us * n + vs):
+            return None  # not an edge
+        if not all_distinct(a.edge_id[darts]):
+            return None  # an edge labelled twice (so another one missing)
+        oriented = codes.max() < 6
+        axis = np.where(codes < 6, codes // 2, codes - 6)
+        sign = np.where(codes < 6, 1 - 2 * (codes % 2), 0)
+        axis_of = np.empty(m.num_darts, dtype=np.int64)
+        sign_of = np.empty(m.num_darts, dtype=np.int64)
+        axis_of[darts], axis_of[a.twin[darts]] = axis, axis
+        sign_of[darts], sign_of[a.twin[darts]] = sign, -sign
+        system = m.loop_system
+        loop_of = system.loop_array
+        walked = system.side_array > 0
+        value = (axis_of * 3 + sign_of + 1)[walked]
+        loops = loop_of[walked]
+        k = len(system.loops)
+        low = np.full(k, 99)
+        high = np.full(k, -1)
+        np.minimum.at(low, loops, value)
+        np.maximum.at(high, loops, value)
+        if np.any(low != high):
+            return None  # labels disagree along a loop
+        axes = tuple(Axis(x) for x in (low // 3).tolist())
+        signs = tuple((low % 3 - 1).tolist()) if oriented else None
+        return cls(m, axes, signs)
+
+    @classmethod
+    def _from_edge_labels_tuples(cls, m: HalfEdgeMap, labels: Mapping[tuple[int, int], Direction | Axis]
+                                 ) -> LoopStructure:
         system = m.loop_system
         dart_label: dict[int, Direction | Axis] = {}
         for (u, v), label in labels.items():
@@ -171,6 +240,14 @@ class LoopStructure:
         if self.signs is None:
             raise ValueError("a labelled loop structure has no directions; orient it first")
         ls = self.map.loop_system
+        if self.map.num_darts >= LARGE:
+            import numpy as np
+
+            loop_of = ls.loop_array
+            sign = np.asarray(self.signs, dtype=np.int64)[loop_of] * ls.side_array
+            codes = 2 * np.asarray(self.axes, dtype=np.int64)[loop_of] + (sign < 0)
+            members = list(Direction)
+            return tuple(members[c] for c in codes.tolist())
         return tuple(
             Direction.of(self.axes[ls.loop_of_dart[d]], self.signs[ls.loop_of_dart[d]] * ls.side_of_dart[d])
             for d in range(self.map.num_darts)

@@ -50,6 +50,53 @@ class Zones:
 
 
 def compute_zones(ls: LoopStructure, axis: Axis) -> Zones:
+    from polyloops.core.arrays import LARGE
+
+    if ls.map.num_darts >= LARGE:
+        return _compute_zones_arrays(ls, axis)
+    return _compute_zones_tuples(ls, axis)
+
+
+def dart_axes(ls: LoopStructure):
+    """The axis of every dart's loop, as an array."""
+    import numpy as np
+
+    return np.asarray(ls.axes, dtype=np.int64)[ls.map.loop_system.loop_array]
+
+
+def _compute_zones_arrays(ls: LoopStructure, axis: Axis) -> Zones:
+    """:func:`compute_zones` with components and counts on arrays."""
+    import numpy as np
+
+    from polyloops.core.arrays import components
+
+    m = ls.map
+    a = m.arrays
+    axis_of = dart_axes(ls)
+    lower = a.edge_darts
+    keep = lower[axis_of[lower] != axis]
+    count, zone_of = components(m.num_corners, a.origin[keep], a.target[keep])
+    sides: dict[int, tuple[int, int]] = {}
+    boundary = np.zeros(count, dtype=np.int64)
+    zone_list = zone_of.tolist()
+    for lp in m.loop_system.loops:
+        if ls.axes[lp.id] == axis:
+            d = lp.darts[0]
+            left, right = zone_list[m.origin_of[d]], zone_list[m.target(d)]
+            sides[lp.id] = (left, right)
+            boundary[left] += 1
+            boundary[right] += 1
+    crossed = np.zeros(m.num_faces, dtype=bool)
+    crossed[a.face_of[axis_of == axis]] = True
+    first_corner = a.origin[a.face_start]
+    chi = (np.bincount(zone_of, minlength=count)
+           - np.bincount(zone_of[a.origin[keep]], minlength=count)
+           + np.bincount(zone_of[first_corner[~crossed]], minlength=count))
+    genera = tuple(((2 - boundary - chi) // 2).tolist())
+    return Zones(axis, tuple(zone_list), count, sides, genera)
+
+
+def _compute_zones_tuples(ls: LoopStructure, axis: Axis) -> Zones:
     m = ls.map
     system = m.loop_system
     parts = UnionFind(range(m.num_corners))

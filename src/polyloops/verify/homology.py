@@ -168,8 +168,116 @@ def cut_zones(ls: LoopStructure, axis: Axis) -> dict[int, CellComplex]:
 
 def zone_genera(ls: LoopStructure, axis: Axis) -> tuple[int, ...]:
     """The genus of every ``axis``-zone, from the homology of the cut surface."""
+    from polyloops.core.arrays import LARGE
+
+    if ls.map.num_darts >= LARGE and all(len(face) == 4 for face in ls.map.faces):
+        found = _zone_genera_arrays(ls, axis)
+        if found is not None:
+            return found
     pieces = cut_zones(ls, axis)
     return tuple(pieces[z].genus() for z in sorted(pieces))
+
+
+def _zone_genera_arrays(ls: LoopStructure, axis: Axis) -> tuple[int, ...] | None:
+    """:func:`zone_genera` by counting on arrays: the same cut complex as :func:`cut_zones`
+    (vertex, edge and face counts, the components of its 1-skeleton, of its boundary and of
+    its faces across interior edges), grouped by zone.  ``None`` for a map whose cut complex
+    would merge two cut segments (a face meeting another along two opposite edges): then the
+    tuple code builds it."""
+    import numpy as np
+
+    from polyloops.core.arrays import all_distinct, components
+    from polyloops.core.zones import dart_axes
+
+    m = ls.map
+    a = m.arrays
+    n_corners, n_darts = m.num_corners, m.num_darts
+    cut = dart_axes(ls) == axis
+    lower = a.edge_darts
+    cut_edges = np.flatnonzero(cut[lower])
+    j = np.full(m.num_edges, -1, dtype=np.int64)
+    j[cut_edges] = np.arange(len(cut_edges))
+    darts = np.arange(n_darts)
+    is_lower = lower[a.edge_id] == darts
+
+    def mid(d: np.ndarray, at_target: bool) -> np.ndarray:
+        """The midpoint copy of cut dart d's edge on the side of its origin (or target)."""
+        end = is_lower[d] == at_target  # end 1 is the lower dart's target
+        return n_corners + 2 * j[a.edge_id[d]] + end.astype(np.int64)
+
+    n_vertices = n_corners + 2 * len(cut_edges)
+    # Faces: quads the axis does not cross, and two halves of each one it does.
+    crossed = np.zeros(m.num_faces, dtype=bool)
+    crossed[a.face_of[cut]] = True
+    first = a.face_start  # quads: darts first .. first + 3
+    whole = np.flatnonzero(~crossed)
+    halves = np.flatnonzero(crossed)
+    pos = np.where(cut[first[halves]], 0, 1)  # the first cut dart of each crossed face
+    d0 = first[halves] + pos
+    d1, d2, d3 = d0 + 1, d0 + 2, (d0 + 3 - first[halves]) % 4 + first[halves]
+    n_whole = len(whole)
+    complex_face = np.full(n_darts, -1, dtype=np.int64)
+    complex_face[(first[whole, None] + np.arange(4)).ravel()] = np.repeat(np.arange(n_whole), 4)
+    h1 = n_whole + 2 * np.arange(len(halves))  # the half with d1, after d0 and before d2
+    h2 = h1 + 1
+    complex_face[d1], complex_face[d3] = h1, h2
+    half_at_target = np.full(n_darts, -1, dtype=np.int64)
+    half_at_origin = np.full(n_darts, -1, dtype=np.int64)
+    half_at_target[d0], half_at_origin[d0] = h1, h2
+    half_at_target[d2], half_at_origin[d2] = h2, h1
+    n_faces = n_whole + 2 * len(halves)
+    # Edges: uncut map edges; two half-edges per cut edge; one cut segment per half.
+    uncut = lower[~cut[lower]]
+    cl = lower[cut_edges]
+    ends_a = [a.origin[uncut], a.origin[cl], mid(cl, True)]
+    ends_b = [a.target[uncut], mid(cl, False), a.target[cl]]
+    seg_a = np.concatenate([mid(d0, True), mid(d2, True)])
+    seg_b = np.concatenate([mid(d2, False), mid(d0, False)])
+    seg_keys = np.minimum(seg_a, seg_b) * n_vertices + np.maximum(seg_a, seg_b)
+    if not all_distinct(seg_keys):
+        return None
+    edge_a = np.concatenate([*ends_a, seg_a])
+    edge_b = np.concatenate([*ends_b, seg_b])
+    n_pieces, piece = components(n_vertices, edge_a, edge_b)
+    zones = ls.zones(axis)
+    zone_of_piece = np.full(n_pieces, -1, dtype=np.int64)
+    zone_of_piece[piece[:n_corners]] = np.asarray(zones.zone_of)
+    if np.any(zone_of_piece < 0):
+        return None
+    k = zones.count
+    zone_of_vertex = zone_of_piece[piece]
+    v = np.bincount(zone_of_vertex, minlength=k)
+    e = np.bincount(zone_of_vertex[edge_a], minlength=k)
+    c = np.bincount(zone_of_piece, minlength=k)
+    face_zone = np.empty(n_faces, dtype=np.int64)
+    face_zone[:n_whole] = zone_of_vertex[a.origin[first[whole]]]
+    face_zone[h1] = zone_of_vertex[a.target[d0]]
+    face_zone[h2] = zone_of_vertex[a.target[d2]]
+    f = np.bincount(face_zone, minlength=k)
+    # Boundary circles: components of the cut segments (on the midpoint copies).
+    n_circles, circle = components(n_vertices, seg_a, seg_b)
+    on_rim = np.zeros(n_vertices, dtype=bool)
+    on_rim[seg_a] = True
+    rim_circles = np.unique(circle[on_rim])
+    circle_zone = np.full(n_circles, -1, dtype=np.int64)
+    circle_zone[circle[on_rim]] = zone_of_vertex[on_rim]
+    b = np.bincount(circle_zone[rim_circles], minlength=k)
+    # Face groups across interior edges (uncut edges and half-edges); closed ones touch no segment.
+    twin_uncut = a.twin[uncut]
+    ct = a.twin[cl]
+    adj_a = np.concatenate([complex_face[uncut], half_at_origin[cl], half_at_target[cl]])
+    adj_b = np.concatenate([complex_face[twin_uncut], half_at_target[ct], half_at_origin[ct]])
+    n_groups, group = components(n_faces, adj_a, adj_b)
+    open_group = np.zeros(n_groups, dtype=bool)
+    open_group[group[n_whole:]] = True
+    group_zone = np.full(n_groups, -1, dtype=np.int64)
+    group_zone[group] = face_zone
+    closed = np.bincount(group_zone[~open_group], minlength=k)
+    b1 = (e - v + c) - (f - closed)
+    twice = np.where(b > 0, b1 - b + 1, b1)
+    if np.any(twice % 2) or np.any(twice < 0):
+        raise ValueError("a zone's b1 and boundary circles do not fit an orientable surface")
+    return tuple((twice // 2).tolist())
 
 
 def gf2_rank(rows: Iterable[Sequence[int]]) -> int:

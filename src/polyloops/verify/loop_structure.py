@@ -17,6 +17,7 @@ from dataclasses import dataclass
 
 import networkx as nx
 
+from polyloops.core.arrays import LARGE
 from polyloops.core.directions import Axis, Direction
 from polyloops.core.structure import LoopStructure
 from polyloops.verify.report import NOT_APPLICABLE, Report, ReportBuilder, Violation
@@ -56,6 +57,8 @@ def crossing_violations(rb: ReportBuilder, ls: LoopStructure, condition: str = "
     and the remark after it), so they are reported for labelled structures too.
     """
     m = ls.map
+    if m.num_darts >= LARGE and _no_crossing_problem(ls):
+        return []
     out = []
     for lp in ls.loops:
         if lp.self_crossings:
@@ -75,8 +78,38 @@ def crossing_violations(rb: ReportBuilder, ls: LoopStructure, condition: str = "
     return out
 
 
+def _no_crossing_problem(ls: LoopStructure) -> bool:
+    """Array check (quads): no loop visits a face twice and no face has two loops of one axis."""
+    import numpy as np
+
+    m = ls.map
+    if any(len(face) != 4 for face in m.faces):
+        return False
+    a = m.arrays
+    loop_of = m.loop_system.loop_array
+    first = a.face_start
+    l0, l1 = loop_of[first], loop_of[first + 1]
+    axes = np.asarray(ls.axes, dtype=np.int64)
+    return not np.any((l0 == l1) | (axes[l0] == axes[l1]))
+
+
+def _direction_codes(ls: LoopStructure):
+    """``int(direction)`` of every dart, as an array (oriented structures)."""
+    import numpy as np
+
+    system = ls.map.loop_system
+    loop_of = system.loop_array
+    sign = np.asarray(ls.signs, dtype=np.int64)[loop_of] * system.side_array
+    return 2 * np.asarray(ls.axes, dtype=np.int64)[loop_of] + (sign < 0)
+
+
 def repeated_direction_violations(rb: ReportBuilder, ls: LoopStructure) -> list[Violation]:
     m = ls.map
+    if m.num_darts >= LARGE:
+        from polyloops.core.arrays import all_distinct
+
+        if all_distinct(m.arrays.origin * 6 + _direction_codes(ls)):
+            return []
     out = []
     for c in range(m.num_corners):
         by_direction: dict[Direction, list[int]] = defaultdict(list)
@@ -116,9 +149,15 @@ def check_polycube_loop_structure(ls: LoopStructure) -> Report:
     m = ls.map
     rb = ReportBuilder("loop-structure", DEF4)
     rb.condition("1", "no three loops intersect at a single point", _many_loops(rb, ls, "1"))
+    if m.num_darts >= LARGE:
+        import numpy as np
+
+        degrees = np.bincount(m.arrays.origin, minlength=m.num_corners).tolist()
+    else:
+        degrees = [m.degree(c) for c in range(m.num_corners)]
     rb.condition("2", "each loop region is bounded by at least three loop segments", [
-        rb.violation("2", f"region {c} is bounded by {m.degree(c)} segments", region=c, segments=m.degree(c))
-        for c in range(m.num_corners) if m.degree(c) < 3])
+        rb.violation("2", f"region {c} is bounded by {k} segments", region=c, segments=k)
+        for c, k in enumerate(degrees) if k < 3])
     statement3 = "within each region boundary, no two segments have the same axis label and side label"
     found = crossing_violations(rb, ls)
     if ls.oriented:
@@ -161,7 +200,8 @@ class GenusBalance:
                 "Gamma": self.gamma, "rhs": self.rhs, "holds": self.holds}
 
 
-def genus_balance(ls: LoopStructure, independent: bool = True) -> list[GenusBalance]:
+def genus_balance(ls: LoopStructure, independent: bool = True,
+                  genera: dict[Axis, tuple[int, ...]] | None = None) -> list[GenusBalance]:
     """Theorem 3's two sides for the X-, Y- and Z-graphs (labels suffice: no sides needed).
 
     With ``independent`` (the default), Gamma comes from the homology of the cut surface
@@ -175,7 +215,10 @@ def genus_balance(ls: LoopStructure, independent: bool = True) -> list[GenusBala
     out = []
     for axis in Axis:
         zones = ls.zones(axis)
-        gamma = sum(zone_genera(ls, axis)) if independent and quads else zones.total_genus
+        if independent and quads:
+            gamma = sum(genera[axis] if genera is not None else zone_genera(ls, axis))
+        else:
+            gamma = zones.total_genus
         out.append(GenusBalance(axis, ls.axes.count(axis), zones.count, ls.genus, gamma))
     return out
 
@@ -198,18 +241,19 @@ def check_theorem3(ls: LoopStructure) -> Report:
                      "not checked: a face is not a quad, so zones are not cut along disjoint loops",
                      status="not checked")
         return rb.build()
-    for b in genus_balance(ls):
+    computed = {axis: zone_genera(ls, axis) for axis in Axis}
+    for b in genus_balance(ls, genera=computed):
         rb.condition(str(b.axis), f"{b.axis}-graph: |E| = g + |V| - 1 - Gamma", [] if b.holds else [
             rb.violation(str(b.axis), f"{b.axis}-graph: |E| = {b.edges} but g + |V| - 1 - Gamma = "
                          f"{b.genus} + {b.vertices} - 1 - {b.gamma} = {b.rhs}", **b.to_json())],
                      note=THEOREM3_NOTE)
     mismatched = []
     for axis in Axis:
-        kept, computed = ls.zones(axis).genera, zone_genera(ls, axis)
-        if kept != computed:
+        kept = ls.zones(axis).genera
+        if kept != computed[axis]:
             mismatched.append(rb.violation(
                 "zone genera", f"{axis}-zone genera {list(kept)} from Euler characteristics differ "
-                f"from {list(computed)} from homology", axis=str(axis)))
+                f"from {list(computed[axis])} from homology", axis=str(axis)))
     rb.condition("zone genera", "zone genera from Euler characteristics equal those from homology",
                  mismatched)
     return rb.build()

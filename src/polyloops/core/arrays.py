@@ -1,0 +1,84 @@
+"""Array kernels for large maps: connected components and permutation cycles in C (scipy).
+
+The kernel's objects keep tuples of Python integers, which small structures (the catalog's
+millions of maps) handle fastest.  Past :data:`LARGE` darts, the same computations run on
+numpy arrays; every such kernel has its tuple twin, and the tests compare the two.
+
+>>> import numpy as np
+>>> count, labels = components(5, np.array([3, 1]), np.array([4, 0]))
+>>> count, labels.tolist()
+(3, [0, 0, 1, 2, 2])
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+if TYPE_CHECKING:
+    from polyloops.core.halfedge import HalfEdgeMap
+
+LARGE = 4096  # darts: from here on, maps use the array kernels
+
+
+def components(n: int, a: np.ndarray, b: np.ndarray) -> tuple[int, np.ndarray]:
+    """Connected components of the graph on ``0..n-1`` with edges ``a[i] -- b[i]``, numbered
+    by their lowest member (so the same numbering as a union-find read in order)."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    graph = coo_matrix((np.ones(len(a), dtype=np.int8), (a, b)), shape=(n, n))
+    count, labels = connected_components(graph, directed=False)
+    return count, renumber_by_first(labels, count)
+
+
+def renumber_by_first(labels: np.ndarray, count: int) -> np.ndarray:
+    """Labels renumbered in the order in which they first occur."""
+    first = np.full(count, len(labels), dtype=np.int64)
+    np.minimum.at(first, labels, np.arange(len(labels)))
+    order = np.empty(count, dtype=np.int64)
+    order[np.argsort(first, kind="stable")] = np.arange(count)
+    return order[labels]
+
+
+def cycles(perm: np.ndarray) -> tuple[int, np.ndarray]:
+    """The cycles of a permutation, numbered by their lowest element."""
+    n = len(perm)
+    return components(n, np.arange(n), perm)
+
+
+def all_distinct(values: np.ndarray) -> bool:
+    """No value twice (by sorting: faster than hashing for integer arrays)."""
+    s = np.sort(values)
+    return not np.any(s[1:] == s[:-1])
+
+
+def as_array(values) -> np.ndarray:
+    return np.asarray(values, dtype=np.int64)
+
+
+@dataclass(frozen=True, eq=False)
+class MapArrays:
+    """A map's darts as arrays: ``origin``, ``target``, ``face_of``, ``next``, ``prev``,
+    ``twin``, ``face_start``, and ``edge_id`` (edges numbered by their lower dart)."""
+
+    origin: np.ndarray
+    target: np.ndarray
+    face_of: np.ndarray
+    next: np.ndarray
+    prev: np.ndarray
+    twin: np.ndarray
+    face_start: np.ndarray
+    edge_id: np.ndarray
+    edge_darts: np.ndarray  # the lower dart of each edge
+
+    @classmethod
+    def of(cls, m: HalfEdgeMap) -> MapArrays:
+        origin, nxt, twin = as_array(m.origin_of), as_array(m.next), as_array(m.twin)
+        darts = np.arange(len(origin))
+        lower = np.minimum(darts, twin)
+        rank = np.cumsum(darts < twin) - 1
+        return cls(origin, origin[nxt], as_array(m.face_of), nxt, as_array(m.prev), twin,
+                   as_array(m.face_start), rank[lower], np.flatnonzero(darts < twin))

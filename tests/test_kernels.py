@@ -1,0 +1,174 @@
+"""The array kernels against their tuple twins.
+
+Large maps (from :data:`polyloops.core.arrays.LARGE` darts on) go through numpy and scipy;
+small ones through tuples.  Here both run on the same random structures, valid and broken,
+and must give the same maps, loops, zones, zone genera and reports.
+"""
+
+import importlib
+import random
+
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+import polyloops.core.arrays as arrays
+import polyloops.core.halfedge as halfedge
+import polyloops.core.structure as structure
+from polyloops.core.builders import box, torus_grid
+from polyloops.core.directions import Axis, Direction
+from polyloops.core.examples import load_example
+from polyloops.core.halfedge import FaceListError, HalfEdgeMap, MapError
+from polyloops.core.loops import _trace_loops_arrays, _trace_loops_tuples
+from polyloops.core.structure import LabelError, LoopStructure
+from polyloops.core.zones import _compute_zones_arrays, _compute_zones_tuples
+from polyloops.verify import verify
+from polyloops.verify.homology import _zone_genera_arrays, cut_zones
+from strategies import handle_zone_polycubes, perturbed_structures, polycubes
+
+# ``polyloops.verify`` the attribute is the function; the module is imported by name.
+loop_structure = importlib.import_module("polyloops.verify.loop_structure")
+
+SETTINGS = settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+
+
+def tuple_genera(ls, axis):
+    pieces = cut_zones(ls, axis)
+    return tuple(pieces[z].genus() for z in sorted(pieces))
+
+
+@pytest.fixture
+def arrays_everywhere(monkeypatch):
+    """Every size counts as large, so the array kernels run on small structures too."""
+    for module in (arrays, halfedge, structure, loop_structure):
+        monkeypatch.setattr(module, "LARGE", 0)
+
+
+def check_map_twins(faces):
+    """The array construction gives the tuple map, or declines exactly when the tuple code
+    raises (which then names the problems)."""
+    fast = HalfEdgeMap._from_valid_faces_arrays([list(f) for f in faces])
+    try:
+        slow = HalfEdgeMap._from_faces_tuples([list(f) for f in faces])
+    except (MapError, FaceListError):
+        assert fast is None
+        return None
+    assert fast is not None
+    for name in ("faces", "num_corners", "origin_of", "face_of", "next", "prev", "twin", "face_start"):
+        assert getattr(fast, name) == getattr(slow, name), name
+    return slow
+
+
+@SETTINGS
+@given(polycubes(), st.integers(0, 2**16))
+def test_map_construction_twins_on_valid_and_broken_faces(q, seed):
+    rng = random.Random(seed)
+    faces = [list(f) for f in q.faces]
+    m = check_map_twins(faces)
+    assert m is not None
+    broken = [list(f) for f in faces]
+    kind = rng.randrange(5)
+    if kind == 0:
+        broken.pop(rng.randrange(len(broken)))  # a hole: boundary edges
+    elif kind == 1:
+        broken[0] = broken[0][::-1]  # one face flipped
+    elif kind == 2:
+        broken.append(list(broken[rng.randrange(len(broken))]))  # an edge in three faces
+    elif kind == 3:
+        broken[1][0] = broken[1][1]  # a corner twice in a face
+    else:
+        n = q.map.num_corners
+        broken += [[c + n for c in f] for f in faces]  # two components
+    check_map_twins(broken)
+
+
+def test_map_twins_on_a_pinched_corner():
+    # Two tetrahedra sharing a corner: every edge in two faces, but corner 0 has two fans.
+    faces = [[0, 1, 2], [0, 2, 3], [0, 3, 1], [1, 3, 2], [0, 4, 5], [0, 5, 6], [0, 6, 4], [4, 6, 5]]
+    assert check_map_twins(faces) is None
+
+
+@SETTINGS
+@given(polycubes())
+def test_loops_zones_and_genera_twins(q):
+    ls = q.dualize()
+    m = ls.map
+    assert _trace_loops_arrays(m) == _trace_loops_tuples(m)
+    for axis in Axis:
+        assert _compute_zones_arrays(ls, axis) == _compute_zones_tuples(ls, axis)
+        assert _zone_genera_arrays(ls, axis) == tuple_genera(ls, axis)
+
+
+@SETTINGS
+@given(handle_zone_polycubes())
+def test_genera_twins_where_zones_have_handles(q):
+    ls = q.dualize()
+    for axis in Axis:
+        assert _zone_genera_arrays(ls, axis) == tuple_genera(ls, axis)
+    assert any(sum(_zone_genera_arrays(ls, a)) for a in Axis)
+
+
+def test_genera_twins_on_a_closed_zone():
+    ls = torus_grid(3, 3)  # no Z-loops: one closed zone of genus 1
+    assert [_zone_genera_arrays(ls, a) for a in Axis] == [tuple_genera(ls, a) for a in Axis]
+
+
+@SETTINGS
+@given(st.one_of(perturbed_structures(), polycubes().map(lambda q: q.dualize())))
+def test_reports_are_the_same_with_array_kernels(ls):
+    """Definition 3, Definition 4 and Theorem 3 reports, valid or not, are identical."""
+    expected = verify(ls).to_json()
+    with pytest.MonkeyPatch.context() as mp:
+        for module in (arrays, halfedge, structure, loop_structure):
+            mp.setattr(module, "LARGE", 0)
+        again = LoopStructure(HalfEdgeMap.from_faces(ls.map.faces), ls.axes, ls.signs)
+        assert again == ls
+        assert verify(again).to_json() == expected
+
+
+@SETTINGS
+@given(polycubes(), st.integers(0, 2**16))
+def test_edge_label_twins(q, seed):
+    ls = q.dualize()
+    labels = {(u, v): Direction.parse(lab) for u, v, lab in ls.edge_labels()}
+    rng = random.Random(seed)
+    variants = [labels, {k: v.axis for k, v in labels.items()}]
+    broken = dict(labels)
+    key = rng.choice(list(broken))
+    change = rng.randrange(3)
+    if change == 0:
+        broken[key] = -broken[key]  # sides disagree along a loop
+    elif change == 1:
+        del broken[key]  # missing
+    else:
+        broken[(key[1], key[0])] = broken.pop(key)  # same edge, other direction: fine
+    variants.append(broken)
+    for labelling in variants:
+        fast = LoopStructure._from_valid_edge_labels_arrays(ls.map, labelling)
+        try:
+            slow = LoopStructure._from_edge_labels_tuples(ls.map, labelling)
+        except LabelError:
+            assert fast is None
+            continue
+        assert fast == slow
+
+
+def test_large_structures_use_the_array_kernels_and_agree():
+    """Above the threshold the public functions take the array paths; their results equal
+    the tuple twins' on a box of about 5,000 faces."""
+    q = box(30, 30, 12)
+    assert q.map.num_darts >= arrays.LARGE
+    ls = q.dualize()
+    assert ls.map.loop_system == _trace_loops_tuples(ls.map)
+    for axis in Axis:
+        assert ls.zones(axis) == _compute_zones_tuples(ls, axis)
+    assert verify(ls).valid
+
+
+def test_examples_under_array_kernels(arrays_everywhere):
+    for name in ("cube", "ring", "bridged-ring", "two-axis-holes", "torus-cycle", "double-plus-x",
+                 "self-crossing", "degree-two"):
+        obj = load_example(name)
+        ls = obj.dualize() if hasattr(obj, "dualize") else obj
+        rebuilt = LoopStructure(HalfEdgeMap.from_faces(ls.map.faces), ls.axes, ls.signs)
+        assert rebuilt == ls
