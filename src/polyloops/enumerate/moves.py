@@ -493,8 +493,31 @@ def _removal_groups(ls: LoopStructure, loop: int) -> tuple[UnionFind, list[tuple
     return groups, rungs, set(lp.faces)
 
 
-def check_removal(ls: LoopStructure, loop: int) -> RemovalCheck:
-    """Decide locally whether removing ``loop`` leaves a polycube loop structure."""
+class _LevelArcs:
+    """Each axis's level graph as successor lists, built once for many removal tests."""
+
+    def __init__(self, ls: LoopStructure):
+        self.ls = ls
+        self._succ: dict[Axis, dict[int, list[tuple[int, int]]]] = {}
+
+    def successors(self, axis: Axis) -> dict[int, list[tuple[int, int]]]:
+        """zone -> [(next zone, loop)] along the arcs of ``axis``."""
+        if axis not in self._succ:
+            succ: dict[int, list[tuple[int, int]]] = defaultdict(list)
+            for loop, (a, b) in self.ls.zones(axis).sides.items():
+                tail, head = (a, b) if self.ls.signs[loop] > 0 else (b, a)  # type: ignore[index]
+                succ[tail].append((head, loop))
+            self._succ[axis] = succ
+        return self._succ[axis]
+
+
+def check_removal(ls: LoopStructure, loop: int, arcs: _LevelArcs | None = None) -> RemovalCheck:
+    """Decide locally whether removing ``loop`` leaves a polycube loop structure.
+
+    Touches only the loop's corners, the faces and edges around them, and the loop's level
+    graph (``arcs``, shared by :func:`removals` across loops), so testing every loop costs
+    the total size of the loops plus one search of a level graph per loop.
+    """
     if not ls.oriented:
         raise ValueError("loop moves need an oriented loop structure")
     m = ls.map
@@ -502,32 +525,37 @@ def check_removal(ls: LoopStructure, loop: int) -> RemovalCheck:
     lp = ls.loops[loop]
     if lp.self_crossings:
         return RemovalCheck(loop, False, "the loop crosses itself")
-    groups, rungs, strip = _removal_groups(ls, loop)
-    members: dict[int, list[int]] = defaultdict(list)
+    rungs = [(m.origin(d), m.target(d)) for d in lp.darts]
+    groups = DisjointSets()
     for u, v in rungs:
-        for c in (u, v):
-            if c not in members[groups[c]]:
-                members[groups[c]].append(c)
+        groups.union(u, v)
+    members: dict[object, list[int]] = defaultdict(list)
+    rung_count: dict[object, int] = defaultdict(int)
+    for c in groups.parent:
+        members[groups.find(c)].append(c)
+    for u, _ in rungs:
+        rung_count[groups.find(u)] += 1
     for root, cs in members.items():
-        if len(cs) != sum(1 for u, _ in rungs if groups[u] == root) + 1:
+        if len(cs) != rung_count[root] + 1:
             return RemovalCheck(loop, False, f"corners {sorted(cs)} would merge around a cycle")
-    # Faces that survive must not meet a merged corner twice.
-    for f, face in enumerate(m.faces):
-        if f not in strip:
-            roots = [groups[c] for c in face]
-            if len(set(roots)) != len(roots):
-                return RemovalCheck(loop, False, f"face {f} would meet a merged corner twice")
+    root_of = {c: groups.find(c) for c in groups.parent}
+    strip = set(lp.faces)
+    # Faces that survive must not meet a merged corner twice (only faces at merged corners can).
+    around = sorted({m.face_of[d] for c in root_of for d in m.outgoing(c)} - strip)
+    for f in around:
+        roots = [root_of.get(c, ("corner", c)) for c in m.faces[f]]
+        if len(set(roots)) != len(roots):
+            return RemovalCheck(loop, False, f"face {f} would meet a merged corner twice")
     # Surviving edges at merged corners: the edges along a strip face merge in pairs.
-    merged_darts: dict[int, list[int]] = defaultdict(list)
-    for root, cs in members.items():
+    for root, cs in sorted(members.items(), key=lambda item: min(item[1])):
+        by_far: dict[object, list[int]] = defaultdict(list)
         for c in cs:
-            merged_darts[root] += [d for d in m.outgoing(c) if system.loop_of_dart[d] != loop]
-    for root, ds in merged_darts.items():
-        by_far: dict[int, list[int]] = defaultdict(list)
-        for d in ds:
-            by_far[groups[m.target(d)]].append(d)
+            for d in m.outgoing(c):
+                if system.loop_of_dart[d] != loop:
+                    t = m.target(d)
+                    by_far[root_of.get(t, ("corner", t))].append(d)
         if root in by_far:
-            return RemovalCheck(loop, False, f"an edge would join merged corner {root} to itself")
+            return RemovalCheck(loop, False, f"an edge would join merged corner {min(cs)} to itself")
         directions = []
         for far, fds in by_far.items():
             if len(fds) == 2:
@@ -535,34 +563,29 @@ def check_removal(ls: LoopStructure, loop: int) -> RemovalCheck:
                 pair = (m.face_of[d1] == m.face_of[m.twin[d2]] in strip
                         or m.face_of[d2] == m.face_of[m.twin[d1]] in strip)
                 if not pair or ls.direction(d1) != ls.direction(d2):
-                    return RemovalCheck(loop, False, f"two edges would join corners {root} and {far}")
+                    return RemovalCheck(loop, False, f"two edges would join corners {min(cs)} and {far}")
             elif len(fds) > 2:
-                return RemovalCheck(loop, False, f"edges would join corners {root} and {far} twice")
+                return RemovalCheck(loop, False, f"edges would join corners {min(cs)} and {far} twice")
             directions.append(ls.direction(fds[0]))
         if len(directions) < 3:
-            return RemovalCheck(loop, False, f"merged region {root} would have {len(directions)} segments")
+            return RemovalCheck(loop, False, f"merged region {min(cs)} would have {len(directions)} segments")
         if len(set(directions)) != len(directions):
-            return RemovalCheck(loop, False, f"merged region {root} would have a repeated direction")
-    # Acyclicity: contract the loop's arc and search for a cycle through the merged zone.
+            return RemovalCheck(loop, False, f"merged region {min(cs)} would have a repeated direction")
+    # Acyclicity: with the loop's arc u -> v contracted, a cycle through the merged zone is a
+    # path from {u, v} back to {u, v} along the other arcs.
     axis = ls.axes[loop]
-    zones = ls.zones(axis)
-    left, right = zones.sides[loop]
+    left, right = ls.zones(axis).sides[loop]
     merged = {left, right}
-    succ: dict[int, list[int]] = defaultdict(list)
-    for other, (a, b) in zones.sides.items():
-        if other == loop:
-            continue
-        tail, head = (a, b) if ls.signs[other] > 0 else (b, a)  # type: ignore[index]
-        tail, head = (-1 if tail in merged else tail), (-1 if head in merged else head)
-        succ[tail].append(head)
-    stack, seen_zones = list(succ[-1]), set()
+    succ = (arcs or _LevelArcs(ls)).successors(axis)
+    stack = [z for start in merged for z, other in succ.get(start, ()) if other != loop]
+    seen_zones: set[int] = set()
     while stack:
         z = stack.pop()
-        if z == -1:
+        if z in merged:
             return RemovalCheck(loop, False, f"the {axis}-graph would get a cycle through the merged zone")
         if z not in seen_zones:
             seen_zones.add(z)
-            stack.extend(succ[z])
+            stack.extend(head for head, _ in succ.get(z, ()))
     return RemovalCheck(loop, True)
 
 
@@ -572,7 +595,8 @@ def removable(ls: LoopStructure, loop: int) -> bool:
 
 def removals(ls: LoopStructure) -> list[int]:
     """The loops whose removal leaves a polycube loop structure."""
-    return [lp.id for lp in ls.loops if removable(ls, lp.id)]
+    arcs = _LevelArcs(ls)
+    return [lp.id for lp in ls.loops if check_removal(ls, lp.id, arcs).valid]
 
 
 def remove_loop(ls: LoopStructure, loop: int) -> LoopStructure:
