@@ -24,9 +24,13 @@ True
 
 from __future__ import annotations
 
+from collections import Counter
 from dataclasses import dataclass
 from functools import cached_property
 
+import numpy as np
+
+from polyloops.core.arrays import LARGE
 from polyloops.core.directions import Axis, Direction
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LoopStructure
@@ -98,12 +102,179 @@ def _code(nxt: list[int], twin: list[int], lab: list[int], root: int,
     return tuple(out)
 
 
+def _code_arrays(nxt, twin, lab, root: int, best) -> np.ndarray | None:
+    """:func:`_code` on arrays, one breadth-first level at a time: a level's darts are
+    processed in order, so their new neighbours (``next`` before ``twin``) get the next
+    indices in order of first occurrence, exactly as a queue would give them; the level's
+    items are then compared with ``best`` at once, and ``None`` returned as soon as they
+    exceed it."""
+    n = len(nxt)
+    index = np.full(n, -1, dtype=np.int64)
+    first_at = np.empty(n, dtype=np.int64)  # scratch: where a dart first occurs among children
+    index[root] = 0
+    frontier = np.array([root], dtype=np.int64)
+    size = 1
+    chunks = []
+    done = 0
+    equal_so_far = best is not None
+    while len(frontier):
+        children = np.empty(2 * len(frontier), dtype=np.int64)
+        children[0::2], children[1::2] = nxt[frontier], twin[frontier]
+        fresh = children[index[children] < 0]
+        if len(fresh):
+            places = np.arange(len(fresh))
+            first_at[fresh[::-1]] = places[::-1]  # repeated darts: the earliest place is written last
+            new = fresh[first_at[fresh] == places]
+            index[new] = np.arange(size, size + len(new))
+            size += len(new)
+        else:
+            new = fresh
+        items = np.empty(3 * len(frontier), dtype=np.int64)
+        items[0::3], items[1::3], items[2::3] = index[nxt[frontier]], index[twin[frontier]], lab[frontier]
+        if equal_so_far:
+            ref = best[3 * done: 3 * done + len(items)]
+            differ = np.flatnonzero(items != ref)
+            if len(differ):
+                if items[differ[0]] > ref[differ[0]]:
+                    return None
+                equal_so_far = False
+        chunks.append(items)
+        done += len(frontier)
+        frontier = new
+    return np.concatenate(chunks)
+
+
+def _large_inputs(ls: LoopStructure, mode: str):
+    """Successors, labels and root invariants of every (element, orientation) candidate, on
+    arrays, sharing what does not depend on the candidate."""
+    m = ls.map
+    a = m.arrays
+    n = m.num_darts
+    twin, nxt, prev = a.twin, a.next, a.prev
+    mirror_next = twin[prev[twin]]
+    degree = np.bincount(a.origin, minlength=m.num_corners)[a.origin]
+    face_size = np.diff(np.append(a.face_start, n))[a.face_of]
+    if ls.oriented:
+        system = m.loop_system
+        sign = np.asarray(ls.signs, dtype=np.int64)[system.loop_array] * system.side_array
+        base = 2 * np.asarray(ls.axes, dtype=np.int64)[system.loop_array] + (sign < 0)
+    else:
+        base = np.asarray(ls.axes, dtype=np.int64)[m.loop_system.loop_array]
+    big = int(max(degree.max(), face_size.max())) + 1
+    candidates = []
+    for g in MODES[mode]:
+        lab = np.asarray((_ON_DIRECTIONS if ls.oriented else _ON_AXES)[g], dtype=np.int64)[base]
+        for mirrored, succ in ((False, nxt), (True, mirror_next)):
+            fsize = face_size if not mirrored else face_size[twin]
+            inv = ((lab * big + degree) * big + degree[twin]) * big + fsize
+            candidates.append((g, mirrored, succ, lab, inv))
+    rotations = (twin[prev], nxt[twin])
+    return candidates, rotations, twin
+
+
+PREFIX = 512  # code items a root is followed item by item before the array code takes over
+
+
+def _code_start(succ, twin, lab, root: int, best) -> bool:
+    """Whether the code from ``root`` may still reach ``best`` after :data:`PREFIX` darts
+    (a dictionary of indices, so that a root that loses early costs only what it visits)."""
+    index = {root: 0}
+    order = [root]
+    for i in range(min(PREFIX, len(succ))):
+        if i >= len(order):
+            break
+        d = order[i]
+        for e in (succ[d], twin[d]):
+            if e not in index:
+                index[e] = len(order)
+                order.append(e)
+        if best is None:
+            continue
+        item = (index[succ[d]], index[twin[d]], lab[d])
+        ref = (int(best[3 * i]), int(best[3 * i + 1]), int(best[3 * i + 2]))
+        if item > ref:
+            return False
+        if item < ref:
+            return True
+    return True
+
+
+def _canonical_form_arrays(ls: LoopStructure, mode: str) -> CanonicalForm:
+    """:func:`canonical_form` for large maps: the same roots and codes, found with arrays.
+
+    Invariants are computed for every dart at once; the labels around both ends of the
+    candidate roots are compared as rows of a matrix; each root's code is followed in
+    Python while it may lose early, then built a breadth-first level at a time."""
+    candidates, rotations, twin = _large_inputs(ls, mode)
+    least = min(int(c[4].min()) for c in candidates)
+    rows, owners = [], []
+    for k, (_g, mirrored, _succ, lab, inv) in enumerate(candidates):
+        roots = np.flatnonzero(inv == least)
+        if not len(roots):
+            continue
+        rot = rotations[mirrored]
+        cols = []
+        for start in (roots, twin[roots]):
+            e = start
+            degree = 0
+            while True:  # every root has the same degree at each end (part of the invariant)
+                cols.append(lab[e])
+                e = rot[e]
+                degree += 1
+                if np.array_equal(e, start):
+                    break
+        rows.append(np.stack(cols, axis=1))
+        owners.append(np.stack([np.full(len(roots), k), roots], axis=1))
+    keys = np.concatenate(rows)
+    who = np.concatenate(owners)
+    keep = np.ones(len(keys), dtype=bool)
+    for col in range(keys.shape[1]):  # the lexicographically least rows
+        column = keys[:, col]
+        keep &= column == column[keep].min()
+    best = None
+    hits: list[tuple[SignedPermutation, bool]] = []
+    chosen = who[keep].tolist()
+    # Following many roots item by item is cheaper on lists than on array scalars.
+    many = Counter(k for k, _ in chosen)
+    lists: dict[object, list[int]] = {}
+
+    def listed(key: object, array: np.ndarray, k: int):
+        if many[k] < 64:
+            return array
+        if key not in lists:
+            lists[key] = array.tolist()
+        return lists[key]
+
+    for k, root in chosen:
+        g, mirrored, succ, lab, _inv = candidates[k]
+        args = (listed(("succ", mirrored), succ, k), listed("twin", twin, k), listed(("lab", k), lab, k))
+        if not _code_start(*args, root, best):
+            continue
+        code = _code_arrays(succ, twin, lab, root, best)
+        if code is None:
+            continue
+        if best is None or _less(code, best):
+            best, hits = code, [(g, mirrored)]
+        elif np.array_equal(code, best):
+            hits.append((g, mirrored))
+    assert best is not None
+    achiral = len({g.det for g, _ in hits}) == 2 if mode == "full" else None
+    return CanonicalForm(tuple(best.tolist()), ls.oriented, len(hits), mode, achiral)
+
+
+def _less(a: np.ndarray, b: np.ndarray) -> bool:
+    differ = np.flatnonzero(a != b)
+    return bool(len(differ)) and a[differ[0]] < b[differ[0]]
+
+
 def canonical_form(obj: LoopStructure | Polycube, mode: str = "full") -> CanonicalForm:
     """The canonical form of a structure (a polycube is dualized first)."""
     if mode not in MODES:
         raise ValueError(f"unknown symmetry mode {mode!r}; choose labelled, rotation or full")
     ls = obj.dualize() if isinstance(obj, Polycube) else obj
     m = ls.map
+    if m.num_darts >= LARGE:
+        return _canonical_form_arrays(ls, mode)
     nxt = list(m.next)
     twin = list(m.twin)
     n = m.num_darts
