@@ -77,7 +77,8 @@ def height_field(n: int, seed: int = 1) -> Polycube:
     for i in range(1, n):
         f[i] = f[i - 1] + (rng.random() < 0.15)
         g[i] = g[i - 1] + (rng.random() < 0.15)
-    return polycube_from_voxels([(x, y, z) for x in range(n) for y in range(n) for z in range(1 + f[x] + g[y])])
+    cells = [(x, y, z) for x in range(n) for y in range(n) for z in range(1 + f[x] + g[y])]
+    return polycube_from_voxels(cells)
 
 
 def holey_blob(n: int, seed: int = 2) -> Polycube:
@@ -120,7 +121,10 @@ def fresh_polycube(q: Polycube) -> Polycube:
     return Polycube(HalfEdgeMap.from_faces(q.faces), q.positions)
 
 
-def operations(q: Polycube, ls: LoopStructure) -> dict[str, tuple[Callable[[], object], Callable[[], object]]]:
+Operation = tuple[Callable[[], object], Callable[[], object]]
+
+
+def operations(q: Polycube, ls: LoopStructure) -> dict[str, Operation]:
     """name: (set-up outside the timer, the timed operation taking the set-up's result)."""
     return {
         "from_faces": (lambda: [list(f) for f in q.faces], HalfEdgeMap.from_faces),
