@@ -194,3 +194,39 @@ def test_symmetric_boxes_under_array_canonical_forms():
         ls = q.dualize()
         for mode in ("labelled", "rotation", "full"):
             assert _canonical_form_arrays(ls, mode) == canonical_form(ls, mode)
+
+
+definition1 = importlib.import_module("polyloops.verify.definition1")
+
+
+@SETTINGS
+@given(polycubes(max_size=8), st.integers(0, 2**16))
+def test_definition1_reports_are_the_same_with_array_kernels(q, seed):
+    """Valid polycubes and ones with a moved corner (bad edges, overlaps, low degree)."""
+    from polyloops.core.polycube import Polycube
+    from polyloops.verify import check_polycube
+
+    rng = random.Random(seed)
+    positions = [list(p) for p in q.positions]
+    if rng.random() < 0.6:
+        c = rng.randrange(len(positions))
+        positions[c][rng.randrange(3)] += rng.choice((-1, 1))
+    moved = Polycube(q.map, tuple(tuple(p) for p in positions))
+    expected = check_polycube(moved).to_json()
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(definition1, "LARGE", 0)
+        assert check_polycube(moved).to_json() == expected
+
+
+def test_signed_volume_on_arrays_adds_up_like_the_loop():
+    """The volume is a sum over faces: the array sum over all faces equals the loop's sum
+    over chunks too small for the arrays."""
+    from polyloops.core.polycube import signed_volume
+
+    q = box(20, 14, 10)
+    faces, pos = q.faces, q.positions
+    assert len(faces) >= 1024
+    chunks = sum(signed_volume(faces[i:i + 500], pos) for i in range(0, len(faces), 500))
+    assert signed_volume(faces, pos) == chunks == 20 * 14 * 10
+    flipped = [f[::-1] for f in faces]
+    assert signed_volume(flipped, pos) == -chunks

@@ -12,7 +12,9 @@ from __future__ import annotations
 
 from collections import defaultdict
 from collections.abc import Sequence
+from itertools import chain
 
+from polyloops.core.arrays import LARGE
 from polyloops.core.directions import Direction
 from polyloops.core.halfedge import FaceListError, HalfEdgeMap, MapError
 from polyloops.core.polycube import Polycube, signed_volume
@@ -29,21 +31,31 @@ def _is_int(x: object) -> bool:
     return isinstance(x, int) and not isinstance(x, bool)
 
 
-def check_polycube_faces(faces: Sequence[Sequence[int]], positions: Sequence[Sequence[int]]) -> Report:
-    """Check raw faces and positions against Definition 1, collecting every violation."""
+def check_polycube_faces(faces: Sequence[Sequence[int]], positions: Sequence[Sequence[int]],
+                         built: HalfEdgeMap | None = None) -> Report:
+    """Check raw faces and positions against Definition 1, collecting every violation
+    (``built``: the map of these faces, when it exists already)."""
     rb = ReportBuilder("polycube", DEF1)
     rb.condition("quad", "every face is a quadrilateral", [
         rb.violation("quad", f"face {f} has {len(face)} corners", face=f)
         for f, face in enumerate(faces) if len(face) != 4])
-    try:
-        HalfEdgeMap.from_faces(faces)
-        problems = None
-    except MapError as err:
-        problems = err.problems
-    except FaceListError as err:
-        rb.condition("polygons", POLYGONS, [rb.violation("polygons", str(err))])
-        return rb.build()
+    problems = None
+    if built is None:
+        try:
+            built = HalfEdgeMap.from_faces(faces)
+        except MapError as err:
+            problems = err.problems
+        except FaceListError as err:
+            rb.condition("polygons", POLYGONS, [rb.violation("polygons", str(err))])
+            return rb.build()
     add_surface_checks(rb, problems)
+    if built is not None and built.num_darts >= LARGE and _positions_fine(built, positions):
+        for cond, statement in (("1", "each corner has a position in Z^3"),
+                                ("2", "each corner has degree at least 3"),
+                                ("3", "positions of adjacent corners differ in exactly one coordinate"),
+                                ("4", "edges incident to the same corner do not overlap")):
+            rb.condition(cond, statement, [])
+        return rb.build() + _check_outward(faces, positions, surface_ok=True)
 
     rb.condition("1", "each corner has a position in Z^3", [
         rb.violation("1", f"corner {c} has position {list(p)}, not three integers", corner=c)
@@ -82,6 +94,27 @@ def check_polycube_faces(faces: Sequence[Sequence[int]], positions: Sequence[Seq
     return rb.build() + _check_outward(faces, positions, surface_ok=problems is None)
 
 
+def _positions_fine(m: HalfEdgeMap, positions: Sequence[Sequence[int]]) -> bool:
+    """Conditions 1 to 4 on arrays, for a map that exists; ``False`` sends the check to the
+    corner-by-corner code, which names each violation."""
+    import numpy as np
+
+    from polyloops.core.arrays import all_distinct
+
+    if len(positions) != m.num_corners or set(map(len, positions)) != {3} \
+            or set(map(type, chain.from_iterable(positions))) != {int}:
+        return False
+    a = m.arrays
+    p = np.asarray(positions, dtype=np.int64)
+    step = p[a.target] - p[a.origin]
+    moved = step != 0
+    if np.any(moved.sum(axis=1) != 1) or np.any(np.bincount(a.origin, minlength=m.num_corners) < 3):
+        return False
+    axis = moved.argmax(axis=1)
+    negative = step[np.arange(len(step)), axis] < 0
+    return all_distinct(a.origin * 6 + 2 * axis + negative)
+
+
 def _check_outward(faces: Sequence[Sequence[int]], positions: Sequence[Sequence[int]],
                    surface_ok: bool) -> Report:
     """The file convention: an inside-out polycube (negative signed volume) is reported, with
@@ -105,5 +138,5 @@ def _check_outward(faces: Sequence[Sequence[int]], positions: Sequence[Sequence[
 
 
 def check_polycube(q: Polycube) -> Report:
-    """Check a :class:`Polycube` against Definition 1."""
-    return check_polycube_faces(q.faces, q.positions)
+    """Check a :class:`Polycube` against Definition 1 (on the map it already has)."""
+    return check_polycube_faces(q.faces, q.positions, q.map)
