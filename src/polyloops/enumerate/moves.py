@@ -90,31 +90,54 @@ def _split_ok(ls: LoopStructure, axis: Axis, back: int, forward: int) -> bool:
     return not has_minus or minus in on_left
 
 
+class _Successors(dict):
+    """``dart -> darts that may leave after arriving along it``, filled on first use; darts of
+    the new loop's own axis are not in it."""
+
+    def __init__(self, ls: LoopStructure, axis: Axis):
+        super().__init__()
+        self.ls, self.axis = ls, axis
+
+    def __contains__(self, d: object) -> bool:
+        return isinstance(d, int) and 0 <= d < self.ls.map.num_darts and self.ls.axis_of_dart(d) != self.axis
+
+    def __missing__(self, d: int) -> list[int]:
+        if d not in self:
+            raise KeyError(d)
+        m = self.ls.map
+        back = m.twin[d]
+        out = [f for f in m.outgoing(m.target(d)) if _split_ok(self.ls, self.axis, back, f)]
+        self[d] = out
+        return out
+
+    def get(self, d, default=None):  # type: ignore[override]
+        try:
+            return self[d]  # fills the entry (dict.get would not)
+        except KeyError:
+            return default
+
+
 class _AdditionGraph:
     """``G_V^Delta`` on darts: from the dart that arrived at a corner to the darts that may leave."""
 
     def __init__(self, ls: LoopStructure, axis: Axis):
         self.ls, self.axis = ls, axis
-        m = ls.map
-        self.succ: dict[int, list[int]] = {}
-        for d in range(m.num_darts):
-            if ls.axis_of_dart(d) == axis:
-                continue
-            v = m.target(d)
-            back = m.twin[d]
-            self.succ[d] = [f for f in m.outgoing(v) if _split_ok(ls, axis, back, f)]
+        # Built as the search reaches each dart, so that a first answer costs only what the
+        # search visits (the whole graph is built only for ``pred``).
+        self.succ = _Successors(ls, axis)
 
     @cached_property
     def pred(self) -> dict[int, list[int]]:
         """The reverse of ``succ``: the darts that may arrive before leaving along a dart."""
         pred: dict[int, list[int]] = defaultdict(list)
-        for d, nexts in self.succ.items():
-            for e in nexts:
-                pred[e].append(d)
+        for d in range(self.ls.map.num_darts):
+            if d in self.succ:
+                for e in self.succ[d]:
+                    pred[e].append(d)
         return pred
 
     def ok(self, arrive: int, leave: int) -> bool:
-        return leave in self.succ.get(arrive, ())
+        return arrive in self.succ and leave in self.succ[arrive]
 
     def cycles(self, max_length: int | None = None, stop: Callable[[], bool] | None = None
                ) -> Iterator[tuple[int, ...]]:
@@ -394,7 +417,7 @@ def sample_additions(ls: LoopStructure, axis: Axis, n: int, seed: int = 0,
     rng = random.Random(seed)
     g = _AdditionGraph(ls, axis)
     m = ls.map
-    darts = sorted(d for d, nexts in g.succ.items() if nexts)
+    darts = [d for d in range(m.num_darts) if g.succ.get(d)]
     found: dict[tuple[int, ...], Addition] = {}
     for _ in range(200 * n if attempts is None else attempts):
         if len(found) >= n or not darts:
