@@ -230,3 +230,27 @@ def test_signed_volume_on_arrays_adds_up_like_the_loop():
     assert signed_volume(faces, pos) == chunks == 20 * 14 * 10
     flipped = [f[::-1] for f in faces]
     assert signed_volume(flipped, pos) == -chunks
+
+
+@SETTINGS
+@given(polycubes(max_size=8), st.integers(0, 2**16))
+def test_dualize_twins(q, seed):
+    """The same loop structure, or the same refusal, with the array kernel."""
+    import polyloops.core.duality as duality
+    from polyloops.core.duality import DualityError, dualize
+    from polyloops.core.polycube import Polycube
+
+    rng = random.Random(seed)
+    positions = [list(p) for p in q.positions]
+    if rng.random() < 0.5:
+        positions[rng.randrange(len(positions))][rng.randrange(3)] += 1
+    moved = Polycube(q.map, tuple(tuple(p) for p in positions))
+    results = []
+    for large in (10**9, 0):
+        with pytest.MonkeyPatch.context() as mp:
+            mp.setattr(duality, "LARGE", large)
+            try:
+                results.append(dualize(moved))
+            except DualityError:
+                results.append("refused")
+    assert results[0] == results[1]

@@ -17,6 +17,7 @@ from collections import deque
 
 import networkx as nx
 
+from polyloops.core.arrays import LARGE
 from polyloops.core.directions import Axis
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LoopStructure
@@ -36,6 +37,10 @@ def dualize(q: Polycube) -> LoopStructure:
     axis-aligned rectangle.
     """
     m = q.map
+    if m.num_darts >= LARGE:
+        found = _dualize_arrays(q)
+        if found is not None:
+            return found
     axes: list[Axis] = []
     signs: list[int] = []
     for lp in m.loop_system.loops:
@@ -49,6 +54,33 @@ def dualize(q: Polycube) -> LoopStructure:
         axes.append(d.axis)
         signs.append(d.sign)
     return LoopStructure(m, tuple(axes), tuple(signs))
+
+
+def _dualize_arrays(q: Polycube) -> LoopStructure | None:
+    """:func:`dualize` on arrays; ``None`` when some loop's edges disagree (the tuple code
+    then raises with the loop named)."""
+    import numpy as np
+
+    m = q.map
+    a = m.arrays
+    system = m.loop_system
+    walked = np.flatnonzero(system.side_array > 0)
+    p = np.asarray(q.positions, dtype=np.int64)
+    step = p[a.target[walked]] - p[a.origin[walked]]
+    moved = step != 0
+    if np.any(moved.sum(axis=1) != 1):
+        return None
+    axis = moved.argmax(axis=1)
+    code = 2 * axis + (step[np.arange(len(step)), axis] < 0)
+    loops = system.loop_array[walked]
+    k = len(system.loops)
+    low = np.full(k, 6)
+    high = np.full(k, -1)
+    np.minimum.at(low, loops, code)
+    np.maximum.at(high, loops, code)
+    if np.any(low != high):
+        return None
+    return LoopStructure(m, tuple(Axis(x) for x in (low // 2).tolist()), tuple((1 - 2 * (low % 2)).tolist()))
 
 
 def zone_levels(ls: LoopStructure, axis: Axis) -> list[int]:
