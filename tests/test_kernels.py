@@ -254,3 +254,18 @@ def test_dualize_twins(q, seed):
             except DualityError:
                 results.append("refused")
     assert results[0] == results[1]
+
+
+@SETTINGS
+@given(st.one_of(polycubes(max_size=10), handle_zone_polycubes()))
+def test_removal_by_reachability_sets_equals_the_search(q):
+    """Whether another path joins the ends of a loop's arc, from bit sets computed once,
+    agrees with a depth-first search per loop."""
+    from polyloops.enumerate import moves
+
+    ls = q.dualize()
+    fast = [moves.check_removal(ls, lp.id).valid for lp in ls.loops]
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(moves._LevelArcs, "bypassed", lambda self, axis: None)
+        slow = [moves.check_removal(ls, lp.id).valid for lp in ls.loops]
+    assert fast == slow

@@ -517,11 +517,39 @@ def _removal_groups(ls: LoopStructure, loop: int) -> tuple[UnionFind, list[tuple
 
 
 class _LevelArcs:
-    """Each axis's level graph as successor lists, built once for many removal tests."""
+    """Each axis's level graph as successor lists, built once for many removal tests, and
+    which arcs have another path between their ends (contracting those closes a cycle)."""
 
     def __init__(self, ls: LoopStructure):
         self.ls = ls
         self._succ: dict[Axis, dict[int, list[tuple[int, int]]]] = {}
+        self._bypassed: dict[Axis, set[int] | None] = {}
+
+    def bypassed(self, axis: Axis) -> set[int] | None:
+        """The loops whose arc ``u -> v`` is not the only path from ``u`` to ``v`` (a parallel
+        arc, or a path through another successor of ``u``); ``None`` when the graph has a
+        cycle already.  Reachability as bit sets, in reverse topological order: one pass."""
+        if axis not in self._bypassed:
+            succ = self.successors(axis)
+            order = _topological_order(succ, self.ls.zones(axis).count)
+            if order is None:
+                self._bypassed[axis] = None
+                return None
+            reach = [0] * self.ls.zones(axis).count  # zones reachable by a path of one arc or more
+            for z in reversed(order):
+                r = 0
+                for w, _ in succ.get(z, ()):
+                    r |= reach[w] | (1 << w)
+                reach[z] = r
+            out = set()
+            for arcs in succ.values():
+                heads = [w for w, _ in arcs]
+                for i, (v, loop) in enumerate(arcs):
+                    others = heads[:i] + heads[i + 1:]
+                    if v in others or any(reach[w] >> v & 1 for w in others):
+                        out.add(loop)
+            self._bypassed[axis] = out
+        return self._bypassed[axis]
 
     def successors(self, axis: Axis) -> dict[int, list[tuple[int, int]]]:
         """zone -> [(next zone, loop)] along the arcs of ``axis``."""
@@ -532,6 +560,24 @@ class _LevelArcs:
                 succ[tail].append((head, loop))
             self._succ[axis] = succ
         return self._succ[axis]
+
+
+def _topological_order(succ: dict[int, list[tuple[int, int]]], n: int) -> list[int] | None:
+    """The nodes ``0..n-1`` in an order where arcs go forward, or ``None`` on a cycle."""
+    indegree = [0] * n
+    for arcs in succ.values():
+        for w, _ in arcs:
+            indegree[w] += 1
+    ready = [z for z in range(n) if indegree[z] == 0]
+    order = []
+    while ready:
+        z = ready.pop()
+        order.append(z)
+        for w, _ in succ.get(z, ()):
+            indegree[w] -= 1
+            if indegree[w] == 0:
+                ready.append(w)
+    return order if len(order) == n else None
 
 
 def check_removal(ls: LoopStructure, loop: int, arcs: _LevelArcs | None = None) -> RemovalCheck:
@@ -595,11 +641,18 @@ def check_removal(ls: LoopStructure, loop: int, arcs: _LevelArcs | None = None) 
         if len(set(directions)) != len(directions):
             return RemovalCheck(loop, False, f"merged region {min(cs)} would have a repeated direction")
     # Acyclicity: with the loop's arc u -> v contracted, a cycle through the merged zone is a
-    # path from {u, v} back to {u, v} along the other arcs.
+    # path from {u, v} back to {u, v} along the other arcs; in an acyclic graph, exactly
+    # another path from u to v.
     axis = ls.axes[loop]
+    arcs = arcs or _LevelArcs(ls)
+    bypassed = arcs.bypassed(axis)
+    if bypassed is not None:
+        if loop in bypassed:
+            return RemovalCheck(loop, False, f"the {axis}-graph would get a cycle through the merged zone")
+        return RemovalCheck(loop, True)
     left, right = ls.zones(axis).sides[loop]
     merged = {left, right}
-    succ = (arcs or _LevelArcs(ls)).successors(axis)
+    succ = arcs.successors(axis)
     stack = [z for start in merged for z, other in succ.get(start, ()) if other != loop]
     seen_zones: set[int] = set()
     while stack:
