@@ -12,8 +12,11 @@ numpy arrays; every such kernel has its tuple twin, and the tests compare the tw
 
 from __future__ import annotations
 
+import functools
+import gc
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, TypeVar
 
 import numpy as np
 
@@ -21,6 +24,25 @@ if TYPE_CHECKING:
     from polyloops.core.halfedge import HalfEdgeMap
 
 LARGE = 4096  # darts: from here on, maps use the array kernels
+
+F = TypeVar("F", bound=Callable)
+
+
+def gc_paused(func: F) -> F:
+    """Run ``func`` with the cyclic garbage collector paused.  The large kernels allocate
+    hundreds of thousands of tuples of integers, which hold no cycles; without the pause,
+    each allocation burst triggers full collections that scan every live object, so the
+    cost of building a structure would grow with everything else in memory."""
+    @functools.wraps(func)
+    def wrapper(*args, **kwargs):
+        if not gc.isenabled():
+            return func(*args, **kwargs)
+        gc.disable()
+        try:
+            return func(*args, **kwargs)
+        finally:
+            gc.enable()
+    return wrapper  # type: ignore[return-value]
 
 
 def components(n: int, a: np.ndarray, b: np.ndarray) -> tuple[int, np.ndarray]:

@@ -30,7 +30,7 @@ from functools import cached_property
 
 import numpy as np
 
-from polyloops.core.arrays import LARGE
+from polyloops.core.arrays import LARGE, gc_paused
 from polyloops.core.directions import Axis, Direction
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LoopStructure
@@ -102,46 +102,59 @@ def _code(nxt: list[int], twin: list[int], lab: list[int], root: int,
     return tuple(out)
 
 
-def _code_arrays(nxt, twin, lab, root: int, best) -> np.ndarray | None:
+class _Scratch:
+    """Index buffers shared by the codes of one canonical form: each code resets only the
+    entries it wrote, so a root that loses early costs only what it explored."""
+
+    def __init__(self, n: int):
+        self.index = np.full(n, -1, dtype=np.int64)
+        self.first_at = np.empty(n, dtype=np.int64)
+
+
+def _code_arrays(nxt, twin, lab, root: int, best, scratch: _Scratch | None = None) -> np.ndarray | None:
     """:func:`_code` on arrays, one breadth-first level at a time: a level's darts are
     processed in order, so their new neighbours (``next`` before ``twin``) get the next
     indices in order of first occurrence, exactly as a queue would give them; the level's
     items are then compared with ``best`` at once, and ``None`` returned as soon as they
     exceed it."""
-    n = len(nxt)
-    index = np.full(n, -1, dtype=np.int64)
-    first_at = np.empty(n, dtype=np.int64)  # scratch: where a dart first occurs among children
+    scratch = scratch or _Scratch(len(nxt))
+    index, first_at = scratch.index, scratch.first_at
     index[root] = 0
     frontier = np.array([root], dtype=np.int64)
+    seen = [frontier]
     size = 1
     chunks = []
     done = 0
     equal_so_far = best is not None
-    while len(frontier):
-        children = np.empty(2 * len(frontier), dtype=np.int64)
-        children[0::2], children[1::2] = nxt[frontier], twin[frontier]
-        fresh = children[index[children] < 0]
-        if len(fresh):
-            places = np.arange(len(fresh))
-            first_at[fresh[::-1]] = places[::-1]  # repeated darts: the earliest place is written last
-            new = fresh[first_at[fresh] == places]
-            index[new] = np.arange(size, size + len(new))
-            size += len(new)
-        else:
-            new = fresh
-        items = np.empty(3 * len(frontier), dtype=np.int64)
-        items[0::3], items[1::3], items[2::3] = index[nxt[frontier]], index[twin[frontier]], lab[frontier]
-        if equal_so_far:
-            ref = best[3 * done: 3 * done + len(items)]
-            differ = np.flatnonzero(items != ref)
-            if len(differ):
-                if items[differ[0]] > ref[differ[0]]:
-                    return None
-                equal_so_far = False
-        chunks.append(items)
-        done += len(frontier)
-        frontier = new
-    return np.concatenate(chunks)
+    try:
+        while len(frontier):
+            children = np.empty(2 * len(frontier), dtype=np.int64)
+            children[0::2], children[1::2] = nxt[frontier], twin[frontier]
+            fresh = children[index[children] < 0]
+            if len(fresh):
+                places = np.arange(len(fresh))
+                first_at[fresh[::-1]] = places[::-1]  # repeated darts: the earliest place is written last
+                new = fresh[first_at[fresh] == places]
+                index[new] = np.arange(size, size + len(new))
+                seen.append(new)
+                size += len(new)
+            else:
+                new = fresh
+            items = np.empty(3 * len(frontier), dtype=np.int64)
+            items[0::3], items[1::3], items[2::3] = index[nxt[frontier]], index[twin[frontier]], lab[frontier]
+            if equal_so_far:
+                ref = best[3 * done: 3 * done + len(items)]
+                differ = np.flatnonzero(items != ref)
+                if len(differ):
+                    if items[differ[0]] > ref[differ[0]]:
+                        return None
+                    equal_so_far = False
+            chunks.append(items)
+            done += len(frontier)
+            frontier = new
+        return np.concatenate(chunks)
+    finally:
+        index[np.concatenate(seen)] = -1
 
 
 def _large_inputs(ls: LoopStructure, mode: str):
@@ -172,14 +185,17 @@ def _large_inputs(ls: LoopStructure, mode: str):
     return candidates, rotations, twin
 
 
-PREFIX = 512  # code items a root is followed item by item before the array code takes over
+PREFIX = 4096  # code items a root is followed item by item before the array code takes over
 
 
-def _code_start(succ, twin, lab, root: int, best) -> bool:
-    """Whether the code from ``root`` may still reach ``best`` after :data:`PREFIX` darts
-    (a dictionary of indices, so that a root that loses early costs only what it visits)."""
+def _code_prefix(succ, twin, lab, root: int, best: list[int] | None) -> list[int] | None:
+    """The first :data:`PREFIX` items of the code from ``root``, flattened, or ``None`` as
+    soon as they exceed ``best`` (a dictionary of indices, so a root that loses early costs
+    only what it visits)."""
     index = {root: 0}
     order = [root]
+    out: list[int] = []
+    equal_so_far = best is not None
     for i in range(min(PREFIX, len(succ))):
         if i >= len(order):
             break
@@ -188,17 +204,18 @@ def _code_start(succ, twin, lab, root: int, best) -> bool:
             if e not in index:
                 index[e] = len(order)
                 order.append(e)
-        if best is None:
-            continue
-        item = (index[succ[d]], index[twin[d]], lab[d])
-        ref = (int(best[3 * i]), int(best[3 * i + 1]), int(best[3 * i + 2]))
-        if item > ref:
-            return False
-        if item < ref:
-            return True
-    return True
+        item = [index[succ[d]], index[twin[d]], int(lab[d])]
+        if equal_so_far:
+            ref = best[3 * i: 3 * i + 3]  # type: ignore[index]
+            if item > ref:
+                return None
+            if item < ref:
+                equal_so_far = False
+        out += item
+    return out
 
 
+@gc_paused
 def _canonical_form_arrays(ls: LoopStructure, mode: str) -> CanonicalForm:
     """:func:`canonical_form` for large maps: the same roots and codes, found with arrays.
 
@@ -231,8 +248,6 @@ def _canonical_form_arrays(ls: LoopStructure, mode: str) -> CanonicalForm:
     for col in range(keys.shape[1]):  # the lexicographically least rows
         column = keys[:, col]
         keep &= column == column[keep].min()
-    best = None
-    hits: list[tuple[SignedPermutation, bool]] = []
     chosen = who[keep].tolist()
     # Following many roots item by item is cheaper on lists than on array scalars.
     many = Counter(k for k, _ in chosen)
@@ -245,12 +260,26 @@ def _canonical_form_arrays(ls: LoopStructure, mode: str) -> CanonicalForm:
             lists[key] = array.tolist()
         return lists[key]
 
+    # A tournament on code prefixes first, so that full codes are built only for the roots
+    # tied on the least prefix.
+    least_prefix: list[int] | None = None
+    tied: list[tuple[int, int]] = []
     for k, root in chosen:
-        g, mirrored, succ, lab, _inv = candidates[k]
+        _g, mirrored, succ, lab, _inv = candidates[k]
         args = (listed(("succ", mirrored), succ, k), listed("twin", twin, k), listed(("lab", k), lab, k))
-        if not _code_start(*args, root, best):
+        prefix = _code_prefix(*args, root, least_prefix)
+        if prefix is None:
             continue
-        code = _code_arrays(succ, twin, lab, root, best)
+        if least_prefix is None or prefix < least_prefix:
+            least_prefix, tied = prefix, [(k, root)]
+        else:
+            tied.append((k, root))
+    best = None
+    hits: list[tuple[SignedPermutation, bool]] = []
+    scratch = _Scratch(len(twin))
+    for k, root in tied:
+        g, mirrored, succ, lab, _inv = candidates[k]
+        code = _code_arrays(succ, twin, lab, root, best, scratch)
         if code is None:
             continue
         if best is None or _less(code, best):

@@ -30,7 +30,7 @@ from typing import TYPE_CHECKING
 
 from networkx.utils import UnionFind
 
-from polyloops.core.arrays import LARGE
+from polyloops.core.arrays import LARGE, gc_paused
 
 if TYPE_CHECKING:
     from polyloops.core.arrays import MapArrays
@@ -116,6 +116,7 @@ class HalfEdgeMap:
         return cls._from_faces_tuples(faces)
 
     @classmethod
+    @gc_paused
     def _from_valid_faces_arrays(cls, faces: list[Sequence[int]]) -> HalfEdgeMap | None:
         """The map of a valid face list by array kernels, or ``None`` when anything is off."""
         import numpy as np

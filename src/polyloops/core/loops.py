@@ -24,6 +24,8 @@ from dataclasses import dataclass
 from functools import cached_property
 from typing import TYPE_CHECKING
 
+from polyloops.core.arrays import gc_paused
+
 if TYPE_CHECKING:
     from polyloops.core.halfedge import HalfEdgeMap
 
@@ -98,6 +100,7 @@ def _odd_face(m: HalfEdgeMap) -> None:
             raise OddFaceError(f"face {f} has {len(face)} sides; loops need faces with an even number")
 
 
+@gc_paused
 def _trace_loops_arrays(m: HalfEdgeMap) -> LoopSystem:
     """:func:`trace_loops` with the crossing permutation and its cycles computed on arrays."""
     import numpy as np

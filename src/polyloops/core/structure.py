@@ -33,7 +33,7 @@ from functools import cached_property
 from itertools import chain
 from typing import TYPE_CHECKING
 
-from polyloops.core.arrays import LARGE
+from polyloops.core.arrays import LARGE, gc_paused
 from polyloops.core.directions import Axis, Direction
 from polyloops.core.halfedge import HalfEdgeMap
 from polyloops.core.loops import Loop, LoopSystem
@@ -82,6 +82,7 @@ class LoopStructure:
         return cls._from_edge_labels_tuples(m, labels)
 
     @classmethod
+    @gc_paused
     def _from_valid_edge_labels_arrays(cls, m: HalfEdgeMap, labels: Mapping[tuple[int, int], Direction | Axis]
                                        ) -> LoopStructure | None:
         """:meth:`from_edge_labels` on arrays for valid labels, ``None`` when anything is off
