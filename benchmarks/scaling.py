@@ -187,9 +187,10 @@ def main() -> None:
     print()
     growth = []
     for (family, name), pts in series.items():
-        last = slope(pts[-2:]) if len(pts) >= 2 else float("nan")
-        growth.append([family, name, f"{slope(pts):.2f}", f"{last:.2f}", pts[-1][0], pts[-1][1]])
-    print(markdown_table(["family", "operation", "exponent (all sizes)", "exponent (last two)",
+        near = [min(pts, key=lambda p, t=t: abs(math.log(p[0] / t))) for t in (1e4, 1e5)]
+        decade = slope(near) if near[0] != near[1] else float("nan")
+        growth.append([family, name, f"{slope(pts):.2f}", f"{decade:.2f}", pts[-1][0], pts[-1][1]])
+    print(markdown_table(["family", "operation", "exponent (all sizes)", "exponent (10^4 to 10^5)",
                           "largest faces", "CPU s there"], growth))
     if args.plot:
         plot(series, args.plot)

@@ -78,7 +78,16 @@ def all_distinct(values: np.ndarray) -> bool:
 
 
 def as_array(values) -> np.ndarray:
-    return np.asarray(values, dtype=np.int64)
+    """A flat sequence of integers as an int64 array (``fromiter``: several times faster than
+    ``asarray`` on a tuple)."""
+    return np.fromiter(values, dtype=np.int64, count=len(values))
+
+
+def points_array(points) -> np.ndarray:
+    """``(x, y, z)`` integer triples as an ``(n, 3)`` int64 array."""
+    from itertools import chain
+
+    return np.fromiter(chain.from_iterable(points), dtype=np.int64, count=3 * len(points)).reshape(-1, 3)
 
 
 @dataclass(frozen=True, eq=False)

@@ -61,11 +61,13 @@ def _dualize_arrays(q: Polycube) -> LoopStructure | None:
     then raises with the loop named)."""
     import numpy as np
 
+    from polyloops.core.arrays import points_array
+
     m = q.map
     a = m.arrays
     system = m.loop_system
     walked = np.flatnonzero(system.side_array > 0)
-    p = np.asarray(q.positions, dtype=np.int64)
+    p = points_array(q.positions)
     step = p[a.target[walked]] - p[a.origin[walked]]
     moved = step != 0
     if np.any(moved.sum(axis=1) != 1):

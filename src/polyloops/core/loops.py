@@ -22,6 +22,7 @@ from __future__ import annotations
 from collections import Counter
 from dataclasses import dataclass
 from functools import cached_property
+from itertools import pairwise
 from typing import TYPE_CHECKING
 
 from polyloops.core.arrays import gc_paused
@@ -123,23 +124,40 @@ def _trace_loops_arrays(m: HalfEdgeMap) -> LoopSystem:
     other = cycle_of[a.twin[lowest]]
     stored = np.flatnonzero(lowest < lowest[other])  # cycles that are a loop's stored walk
     starts = lowest[stored]  # increasing, so loops are numbered by their lowest dart
-    cross_list = cross.tolist()
-    face_of, edge_ids, twin = m.face_of, m._edge_ids, m.twin
-    loop_of = [-1] * m.num_darts
-    side = [0] * m.num_darts
-    loops = []
-    for k, d in enumerate(starts.tolist()):
-        orbit = [d]
-        e = cross_list[d]
-        while e != d:
-            orbit.append(e)
-            e = cross_list[e]
-        for x in orbit:
-            loop_of[x] = loop_of[twin[x]] = k
-            side[x], side[twin[x]] = 1, -1
-        faces = tuple(face_of[x] for x in orbit)
-        loops.append(Loop(k, tuple(orbit), faces, tuple(edge_ids[x] for x in orbit)))
-    return LoopSystem(tuple(loops), tuple(loop_of), tuple(side))
+    # Each stored orbit in walking order from its lowest dart, by list ranking: cut every
+    # orbit before its start, then halve distances to the cut by pointer jumping (as many
+    # rounds as the longest loop has binary digits), and place each dart at its offset.
+    darts = np.arange(m.num_darts)
+    stored_cycle = np.zeros(count, dtype=bool)
+    stored_cycle[stored] = True
+    mine = stored_cycle[cycle_of]
+    start_of = lowest[cycle_of]
+    nxt = np.where(mine & (cross != start_of), cross, darts)
+    rank = (nxt != darts).astype(np.int64)  # darts to the end of the walk
+    while np.any(nxt[nxt] != nxt):
+        rank += rank[nxt]
+        nxt = nxt[nxt]
+    length = np.bincount(cycle_of[mine], minlength=count)[stored]
+    bounds_arr = np.concatenate([[0], np.cumsum(length)])
+    slot = np.empty(count, dtype=np.int64)
+    slot[stored] = np.arange(len(stored))
+    walk = np.empty(int(bounds_arr[-1]), dtype=np.int64)
+    members = np.flatnonzero(mine)
+    k_of = slot[cycle_of[members]]
+    walk[bounds_arr[k_of] + (length[k_of] - 1 - rank[members])] = members
+    order = walk.tolist()
+    bounds = bounds_arr.tolist()
+    lengths_of = np.diff(bounds)
+    ids = np.repeat(np.arange(len(starts)), lengths_of)
+    loop_of = np.empty(m.num_darts, dtype=np.int64)
+    side = np.empty(m.num_darts, dtype=np.int64)
+    loop_of[walk], loop_of[a.twin[walk]] = ids, ids
+    side[walk], side[a.twin[walk]] = 1, -1
+    faces_all = a.face_of[walk].tolist()
+    edges_all = a.edge_id[walk].tolist()
+    loops = [Loop(k, tuple(order[i:j]), tuple(faces_all[i:j]), tuple(edges_all[i:j]))
+             for k, (i, j) in enumerate(pairwise(bounds))]
+    return LoopSystem(tuple(loops), tuple(loop_of.tolist()), tuple(side.tolist()))
 
 
 def _trace_loops_tuples(m: HalfEdgeMap) -> LoopSystem:

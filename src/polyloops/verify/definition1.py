@@ -99,13 +99,13 @@ def _positions_fine(m: HalfEdgeMap, positions: Sequence[Sequence[int]]) -> bool:
     corner-by-corner code, which names each violation."""
     import numpy as np
 
-    from polyloops.core.arrays import all_distinct
+    from polyloops.core.arrays import all_distinct, points_array
 
     if len(positions) != m.num_corners or set(map(len, positions)) != {3} \
             or set(map(type, chain.from_iterable(positions))) != {int}:
         return False
     a = m.arrays
-    p = np.asarray(positions, dtype=np.int64)
+    p = points_array(positions)
     step = p[a.target] - p[a.origin]
     moved = step != 0
     if np.any(moved.sum(axis=1) != 1) or np.any(np.bincount(a.origin, minlength=m.num_corners) < 3):
