@@ -92,12 +92,39 @@ class HalfEdgeMap:
 
     faces: tuple[tuple[int, ...], ...]
     num_corners: int
-    origin_of: tuple[int, ...]
-    face_of: tuple[int, ...]
-    next: tuple[int, ...]
-    prev: tuple[int, ...]
-    twin: tuple[int, ...]
-    face_start: tuple[int, ...]
+    # The dart permutations as tuples (origin_of, face_of, next, prev, twin, face_start), or,
+    # for a map built by the array kernels, as arrays: the tuples are then made on first use.
+    _tuples: tuple[tuple[int, ...], ...] | None = field(default=None, repr=False)
+    _given_arrays: MapArrays | None = field(default=None, repr=False)
+
+    def _dart_tuple(self, i: int, name: str) -> tuple[int, ...]:
+        if self._tuples is not None:
+            return self._tuples[i]
+        return tuple(getattr(self._given_arrays, name).tolist())
+
+    @cached_property
+    def origin_of(self) -> tuple[int, ...]:
+        return self._dart_tuple(0, "origin")
+
+    @cached_property
+    def face_of(self) -> tuple[int, ...]:
+        return self._dart_tuple(1, "face_of")
+
+    @cached_property
+    def next(self) -> tuple[int, ...]:
+        return self._dart_tuple(2, "next")
+
+    @cached_property
+    def prev(self) -> tuple[int, ...]:
+        return self._dart_tuple(3, "prev")
+
+    @cached_property
+    def twin(self) -> tuple[int, ...]:
+        return self._dart_tuple(4, "twin")
+
+    @cached_property
+    def face_start(self) -> tuple[int, ...]:
+        return self._dart_tuple(5, "face_start")
 
     # -- construction -----------------------------------------------------------------
     @classmethod
@@ -143,16 +170,23 @@ class HalfEdgeMap:
         nxt = base + (pos + 1) % k
         prv = base + (pos - 1) % k
         # A face visits each corner once: no two darts of one face share an origin.
-        order = np.lexsort((origin, face_of))
-        if np.any((face_of[order][1:] == face_of[order][:-1]) & (origin[order][1:] == origin[order][:-1])):
-            return None
+        width = int(lengths[0])
+        if np.all(lengths == width) and width <= 8:  # pairs within each row: no sorting
+            rows = origin.reshape(-1, width)
+            if any(np.any(rows[:, i] == rows[:, j]) for i in range(width) for j in range(i + 1, width)):
+                return None
+        else:
+            order = np.lexsort((origin, face_of))
+            f, o = face_of[order], origin[order]
+            if np.any((f[1:] == f[:-1]) & (o[1:] == o[:-1])):
+                return None
         target = origin[nxt]
         key = origin * n + target
-        sorted_keys = np.sort(key)
+        by_key = np.argsort(key)
+        sorted_keys = key[by_key]
         if np.any(sorted_keys[1:] == sorted_keys[:-1]):
             return None  # an edge twice in one direction
-        by_key = np.argsort(key)
-        where = np.searchsorted(key[by_key], target * n + origin)
+        where = np.searchsorted(sorted_keys, target * n + origin)
         where[where == len(key)] = 0
         if not np.array_equal(key[by_key[where]], target * n + origin):
             return None  # an edge in one face only
@@ -161,9 +195,14 @@ class HalfEdgeMap:
             return None  # some corner's faces form more than one fan
         if components(n, origin, target)[0] != 1:
             return None
-        return cls(tuple(map(tuple, faces)), n, tuple(origin.tolist()), tuple(face_of.tolist()),
-                   tuple(nxt.tolist()), tuple(prv.tolist()), tuple(twin.tolist()),
-                   tuple(face_start.tolist()))
+        from polyloops.core.arrays import MapArrays
+
+        darts = np.arange(len(origin))
+        lower = np.minimum(darts, twin)
+        rank = np.cumsum(darts < twin) - 1
+        arrays = MapArrays(origin, target, face_of, nxt, prv, twin, face_start, rank[lower],
+                           np.flatnonzero(darts < twin))
+        return cls(tuple(map(tuple, faces)), n, _given_arrays=arrays)
 
     @classmethod
     def _from_faces_tuples(cls, faces: list[Sequence[int]]) -> HalfEdgeMap:
@@ -211,8 +250,8 @@ class HalfEdgeMap:
         if problems:
             raise MapError(problems)
 
-        m = cls(fs, max(origin) + 1, tuple(origin), tuple(face_of), tuple(nxt), tuple(prv),
-                tuple(twin), tuple(face_start))
+        m = cls(fs, max(origin) + 1, (tuple(origin), tuple(face_of), tuple(nxt), tuple(prv),
+                                      tuple(twin), tuple(face_start)))
         problems.extend(m._fan_problems())
         problems.extend(m._component_problems())
         if problems:
@@ -251,13 +290,13 @@ class HalfEdgeMap:
                            {"components": components})]
 
     # -- sizes ------------------------------------------------------------------------
-    @property
+    @cached_property
     def num_darts(self) -> int:
-        return len(self.origin_of)
+        return len(self._given_arrays.origin) if self._tuples is None else len(self._tuples[0])  # type: ignore[union-attr]
 
     @property
     def num_edges(self) -> int:
-        return len(self.origin_of) // 2
+        return self.num_darts // 2
 
     @property
     def num_faces(self) -> int:
@@ -323,7 +362,7 @@ class HalfEdgeMap:
         """The dart permutations as numpy arrays (for the array kernels)."""
         from polyloops.core.arrays import MapArrays
 
-        return MapArrays.of(self)
+        return self._given_arrays if self._given_arrays is not None else MapArrays.of(self)
 
     @cached_property
     def _edge_ids(self) -> tuple[int, ...]:
