@@ -117,6 +117,13 @@ def primalize(ls: LoopStructure) -> Polycube:
         raise DualityError("a labelled loop structure has no polycube; orient it first")
     levels = [zone_levels(ls, a) for a in Axis]
     zone_of = [ls.zones(a).zone_of for a in Axis]
+    if ls.map.num_darts >= LARGE:
+        import numpy as np
+
+        from polyloops.core.arrays import as_array
+
+        columns = [np.asarray(levels[a], dtype=np.int64)[as_array(zone_of[a])].tolist() for a in Axis]
+        return Polycube(ls.map, tuple(zip(*columns, strict=True)))
     positions = tuple(
         (levels[0][zone_of[0][c]], levels[1][zone_of[1][c]], levels[2][zone_of[2][c]])
         for c in range(ls.map.num_corners)

@@ -33,9 +33,14 @@ def signed_volume(faces: Sequence[Sequence[int]], positions: Sequence[Sequence[i
     0.16666666666666666
     """
     if len(faces) >= 1024 and set(map(len, faces)) == {4}:
+        from itertools import chain
+
         import numpy as np
 
-        p = np.asarray(positions, dtype=np.int64)[np.asarray(faces, dtype=np.int64)]  # (F, 4, 3)
+        from polyloops.core.arrays import points_array
+
+        corners = np.fromiter(chain.from_iterable(faces), dtype=np.int64, count=4 * len(faces))
+        p = points_array(positions)[corners.reshape(-1, 4)]  # (F, 4, 3)
         area = np.cross(p, np.roll(p, -1, axis=1)).sum(axis=1)  # twice each face's vector area
         return float(np.einsum("fk,fk->", p[:, 0, :], area)) / 6
     total = 0
@@ -63,8 +68,8 @@ class Polycube:
     positions: tuple[Position, ...]
 
     def __post_init__(self) -> None:
-        bad = [f for f, face in enumerate(self.map.faces) if len(face) != 4]
-        if bad:
+        if set(map(len, self.map.faces)) != {4}:
+            bad = [f for f, face in enumerate(self.map.faces) if len(face) != 4]
             raise FaceListError(f"face {bad[0]} has {len(self.map.faces[bad[0]])} corners; "
                                 "polycube faces are quads")
         if len(self.positions) != self.map.num_corners:

@@ -76,16 +76,12 @@ def _compute_zones_arrays(ls: LoopStructure, axis: Axis) -> Zones:
     lower = a.edge_darts
     keep = lower[axis_of[lower] != axis]
     count, zone_of = components(m.num_corners, a.origin[keep], a.target[keep])
-    sides: dict[int, tuple[int, int]] = {}
-    boundary = np.zeros(count, dtype=np.int64)
+    mine = [lp.id for lp in m.loop_system.loops if ls.axes[lp.id] == axis]
+    first = np.fromiter((m.loop_system.loops[k].darts[0] for k in mine), dtype=np.int64, count=len(mine))
+    left, right = zone_of[a.origin[first]], zone_of[a.target[first]]
+    sides = dict(zip(mine, zip(left.tolist(), right.tolist(), strict=True), strict=True))
+    boundary = np.bincount(left, minlength=count) + np.bincount(right, minlength=count)
     zone_list = zone_of.tolist()
-    for lp in m.loop_system.loops:
-        if ls.axes[lp.id] == axis:
-            d = lp.darts[0]
-            left, right = zone_list[m.origin_of[d]], zone_list[m.target(d)]
-            sides[lp.id] = (left, right)
-            boundary[left] += 1
-            boundary[right] += 1
     crossed = np.zeros(m.num_faces, dtype=bool)
     crossed[a.face_of[axis_of == axis]] = True
     first_corner = a.origin[a.face_start]
