@@ -269,3 +269,17 @@ def test_removal_by_reachability_sets_equals_the_search(q):
         mp.setattr(moves._LevelArcs, "bypassed", lambda self, axis: None)
         slow = [moves.check_removal(ls, lp.id).valid for lp in ls.loops]
     assert fast == slow
+
+
+@SETTINGS
+@given(st.one_of(perturbed_structures(), polycubes().map(lambda q: q.dualize())))
+def test_labels_read_as_arrays_build_the_same_structure(ls):
+    """A file's labels arrive as arrays (:class:`EdgeLabels`); the array kernels read them
+    directly, the tuple code through the mapping interface: the same structure."""
+    from polyloops.core.formats import EdgeLabels, dumps, parse_document
+
+    doc = parse_document(dumps(ls))
+    assert isinstance(doc.labels, EdgeLabels)
+    fast = LoopStructure._from_valid_edge_labels_arrays(ls.map, doc.labels)
+    slow = LoopStructure._from_edge_labels_tuples(ls.map, dict(doc.labels))
+    assert fast == slow == ls

@@ -28,7 +28,9 @@ from __future__ import annotations
 import json
 import os
 import tempfile
+from collections.abc import Mapping
 from dataclasses import dataclass
+from functools import cached_property
 from itertools import chain
 from pathlib import Path
 from typing import Any
@@ -54,7 +56,7 @@ class Document:
     kind: str
     faces: list[list[int]]
     positions: list[tuple[int, int, int]] | None = None
-    labels: dict[tuple[int, int], Direction | Axis] | None = None
+    labels: Mapping[tuple[int, int], Direction | Axis] | None = None
     notes: tuple[str, ...] = ()  # what a reader wants its user to know (not errors)
 
     def build(self) -> Structure:
@@ -114,7 +116,7 @@ def _label(text: Any, i: int) -> Direction | Axis:
     return label
 
 
-def _labels(raw: Any) -> dict[tuple[int, int], Direction | Axis]:
+def _labels(raw: Any) -> Mapping[tuple[int, int], Direction | Axis]:
     if not isinstance(raw, list):
         raise FormatError('"edges" must be a list of [u, v, label]')
     fast = _labels_fast(raw)
@@ -131,19 +133,47 @@ def _labels(raw: Any) -> dict[tuple[int, int], Direction | Axis]:
     return out
 
 
-def _labels_fast(raw: list) -> dict[tuple[int, int], Direction | Axis] | None:
+class EdgeLabels(Mapping):
+    """``{(u, v): label}`` held as three arrays (ends and label codes: ``int(d)`` for a
+    Direction, ``6 + axis`` for an Axis), so that a large file is not turned into a dictionary
+    of hundreds of thousands of tuples unless someone asks for one; the array kernels read
+    the arrays."""
+
+    def __init__(self, us, vs, codes):
+        self.us, self.vs, self.codes = us, vs, codes
+
+    @cached_property
+    def _dict(self) -> dict[tuple[int, int], Direction | Axis]:
+        members: list[Direction | Axis] = [*Direction, *Axis]
+        return dict(zip(zip(self.us.tolist(), self.vs.tolist(), strict=True),
+                        (members[c] for c in self.codes.tolist()), strict=True))
+
+    def __getitem__(self, key: tuple[int, int]) -> Direction | Axis:
+        return self._dict[key]
+
+    def __iter__(self):
+        return iter(self._dict)
+
+    def __len__(self) -> int:
+        return len(self.us)
+
+
+_CODES = {**{str(d): int(d) for d in Direction}, **{a.name: 6 + int(a) for a in Axis}}
+
+
+def _labels_fast(raw: list) -> EdgeLabels | None:
     """The labels of a well-formed list in a few sweeps of C loops, or ``None`` (then the
     item-by-item reader finds and names the first problem)."""
+    import numpy as np
+
     if not raw or set(map(type, raw)) != {list} or set(map(len, raw)) != {3}:
         return None
     us, vs, texts = zip(*raw, strict=True)
-    if set(map(type, us)) | set(map(type, vs)) != {int}:
+    if set(map(type, us)) | set(map(type, vs)) != {int} or set(map(type, texts)) != {str}:
         return None
-    labels = [LABELS.get(t) if type(t) is str else None for t in texts]
-    if None in labels:
+    codes = np.fromiter(map(_CODES.get, texts, [-1] * len(texts)), dtype=np.int64, count=len(texts))
+    if codes.min() < 0:
         return None
-    import numpy as np
-
     u = np.fromiter(us, dtype=np.int64, count=len(us))
     v = np.fromiter(vs, dtype=np.int64, count=len(vs))
     low, high = np.minimum(u, v), np.maximum(u, v)
@@ -152,7 +182,7 @@ def _labels_fast(raw: list) -> dict[tuple[int, int], Direction | Axis] | None:
     keys = np.sort(low * (int(high.max()) + 1) + high)
     if np.any(keys[1:] == keys[:-1]):
         return None  # an edge listed twice, in either direction
-    return dict(zip(zip(us, vs, strict=True), labels, strict=True))
+    return EdgeLabels(u, v, codes)
 
 
 def parse_document(text: str) -> Document:

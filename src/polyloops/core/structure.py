@@ -95,18 +95,23 @@ class LoopStructure:
         n = m.num_corners
         if len(labels) != m.num_edges:
             return None
-        ends = np.fromiter(chain.from_iterable(labels), dtype=np.int64, count=2 * len(labels))
-        us, vs = ends[0::2], ends[1::2]
-        if ends.min() < 0 or ends.max() >= n:
+        from polyloops.core.formats import EdgeLabels
+
+        if isinstance(labels, EdgeLabels):  # as read from a file: arrays already
+            us, vs, codes = labels.us, labels.vs, labels.codes
+        else:
+            ends = np.fromiter(chain.from_iterable(labels), dtype=np.int64, count=2 * len(labels))
+            us, vs = ends[0::2], ends[1::2]
+            # Direction d as int(d) (0..5), Axis x as 6 + x; IntEnums hash as ints, so no dict.
+            kinds = set(map(type, labels.values()))
+            if not kinds <= {Direction, Axis} or len(kinds) != 1:
+                return None  # not labels, or signed and unsigned mixed
+            codes = np.fromiter(map(int, labels.values()), dtype=np.int64, count=len(labels))
+            if kinds == {Axis}:
+                codes += 6
+        if min(us.min(), vs.min()) < 0 or max(us.max(), vs.max()) >= n:
             return None
-        # Direction d as int(d) (0..5), Axis x as 6 + x; IntEnums hash as ints, so no dict here.
-        kinds = set(map(type, labels.values()))
-        if not kinds <= {Direction, Axis}:
-            return None
-        codes = np.fromiter(map(int, labels.values()), dtype=np.int64, count=len(labels))
-        if kinds == {Axis}:
-            codes += 6
-        if len(kinds) != 1:
+        if codes.min() < 6 <= codes.max():
             return None  # signed and unsigned mixed
         dart_keys = a.origin * n + a.target
         order = np.argsort(dart_keys)

@@ -562,6 +562,15 @@ class _LevelArcs:
         return self._succ[axis]
 
 
+def _level_arcs_of(ls: LoopStructure) -> _LevelArcs:
+    """The level arcs of ``ls``, kept with it (as its cached zones are), so that callers
+    testing loop after loop share them."""
+    found = ls.__dict__.get("_level_arcs")
+    if found is None:
+        found = ls.__dict__["_level_arcs"] = _LevelArcs(ls)
+    return found
+
+
 def _topological_order(succ: dict[int, list[tuple[int, int]]], n: int) -> list[int] | None:
     """The nodes ``0..n-1`` in an order where arcs go forward, or ``None`` on a cycle."""
     indegree = [0] * n
@@ -644,7 +653,7 @@ def check_removal(ls: LoopStructure, loop: int, arcs: _LevelArcs | None = None) 
     # path from {u, v} back to {u, v} along the other arcs; in an acyclic graph, exactly
     # another path from u to v.
     axis = ls.axes[loop]
-    arcs = arcs or _LevelArcs(ls)
+    arcs = arcs or _level_arcs_of(ls)
     bypassed = arcs.bypassed(axis)
     if bypassed is not None:
         if loop in bypassed:
@@ -671,7 +680,7 @@ def removable(ls: LoopStructure, loop: int) -> bool:
 
 def removals(ls: LoopStructure) -> list[int]:
     """The loops whose removal leaves a polycube loop structure."""
-    arcs = _LevelArcs(ls)
+    arcs = _level_arcs_of(ls)
     return [lp.id for lp in ls.loops if check_removal(ls, lp.id, arcs).valid]
 
 
