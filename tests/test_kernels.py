@@ -283,3 +283,27 @@ def test_labels_read_as_arrays_build_the_same_structure(ls):
     fast = LoopStructure._from_valid_edge_labels_arrays(ls.map, doc.labels)
     slow = LoopStructure._from_edge_labels_tuples(ls.map, dict(doc.labels))
     assert fast == slow == ls
+
+
+@SETTINGS
+@given(st.one_of(polycubes(max_size=10).map(lambda q: q.dualize()),
+                 polycubes(max_size=6).map(lambda q: q.dualize().forget_orientation())),
+       st.sampled_from(["labelled", "full"]))
+def test_signature_text_twins(ls, mode):
+    """The signature written from arrays is the signature written character by character,
+    and reads back to the same structure."""
+    import numpy as np
+
+    from polyloops.core import canonical
+
+    form = canonical.canonical_form(ls, mode)
+    n = len(form.code) // 3
+    w = 1
+    while 64 ** w <= n:
+        w += 1
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(canonical, "LARGE", 10**9)
+        by_characters = canonical._encode(form.code, form.oriented)
+    by_arrays = canonical._encode_arrays(np.asarray(form.code), form.oriented, w)
+    assert by_arrays == by_characters
+    assert canonical.canonical_form(canonical.from_signature(by_arrays), mode) == form

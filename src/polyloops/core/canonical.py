@@ -400,6 +400,8 @@ def _encode(code: tuple[int, ...], oriented: bool) -> str:
     w = 1
     while 64 ** w <= n:
         w += 1
+    if n >= LARGE:
+        return _encode_arrays(np.fromiter(code, dtype=np.int64, count=len(code)), oriented, w)
     parts = [SIGNATURE_VERSION, "o" if oriented else "l", ALPHABET[w], _digits(n, w)]
     seen = 1  # darts discovered so far: the root
     for i in range(n):
@@ -416,6 +418,45 @@ def _encode(code: tuple[int, ...], oriented: bool) -> str:
         parts.extend(_digits(r, w) for r in refs)
     body = "".join(parts)
     return body + _check(body)
+
+
+_ALPHABET_BYTES = np.frombuffer(ALPHABET.encode("ascii"), dtype=np.uint8)
+_VALUE_OF_BYTE = np.zeros(256, dtype=np.int64)
+_VALUE_OF_BYTE[_ALPHABET_BYTES] = np.arange(64)
+
+
+def _encode_arrays(code: np.ndarray, oriented: bool, w: int) -> str:
+    """:func:`_encode` on arrays.  A reference is written as a flag exactly when it is the
+    next new index, that is, when it exceeds every reference before it (indices are handed
+    out in order), so the flags are a running maximum; every item then takes one character
+    and ``w`` per reference that is not new, placed at offsets from a cumulative sum."""
+    n = len(code) // 3
+    refs = np.empty(2 * n, dtype=np.int64)
+    refs[0::2], refs[1::2] = code[0::3], code[1::3]
+    before = np.maximum.accumulate(np.concatenate([[0], refs[:-1]]))
+    new = refs > before
+    flags = new[0::2] * 1 + new[1::2] * 2
+    written = (~new).reshape(n, 2)
+    width = 1 + w * written.sum(axis=1)
+    start = np.concatenate([[0], np.cumsum(width)[:-1]])
+    body = np.empty(int(width.sum()), dtype=np.uint8)
+    body[start] = _ALPHABET_BYTES[code[2::3] * 4 + flags]
+    for k in range(2):  # the next reference, then the twin, each after what precedes it
+        at = start + 1 + (w * written[:, 0] if k == 1 else 0)
+        rows = np.flatnonzero(written[:, k])
+        values = refs[2 * rows + k]
+        for j in range(w):  # most significant digit first
+            body[at[rows] + j] = _ALPHABET_BYTES[(values >> (6 * (w - 1 - j))) & 63]
+    head = SIGNATURE_VERSION + ("o" if oriented else "l") + ALPHABET[w] + _digits(n, w)
+    text = head + body.tobytes().decode("ascii")
+    return text + _check_arrays(text)
+
+
+def _check_arrays(text: str) -> str:
+    """:func:`_check` on arrays."""
+    values = _VALUE_OF_BYTE[np.frombuffer(text.encode("ascii"), dtype=np.uint8)]
+    weights = np.arange(len(values), dtype=np.int64) % (_CHECK_MODULUS - 1) + 1
+    return _digits(int((weights * values).sum() % _CHECK_MODULUS), 2)
 
 
 def _unwrap(sig: str) -> str:
