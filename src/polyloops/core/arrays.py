@@ -23,7 +23,7 @@ import numpy as np
 if TYPE_CHECKING:
     from polyloops.core.halfedge import HalfEdgeMap
 
-LARGE = 4096  # darts: from here on, maps use the array kernels
+LARGE = 512  # darts: from here on, maps use the array kernels
 
 F = TypeVar("F", bound=Callable)
 
