@@ -90,17 +90,30 @@ def zone_levels(ls: LoopStructure, axis: Axis) -> list[int]:
 
     Raises :class:`DualityError` naming a cycle if the level graph has one.
     """
-    g = ls.level_graph(axis)
-    try:
-        order = list(nx.topological_sort(g))
-    except nx.NetworkXUnfeasible:
-        cycle = nx.find_cycle(g)
-        raise DualityError(f"the {axis}-graph has a cycle through zones "
-                           f"{[u for u, *_ in cycle]}") from None
-    level = [0] * g.number_of_nodes()
-    for z in order:
-        for _, w in g.out_edges(z):
+    if ls.signs is None:
+        raise ValueError("a labelled loop structure has no level graphs; orient it first")
+    zones = ls.zones(axis)
+    succ: list[list[int]] = [[] for _ in range(zones.count)]
+    indegree = [0] * zones.count
+    for loop, (left, right) in zones.sides.items():
+        minus, plus = (left, right) if ls.signs[loop] > 0 else (right, left)
+        succ[minus].append(plus)
+        indegree[plus] += 1
+    # Kahn's order, each zone one above the highest zone with an arc into it.
+    level = [0] * zones.count
+    ready = [z for z in range(zones.count) if indegree[z] == 0]
+    done = 0
+    while ready:
+        z = ready.pop()
+        done += 1
+        for w in succ[z]:
             level[w] = max(level[w], level[z] + 1)
+            indegree[w] -= 1
+            if indegree[w] == 0:
+                ready.append(w)
+    if done < zones.count:
+        cycle = nx.find_cycle(ls.level_graph(axis))
+        raise DualityError(f"the {axis}-graph has a cycle through zones {[u for u, *_ in cycle]}")
     return level
 
 
