@@ -157,32 +157,60 @@ def _code_arrays(nxt, twin, lab, root: int, best, scratch: _Scratch | None = Non
         index[np.concatenate(seen)] = -1
 
 
-def _large_inputs(ls: LoopStructure, mode: str):
-    """Successors, labels and root invariants of every (element, orientation) candidate, on
-    arrays, sharing what does not depend on the candidate."""
-    m = ls.map
-    a = m.arrays
-    n = m.num_darts
-    twin, nxt, prev = a.twin, a.next, a.prev
-    mirror_next = twin[prev[twin]]
-    degree = np.bincount(a.origin, minlength=m.num_corners)[a.origin]
-    face_size = np.diff(np.append(a.face_start, n))[a.face_of]
-    if ls.oriented:
+class _Candidates:
+    """The (element, orientation) candidates of a mode, sharing what does not depend on the
+    candidate.  A candidate's labels are ``table[base]``; a dart's invariant is
+    ``label * big^3 + rest[mirrored]``, with ``rest`` (degrees at both ends, face size) the
+    same for every element, so the least invariant and its darts are found per base label,
+    at most 2 x 6 arrays, not one full array per candidate; labels are made only for the
+    candidates that own a root."""
+
+    def __init__(self, ls: LoopStructure, mode: str):
+        m = ls.map
+        a = m.arrays
+        n = m.num_darts
+        self.twin, nxt, prev = a.twin, a.next, a.prev
+        self.succ = (nxt, self.twin[prev[self.twin]])
+        self.rotations = (self.twin[prev], nxt[self.twin])
+        degree = np.bincount(a.origin, minlength=m.num_corners)[a.origin]
+        face_size = np.diff(np.append(a.face_start, n))[a.face_of]
         system = m.loop_system
-        sign = np.asarray(ls.signs, dtype=np.int64)[system.loop_array] * system.side_array
-        base = 2 * np.asarray(ls.axes, dtype=np.int64)[system.loop_array] + (sign < 0)
-    else:
-        base = np.asarray(ls.axes, dtype=np.int64)[m.loop_system.loop_array]
-    big = int(max(degree.max(), face_size.max())) + 1
-    candidates = []
-    for g in MODES[mode]:
-        lab = np.asarray((_ON_DIRECTIONS if ls.oriented else _ON_AXES)[g], dtype=np.int64)[base]
-        for mirrored, succ in ((False, nxt), (True, mirror_next)):
-            fsize = face_size if not mirrored else face_size[twin]
-            inv = ((lab * big + degree) * big + degree[twin]) * big + fsize
-            candidates.append((g, mirrored, succ, lab, inv))
-    rotations = (twin[prev], nxt[twin])
-    return candidates, rotations, twin
+        if ls.oriented:
+            sign = np.asarray(ls.signs, dtype=np.int64)[system.loop_array] * system.side_array
+            self.base = 2 * np.asarray(ls.axes, dtype=np.int64)[system.loop_array] + (sign < 0)
+        else:
+            self.base = np.asarray(ls.axes, dtype=np.int64)[system.loop_array]
+        big = int(max(degree.max(), face_size.max())) + 1
+        self.rest = tuple((degree * big + degree[self.twin]) * big + fsize
+                          for fsize in (face_size, face_size[self.twin]))
+        self.darts_of_base = {int(v): np.flatnonzero(self.base == v) for v in np.unique(self.base)}
+        self.elements = [(g, np.asarray((_ON_DIRECTIONS if ls.oriented else _ON_AXES)[g], dtype=np.int64))
+                         for g in MODES[mode]]
+        self._labels: dict[int, np.ndarray] = {}
+
+    def labels(self, i: int) -> np.ndarray:
+        if i not in self._labels:
+            self._labels[i] = self.elements[i][1][self.base]
+        return self._labels[i]
+
+    def roots(self) -> list[tuple[int, bool, np.ndarray]]:
+        """(element index, mirrored, darts) with the least invariant over all candidates."""
+        least_label = min(int(table[v]) for _, table in self.elements for v in self.darts_of_base)
+        found: list[tuple[int, bool, np.ndarray]] = []
+        least_rest = None
+        for i, (_g, table) in enumerate(self.elements):
+            (v,) = [v for v in self.darts_of_base if table[v] == least_label] or [None]
+            if v is None:
+                continue
+            darts = self.darts_of_base[v]
+            for mirrored in (False, True):
+                rest = self.rest[mirrored][darts]
+                low = int(rest.min())
+                if least_rest is None or low < least_rest:
+                    least_rest, found = low, []
+                if low == least_rest:
+                    found.append((i, mirrored, darts[rest == low]))
+        return found
 
 
 PREFIX = 4096  # code items a root is followed item by item before the array code takes over
@@ -222,26 +250,22 @@ def _canonical_form_arrays(ls: LoopStructure, mode: str) -> CanonicalForm:
     Invariants are computed for every dart at once; the labels around both ends of the
     candidate roots are compared as rows of a matrix; each root's code is followed in
     Python while it may lose early, then built a breadth-first level at a time."""
-    candidates, rotations, twin = _large_inputs(ls, mode)
-    least = min(int(c[4].min()) for c in candidates)
+    cands = _Candidates(ls, mode)
+    twin = cands.twin
     rows, owners = [], []
-    for k, (_g, mirrored, _succ, lab, inv) in enumerate(candidates):
-        roots = np.flatnonzero(inv == least)
-        if not len(roots):
-            continue
-        rot = rotations[mirrored]
+    for i, mirrored, roots in cands.roots():
+        lab = cands.labels(i)
+        rot = cands.rotations[mirrored]
         cols = []
         for start in (roots, twin[roots]):
             e = start
-            degree = 0
             while True:  # every root has the same degree at each end (part of the invariant)
                 cols.append(lab[e])
                 e = rot[e]
-                degree += 1
                 if np.array_equal(e, start):
                     break
         rows.append(np.stack(cols, axis=1))
-        owners.append(np.stack([np.full(len(roots), k), roots], axis=1))
+        owners.append(np.stack([np.full(len(roots), 2 * i + mirrored), roots], axis=1))
     keys = np.concatenate(rows)
     who = np.concatenate(owners)
     keep = np.ones(len(keys), dtype=bool)
@@ -265,8 +289,9 @@ def _canonical_form_arrays(ls: LoopStructure, mode: str) -> CanonicalForm:
     least_prefix: list[int] | None = None
     tied: list[tuple[int, int]] = []
     for k, root in chosen:
-        _g, mirrored, succ, lab, _inv = candidates[k]
-        args = (listed(("succ", mirrored), succ, k), listed("twin", twin, k), listed(("lab", k), lab, k))
+        i, mirrored = divmod(k, 2)
+        succ, lab = cands.succ[mirrored], cands.labels(i)
+        args = (listed(("succ", mirrored), succ, k), listed("twin", twin, k), listed(("lab", i), lab, k))
         prefix = _code_prefix(*args, root, least_prefix)
         if prefix is None:
             continue
@@ -278,14 +303,15 @@ def _canonical_form_arrays(ls: LoopStructure, mode: str) -> CanonicalForm:
     hits: list[tuple[SignedPermutation, bool]] = []
     scratch = _Scratch(len(twin))
     for k, root in tied:
-        g, mirrored, succ, lab, _inv = candidates[k]
-        code = _code_arrays(succ, twin, lab, root, best, scratch)
+        i, mirrored = divmod(k, 2)
+        g = cands.elements[i][0]
+        code = _code_arrays(cands.succ[mirrored], twin, cands.labels(i), root, best, scratch)
         if code is None:
             continue
         if best is None or _less(code, best):
-            best, hits = code, [(g, mirrored)]
+            best, hits = code, [(g, bool(mirrored))]
         elif np.array_equal(code, best):
-            hits.append((g, mirrored))
+            hits.append((g, bool(mirrored)))
     assert best is not None
     achiral = len({g.det for g, _ in hits}) == 2 if mode == "full" else None
     return CanonicalForm(tuple(best.tolist()), ls.oriented, len(hits), mode, achiral)
