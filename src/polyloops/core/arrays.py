@@ -72,7 +72,12 @@ def cycles(perm: np.ndarray) -> tuple[int, np.ndarray]:
 
 
 def all_distinct(values: np.ndarray) -> bool:
-    """No value twice (by sorting: faster than hashing for integer arrays)."""
+    """No value twice: by counting when the values are small non-negative integers (linear),
+    else by sorting (faster than hashing for integer arrays)."""
+    if not len(values):
+        return True
+    if values.min() >= 0 and values.max() < 8 * len(values) + 64:
+        return int(np.bincount(values).max()) <= 1
     s = np.sort(values)
     return not np.any(s[1:] == s[:-1])
 

@@ -40,9 +40,7 @@ def signed_volume(faces: Sequence[Sequence[int]], positions: Sequence[Sequence[i
         from polyloops.core.arrays import points_array
 
         corners = np.fromiter(chain.from_iterable(faces), dtype=np.int64, count=4 * len(faces))
-        p = points_array(positions)[corners.reshape(-1, 4)]  # (F, 4, 3)
-        area = np.cross(p, np.roll(p, -1, axis=1)).sum(axis=1)  # twice each face's vector area
-        return float(np.einsum("fk,fk->", p[:, 0, :], area)) / 6
+        return quad_volume(corners.reshape(-1, 4), points_array(positions))
     total = 0
     for face in faces:
         p = [positions[c] for c in face]
@@ -54,6 +52,17 @@ def signed_volume(faces: Sequence[Sequence[int]], positions: Sequence[Sequence[i
             area[2] += a[0] * b[1] - a[1] * b[0]
         total += sum(p[0][k] * area[k] for k in range(3))
     return total / 6
+
+
+def quad_volume(corners, points) -> float:
+    """:func:`signed_volume` of quads given as arrays: corner ids ``(F, 4)`` and positions
+    ``(n, 3)``."""
+    import numpy as np
+
+    p = points[corners]  # (F, 4, 3)
+    a, b, c, d = p[:, 0], p[:, 1], p[:, 2], p[:, 3]
+    area = np.cross(a, b) + np.cross(b, c) + np.cross(c, d) + np.cross(d, a)  # twice the vector area
+    return float(np.einsum("fk,fk->", a, area)) / 6
 
 
 @dataclass(frozen=True, eq=False)

@@ -17,7 +17,7 @@ from itertools import chain
 from polyloops.core.arrays import LARGE
 from polyloops.core.directions import Direction
 from polyloops.core.halfedge import FaceListError, HalfEdgeMap, MapError
-from polyloops.core.polycube import Polycube, signed_volume
+from polyloops.core.polycube import Polycube, quad_volume, signed_volume
 from polyloops.verify.report import Report, ReportBuilder
 from polyloops.verify.surface import add_surface_checks
 
@@ -49,13 +49,18 @@ def check_polycube_faces(faces: Sequence[Sequence[int]], positions: Sequence[Seq
             rb.condition("polygons", POLYGONS, [rb.violation("polygons", str(err))])
             return rb.build()
     add_surface_checks(rb, problems)
-    if built is not None and built.num_darts >= LARGE and _positions_fine(built, positions):
+    points = None
+    if built is not None and built.num_darts >= LARGE:
+        points = _positions_fine(built, positions)
+    if points is not None:
         for cond, statement in (("1", "each corner has a position in Z^3"),
                                 ("2", "each corner has degree at least 3"),
                                 ("3", "positions of adjacent corners differ in exactly one coordinate"),
                                 ("4", "edges incident to the same corner do not overlap")):
             rb.condition(cond, statement, [])
-        return rb.build() + _check_outward(faces, positions, surface_ok=True)
+        assert built is not None
+        volume = quad_volume(built.arrays.origin.reshape(-1, 4), points)
+        return rb.build() + _check_outward(faces, positions, surface_ok=True, volume=volume)
 
     rb.condition("1", "each corner has a position in Z^3", [
         rb.violation("1", f"corner {c} has position {list(p)}, not three integers", corner=c)
@@ -94,39 +99,41 @@ def check_polycube_faces(faces: Sequence[Sequence[int]], positions: Sequence[Seq
     return rb.build() + _check_outward(faces, positions, surface_ok=problems is None)
 
 
-def _positions_fine(m: HalfEdgeMap, positions: Sequence[Sequence[int]]) -> bool:
-    """Conditions 1 to 4 on arrays, for a map that exists; ``False`` sends the check to the
-    corner-by-corner code, which names each violation."""
+def _positions_fine(m: HalfEdgeMap, positions: Sequence[Sequence[int]]):
+    """Conditions 1 to 4 on arrays, for a map that exists: the positions as an array when
+    they hold, ``None`` (the corner-by-corner code then names each violation) when not."""
     import numpy as np
 
     from polyloops.core.arrays import all_distinct, points_array
 
     if len(positions) != m.num_corners or set(map(len, positions)) != {3} \
             or set(map(type, chain.from_iterable(positions))) != {int}:
-        return False
+        return None
     a = m.arrays
     p = points_array(positions)
     step = p[a.target] - p[a.origin]
     moved = step != 0
     if np.any(moved.sum(axis=1) != 1) or np.any(np.bincount(a.origin, minlength=m.num_corners) < 3):
-        return False
+        return None
     axis = moved.argmax(axis=1)
     negative = step[np.arange(len(step)), axis] < 0
-    return all_distinct(a.origin * 6 + 2 * axis + negative)
+    return p if all_distinct(a.origin * 6 + 2 * axis + negative) else None
 
 
 def _check_outward(faces: Sequence[Sequence[int]], positions: Sequence[Sequence[int]],
-                   surface_ok: bool) -> Report:
+                   surface_ok: bool, volume: float | None = None) -> Report:
     """The file convention: an inside-out polycube (negative signed volume) is reported, with
     the way to repair it.  Definition 1 itself does not see orientation: a polycube and its
     inverse are order-equivalent."""
     rb = ReportBuilder("polycube", CONVENTION)
-    numeric = all(len(p) == 3 and all(_is_int(x) for x in p) for p in positions)
+    numeric = volume is not None or (set(map(len, positions)) <= {3}
+                                     and set(map(type, chain.from_iterable(positions))) <= {int})
     if not (surface_ok and numeric):
         rb.given("outward", OUTWARD, "not checked: needs a closed surface with integer positions",
                  status="not checked")
         return rb.build()
-    volume = signed_volume(faces, positions)
+    if volume is None:
+        volume = signed_volume(faces, positions)
     found = []
     if volume < 0:
         found.append(rb.violation(
