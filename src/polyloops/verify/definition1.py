@@ -36,7 +36,7 @@ def check_polycube_faces(faces: Sequence[Sequence[int]], positions: Sequence[Seq
     """Check raw faces and positions against Definition 1, collecting every violation
     (``built``: the map of these faces, when it exists already)."""
     rb = ReportBuilder("polycube", DEF1)
-    rb.condition("quad", "every face is a quadrilateral", [
+    rb.condition("quad", "every face is a quadrilateral", [] if set(map(len, faces)) == {4} else [
         rb.violation("quad", f"face {f} has {len(face)} corners", face=f)
         for f, face in enumerate(faces) if len(face) != 4])
     problems = None
@@ -112,11 +112,12 @@ def _positions_fine(m: HalfEdgeMap, positions: Sequence[Sequence[int]]):
     a = m.arrays
     p = points_array(positions)
     step = p[a.target] - p[a.origin]
-    moved = step != 0
-    if np.any(moved.sum(axis=1) != 1) or np.any(np.bincount(a.origin, minlength=m.num_corners) < 3):
+    if np.any(np.count_nonzero(step, axis=1) != 1) or \
+            np.any(np.bincount(a.origin, minlength=m.num_corners) < 3):
         return None
-    axis = moved.argmax(axis=1)
-    negative = step[np.arange(len(step)), axis] < 0
+    # One coordinate moved: its axis and sign give the direction code 2 * axis + (step < 0).
+    axis = np.abs(step).argmax(axis=1)
+    negative = step.sum(axis=1) < 0
     return p if all_distinct(a.origin * 6 + 2 * axis + negative) else None
 
 
