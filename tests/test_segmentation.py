@@ -333,6 +333,7 @@ def test_cli_exit_codes_and_picture(tmp_path, capsys):
      "line 5: vertex"),
     ("solid x\nfacet normal 0 0 1\nouter loop\nvortex 0 0 0\n", "0\n", "shape.stl", "line 4: unexpected"),
     ("MeshVersionFormatted 1\nDimension 3\nVertices\n2\n0 0\n", "0\n", "shape.mesh", "shape.mesh"),
+    ("solid x\nendsolid x\n", "0\n", "shape.stl", "has no triangles"),
 ])
 def test_cli_bad_files_name_the_file_and_line(mesh_text, labels_text_, where, words, tmp_path, capsys):
     suffix = "." + where.split(".")[-1] if where != "shape.labels" else ".obj"

@@ -149,6 +149,8 @@ def _read_with_meshio(path: str | os.PathLike[str]) -> tuple[list[Point], list[T
             triangles.extend((int(a), int(b), int(c)) for a, b, c in np.asarray(block.data))
         elif block.type in ("quad", "polygon"):
             raise LabelledMeshError(f"has {block.type} faces; a labelled mesh is made of triangles")
+    if not triangles:
+        raise LabelledMeshError("has no triangles")
     coords = np.asarray(mesh.points, dtype=float)
     if coords.ndim != 2 or coords.shape[1] < 3 or not np.isfinite(coords).all():
         raise LabelledMeshError("needs finite 3D coordinates")
