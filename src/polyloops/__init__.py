@@ -20,7 +20,10 @@ from polyloops.core.halfedge import HalfEdgeMap, MapError
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LoopStructure
 from polyloops.core.voxels import polycube_from_voxels
+from polyloops.render.jupyter import register as _register_pictures
 from polyloops.verify import verify
+
+_register_pictures()
 
 __all__ = [
     "EXAMPLES", "Axis", "Direction", "DualityError", "HalfEdgeMap", "LoopStructure", "MapError",

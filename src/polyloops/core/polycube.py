@@ -148,12 +148,6 @@ class Polycube:
 
         return dualize(self)
 
-    def _repr_png_(self) -> bytes | None:
-        """Jupyter shows a polycube as its picture (see :mod:`polyloops.render`)."""
-        from polyloops.render.polycube import png_bytes
-
-        return png_bytes(self)
-
     def __eq__(self, other: object) -> bool:
         return isinstance(other, Polycube) and self.map == other.map and self.positions == other.positions
 

@@ -314,17 +314,6 @@ class LoopStructure:
 
         return primalize(self)
 
-    def _repr_png_(self) -> bytes | None:
-        """Jupyter shows an oriented structure as its polycube with loops; ``None`` (text
-        instead) when it has none."""
-        from polyloops.core.duality import DualityError
-        from polyloops.render.polycube import png_bytes
-
-        try:
-            return png_bytes(self)
-        except DualityError:
-            return None
-
     # -- value semantics ----------------------------------------------------------------
     def __eq__(self, other: object) -> bool:
         return (isinstance(other, LoopStructure) and self.map == other.map
