@@ -37,3 +37,25 @@ def test_pictures_still_registered_and_import_stays_light():
             "print('matplotlib' in sys.modules, hasattr(load_example('cube'), '_repr_png_'))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.split() == ["False", "True"]
+
+
+def test_every_error_polyloops_defines_derives_from_one_base():
+    """Walk every module: each exception class polyloops defines is a PolyloopsError (the CLI's
+    own CliError aside, which carries an exit status, not a finding)."""
+    import importlib
+    import inspect
+    import pkgutil
+
+    import polyloops
+    from polyloops.core.errors import PolyloopsError
+
+    found = []
+    for info in pkgutil.walk_packages(polyloops.__path__, "polyloops."):
+        if info.name.endswith("__main__"):
+            continue
+        module = importlib.import_module(info.name)
+        for _, cls in inspect.getmembers(module, inspect.isclass):
+            if cls.__module__ == info.name and issubclass(cls, BaseException):
+                found.append(cls)
+    strays = [c.__qualname__ for c in found if not issubclass(c, PolyloopsError) and c.__name__ != "CliError"]
+    assert len(found) > 10 and strays == []

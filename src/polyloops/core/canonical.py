@@ -32,6 +32,7 @@ import numpy as np
 
 from polyloops.core.arrays import LARGE, gc_paused
 from polyloops.core.directions import Axis, Direction
+from polyloops.core.errors import PolyloopsError
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LoopStructure
 from polyloops.core.symmetry import ROTATIONS, SIGNED_PERMUTATIONS, SignedPermutation
@@ -41,7 +42,7 @@ ALPHABET = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789-_"
 _INDEX = {ch: i for i, ch in enumerate(ALPHABET)}
 
 
-class SignatureError(ValueError):
+class SignatureError(PolyloopsError, ValueError):
     """A string that is not a polyloops signature."""
 
 

@@ -19,11 +19,12 @@ import networkx as nx
 
 from polyloops.core.arrays import LARGE
 from polyloops.core.directions import Axis
+from polyloops.core.errors import PolyloopsError
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LoopStructure
 
 
-class DualityError(ValueError):
+class DualityError(PolyloopsError, ValueError):
     """The input is not valid enough for the requested construction."""
 
 

@@ -36,6 +36,7 @@ from pathlib import Path
 from typing import Any
 
 from polyloops.core.directions import Axis, Direction
+from polyloops.core.errors import PolyloopsError
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LoopStructure
 
@@ -45,7 +46,7 @@ KINDS = ("polycube", "loop-structure")
 Structure = Polycube | LoopStructure
 
 
-class FormatError(ValueError):
+class FormatError(PolyloopsError, ValueError):
     """A file that does not follow the polyloops JSON format."""
 
 

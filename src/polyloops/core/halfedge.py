@@ -31,6 +31,7 @@ from typing import TYPE_CHECKING
 from networkx.utils import UnionFind
 
 from polyloops.core.arrays import LARGE, gc_paused
+from polyloops.core.errors import PolyloopsError
 
 if TYPE_CHECKING:
     from polyloops.core.arrays import MapArrays
@@ -46,7 +47,7 @@ class MapProblem:
     witness: dict[str, object] = field(default_factory=dict)
 
 
-class MapError(ValueError):
+class MapError(PolyloopsError, ValueError):
     """A face list that does not describe a closed, connected, oriented surface."""
 
     def __init__(self, problems: Sequence[MapProblem]):
@@ -56,7 +57,7 @@ class MapError(ValueError):
         super().__init__(first + more)
 
 
-class FaceListError(ValueError):
+class FaceListError(PolyloopsError, ValueError):
     """A face list that cannot even be read as polygons over corner ids."""
 
 

@@ -26,12 +26,13 @@ from itertools import pairwise
 from typing import TYPE_CHECKING
 
 from polyloops.core.arrays import gc_paused
+from polyloops.core.errors import PolyloopsError
 
 if TYPE_CHECKING:
     from polyloops.core.halfedge import HalfEdgeMap
 
 
-class OddFaceError(ValueError):
+class OddFaceError(PolyloopsError, ValueError):
     """A face with an odd number of sides has no opposite edges, so no loops."""
 
 

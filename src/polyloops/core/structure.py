@@ -35,6 +35,7 @@ from typing import TYPE_CHECKING
 
 from polyloops.core.arrays import LARGE, gc_paused
 from polyloops.core.directions import Axis, Direction
+from polyloops.core.errors import PolyloopsError
 from polyloops.core.halfedge import HalfEdgeMap
 from polyloops.core.loops import Loop, LoopSystem
 
@@ -45,7 +46,7 @@ if TYPE_CHECKING:
     from polyloops.core.zones import Zones
 
 
-class LabelError(ValueError):
+class LabelError(PolyloopsError, ValueError):
     """Edge labels that do not describe a loop structure on the map."""
 
 

@@ -19,13 +19,14 @@ from collections.abc import Iterable
 from networkx.utils import UnionFind
 
 from polyloops.core.directions import Direction
+from polyloops.core.errors import PolyloopsError
 from polyloops.core.halfedge import HalfEdgeMap, MapError
 from polyloops.core.polycube import Polycube
 
 Cell = tuple[int, int, int]
 
 
-class VoxelError(ValueError):
+class VoxelError(PolyloopsError, ValueError):
     """A set of cubes whose boundary is not a polycube."""
 
 

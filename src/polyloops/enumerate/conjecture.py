@@ -25,6 +25,7 @@ from pathlib import Path
 from typing import Any
 
 from polyloops.core.canonical import canonical_form, from_signature
+from polyloops.core.errors import PolyloopsError
 from polyloops.core.structure import LoopStructure
 from polyloops.enumerate.moves import check_removal
 from polyloops.enumerate.reach import Move, neighbours
@@ -170,7 +171,7 @@ class ConjectureResult:
                 "by_corners": [row.to_json() for row in self.table()]}
 
 
-class CatalogError(ValueError):
+class CatalogError(PolyloopsError, ValueError):
     """A catalog directory that cannot be read."""
 
 

@@ -46,7 +46,7 @@ from networkx.utils import UnionFind
 
 from polyloops.core.directions import Axis, Direction
 from polyloops.core.disjoint_sets import DisjointSets
-from polyloops.core.halfedge import FaceListError, MapError
+from polyloops.core.errors import PolyloopsError
 from polyloops.core.structure import LabelError, LoopStructure
 
 # -- additions -------------------------------------------------------------------------------
@@ -213,7 +213,7 @@ class _AdditionGraph:
             stack.append(iter(self.succ[nxt]))
 
 
-class SearchStopped(Exception):
+class SearchStopped(PolyloopsError):
     """A cycle search was told to stop (a time limit); what it found so far stands."""
 
 
@@ -712,7 +712,7 @@ def try_remove(ls: LoopStructure, loop: int) -> LoopStructure | None:
     """``remove_loop``, or ``None`` when the result is not a loop structure."""
     try:
         return remove_loop(ls, loop)
-    except (MapError, FaceListError, LabelError, ValueError):
+    except PolyloopsError:  # the result is not a loop structure at all
         return None
 
 

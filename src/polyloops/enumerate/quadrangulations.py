@@ -25,12 +25,13 @@ from pathlib import Path
 
 import numpy as np
 
+from polyloops.core.errors import PolyloopsError
 from polyloops.core.halfedge import HalfEdgeMap
 
 HEADER = b">>planar_code<<"
 
 
-class PlantriError(RuntimeError):
+class PlantriError(PolyloopsError, RuntimeError):
     """plantri is missing or failed."""
 
 

@@ -32,6 +32,7 @@ from typing import Any
 
 from polyloops.core.canonical import canonical_form, from_signature
 from polyloops.core.directions import Axis
+from polyloops.core.errors import PolyloopsError
 from polyloops.core.structure import LoopStructure
 from polyloops.enumerate.moves import (
     Addition,
@@ -167,7 +168,7 @@ CREATE TABLE IF NOT EXISTS meta (key TEXT PRIMARY KEY, value TEXT NOT NULL);
 """
 
 
-class ReachError(ValueError):
+class ReachError(PolyloopsError, ValueError):
     """A reach directory that does not belong to this search, or bad parameters."""
 
 

@@ -18,6 +18,7 @@ from matplotlib.patches import Polygon
 
 from polyloops.core.directions import Axis, Direction
 from polyloops.core.duality import DualityError, dualize, primalize
+from polyloops.core.errors import PolyloopsError
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LoopStructure
 from polyloops.render.colors import AXIS_COLOR, LIGHT_COLOR
@@ -205,7 +206,7 @@ def draw_polycube(ax, q: Polycube, view: View, loops: LoopStructure | None) -> N
 MAX_EXTENT = 256  # unit cells per axis that a picture draws; beyond, the compact form is drawn
 
 
-class PictureError(ValueError):
+class PictureError(PolyloopsError, ValueError):
     """A structure that cannot be drawn."""
 
 
