@@ -16,6 +16,7 @@ from collections.abc import Callable, Sequence
 from typing import Any
 
 from polyloops import __version__
+from polyloops.cli.info import describe, format_summary
 from polyloops.cli.load import (
     EXIT_INVALID,
     EXIT_OK,
@@ -37,7 +38,6 @@ from polyloops.core.examples import EXAMPLES
 from polyloops.core.formats import to_data
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LabelError, LoopStructure
-from polyloops.info import describe, format_summary
 from polyloops.verify import Report, verify, verify_document
 
 EXIT_INTERNAL = 3

@@ -390,7 +390,15 @@ def signature(obj: LoopStructure | Polycube, mode: str = "full") -> str:
     return canonical_form(obj, mode).signature
 
 
-def is_isomorphic(a: LoopStructure | Polycube, b: LoopStructure | Polycube, mode: str = "labelled") -> bool:
+def is_isomorphic(a: LoopStructure | Polycube, b: LoopStructure | Polycube, mode: str = "full") -> bool:
+    """Whether two structures are isomorphic in a symmetry mode; the default is
+    :func:`signature`'s, so that ``is_isomorphic(a, b)`` says ``signature(a) == signature(b)``.
+
+    >>> from polyloops.core.examples import load_example
+    >>> l_shape = load_example("l-shape")
+    >>> is_isomorphic(l_shape, l_shape.inverse()), is_isomorphic(l_shape, load_example("cube"))
+    (True, False)
+    """
     return canonical_form(a, mode).code == canonical_form(b, mode).code
 
 
