@@ -67,7 +67,7 @@ def dart_graph(ls: LoopStructure, mirrored: bool) -> nx.DiGraph:
 def matchers(a: LoopStructure, b: LoopStructure, mode: str):
     """VF2 matchers from ``a`` to every image of ``b`` under the mode's group, both orientations."""
     ga = dart_graph(a, False)
-    for g in SYMMETRY_MODES["none" if mode == "labelled" else mode]:
+    for g in SYMMETRY_MODES[mode]:
         bt = transformed(b, g)
         for mirrored in (False, True):
             yield nx.algorithms.isomorphism.DiGraphMatcher(

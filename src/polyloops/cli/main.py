@@ -185,7 +185,7 @@ def cmd_corners(args: argparse.Namespace) -> int:
                 corner_sheet(path)
             except (OSError, ValueError) as err:
                 raise CliError(f"{path}: cannot write the {draw} picture: {err}") from None
-    if args.symmetry == "none":
+    if args.symmetry in ("labelled", "none"):
         rows = []
         for c in configs:
             row = c.to_json()
@@ -792,9 +792,10 @@ def build_parser() -> argparse.ArgumentParser:
                    "default: JSON on standard output")
     p = command("corners", cmd_corners, "the 126 polycube corner configurations, by category, "
                 "or their classes under rotations or all signed permutations", file_arg=False)
-    p.add_argument("--symmetry", choices=("none", "rotation", "full"), default="none",
-                   help="none: one row per configuration (default); rotation: classes under the 24 "
-                   "rotations; full: under all 48 signed permutations")
+    p.add_argument("--symmetry", choices=("labelled", "none", "rotation", "full"), default="labelled",
+                   help="labelled: one row per configuration (default; 'none' is an older name for "
+                   "it); rotation: classes under the 24 rotations; full: under all 48 signed "
+                   "permutations, the same modes as 'polyloops signature'")
     p.add_argument("--witnesses", action="store_true",
                    help="for each configuration, a small set of unit cubes whose polycube has that corner")
     p.add_argument("--png", metavar="FILE", help="draw every configuration on one sheet (PNG)")

@@ -35,9 +35,9 @@ from polyloops.core.directions import Axis, Direction
 from polyloops.core.errors import PolyloopsError
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LoopStructure
-from polyloops.core.symmetry import ROTATIONS, SIGNED_PERMUTATIONS, SignedPermutation
+from polyloops.core.symmetry import SIGNED_PERMUTATIONS, SYMMETRY_MODES, SignedPermutation
 
-MODES = {"labelled": (SIGNED_PERMUTATIONS[0],), "rotation": ROTATIONS, "full": SIGNED_PERMUTATIONS}
+MODES = SYMMETRY_MODES
 ALPHABET = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789-_"
 _INDEX = {ch: i for i, ch in enumerate(ALPHABET)}
 

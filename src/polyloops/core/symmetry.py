@@ -51,4 +51,6 @@ SIGNED_PERMUTATIONS: tuple[SignedPermutation, ...] = tuple(
 ROTATIONS: tuple[SignedPermutation, ...] = tuple(g for g in SIGNED_PERMUTATIONS if g.is_rotation)
 IDENTITY = SIGNED_PERMUTATIONS[0]
 
-SYMMETRY_MODES = {"none": (IDENTITY,), "rotation": ROTATIONS, "full": SIGNED_PERMUTATIONS}
+# The symmetry modes, one name each: "labelled" keeps the axes and sides as they are.
+SYMMETRY_MODES = {"labelled": (IDENTITY,), "rotation": ROTATIONS, "full": SIGNED_PERMUTATIONS}
+MODE_ALIASES = {"none": "labelled"}  # the corners command's older name for "labelled"

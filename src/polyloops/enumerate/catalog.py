@@ -30,10 +30,11 @@ from polyloops.core.canonical import CanonicalForm, canonical_form
 from polyloops.core.directions import Axis
 from polyloops.core.halfedge import HalfEdgeMap
 from polyloops.core.structure import LoopStructure
+from polyloops.core.symmetry import SYMMETRY_MODES
 from polyloops.enumerate.corners import CATEGORIES, corner_histogram
 from polyloops.enumerate.moves import removals
 
-MODES = ("labelled", "rotation", "full")
+MODES = tuple(SYMMETRY_MODES)  # "labelled", "rotation", "full"
 
 
 def _colourings(adjacency: list[set[int]]) -> Iterator[list[int]]:

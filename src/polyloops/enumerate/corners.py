@@ -26,7 +26,7 @@ from itertools import combinations, permutations
 from polyloops.core.directions import Direction
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LoopStructure
-from polyloops.core.symmetry import SYMMETRY_MODES, SignedPermutation
+from polyloops.core.symmetry import MODE_ALIASES, SYMMETRY_MODES, SignedPermutation
 from polyloops.core.voxels import Cell, VoxelError, polycube_from_voxels
 
 CATEGORIES = ("simple", "edge", "flat", "bent", "symmetric-complex", "asymmetric-complex")
@@ -141,8 +141,9 @@ class CornerClass:
 
 @cache
 def corner_classes(symmetry: str = "rotation") -> tuple[CornerClass, ...]:
-    """Orbits under ``"none"``, ``"rotation"`` (24) or ``"full"`` (48 signed permutations)."""
-    group = SYMMETRY_MODES[symmetry]
+    """Orbits under ``"labelled"`` (each configuration alone), ``"rotation"`` (24) or ``"full"``
+    (48 signed permutations); ``"none"`` is an older name for ``"labelled"``."""
+    group = SYMMETRY_MODES[MODE_ALIASES.get(symmetry, symmetry)]
     seen: set[int] = set()
     out = []
     for c in corner_configurations():
