@@ -14,13 +14,12 @@ from __future__ import annotations
 
 import argparse
 import sys
-import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from _common import markdown_table
+from _common import markdown_table, timed_cpu
 
 from polyloops.core.labelled_mesh import LabelledMesh
 from polyloops.core.polycube import Polycube
@@ -57,22 +56,13 @@ def subdivided(q: Polycube, s: int) -> LabelledMesh:
     return LabelledMesh(tuple(points), tuple(triangles), tuple(labels))
 
 
-def cpu(fn, repeat: int = 3):
-    best, result = float("inf"), None
-    for _ in range(repeat):
-        t = time.process_time()
-        result = fn()
-        best = min(best, time.process_time() - t)
-    return best, result
-
-
 def row(q: Polycube, s: int) -> list:
     mesh = subdivided(q, s)
-    t_seg, seg = cpu(lambda: segment(mesh))
-    t_local, _ = cpu(lambda: check_local(seg))
-    t_global, result = cpu(lambda: check_global(seg, try_mesh_first=False))
-    t_real, real = cpu(lambda: realise(seg, result))
-    t_mesh, _ = cpu(lambda: check_global(seg))
+    t_seg, seg = timed_cpu(lambda: segment(mesh), 3)
+    t_local, _ = timed_cpu(lambda: check_local(seg), 3)
+    t_global, result = timed_cpu(lambda: check_global(seg, try_mesh_first=False), 3)
+    t_real, real = timed_cpu(lambda: realise(seg, result), 3)
+    t_mesh, _ = timed_cpu(lambda: check_global(seg), 3)
     return [q.map.num_corners, s, len(mesh.triangles), len(seg.charts), t_seg, t_local, t_global, t_mesh,
             t_real, "yes" if real.polycube is not None else "undecided"]
 

@@ -71,6 +71,16 @@ def cycles(perm: np.ndarray) -> tuple[int, np.ndarray]:
     return components(n, np.arange(n), perm)
 
 
+def per_loop(loop_of: np.ndarray, values: np.ndarray, loops: int) -> np.ndarray | None:
+    """The value each loop's darts share (``loop_of[i]`` is the loop of ``values[i]``), or
+    ``None`` when the darts of some loop disagree."""
+    low = np.full(loops, np.iinfo(np.int64).max)
+    high = np.full(loops, np.iinfo(np.int64).min)
+    np.minimum.at(low, loop_of, values)
+    np.maximum.at(high, loop_of, values)
+    return None if np.any(low != high) else low
+
+
 def all_distinct(values: np.ndarray) -> bool:
     """No value twice: by counting when the values are small non-negative integers (linear),
     else by sorting (faster than hashing for integer arrays)."""

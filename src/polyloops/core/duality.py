@@ -62,7 +62,7 @@ def _dualize_arrays(q: Polycube) -> LoopStructure | None:
     then raises with the loop named)."""
     import numpy as np
 
-    from polyloops.core.arrays import points_array
+    from polyloops.core.arrays import per_loop, points_array
 
     m = q.map
     a = m.arrays
@@ -75,13 +75,8 @@ def _dualize_arrays(q: Polycube) -> LoopStructure | None:
         return None
     axis = moved.argmax(axis=1)
     code = 2 * axis + (step[np.arange(len(step)), axis] < 0)
-    loops = system.loop_array[walked]
-    k = len(system.loops)
-    low = np.full(k, 6)
-    high = np.full(k, -1)
-    np.minimum.at(low, loops, code)
-    np.maximum.at(high, loops, code)
-    if np.any(low != high):
+    low = per_loop(system.loop_array[walked], code, len(system.loops))
+    if low is None:
         return None
     return LoopStructure(m, tuple(Axis(x) for x in (low // 2).tolist()), tuple((1 - 2 * (low % 2)).tolist()))
 

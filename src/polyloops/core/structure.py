@@ -90,7 +90,7 @@ class LoopStructure:
         (the tuple code then names the problem)."""
         import numpy as np
 
-        from polyloops.core.arrays import all_distinct
+        from polyloops.core.arrays import all_distinct, per_loop
 
         a = m.arrays
         n = m.num_corners
@@ -133,14 +133,8 @@ class LoopStructure:
         system = m.loop_system
         loop_of = system.loop_array
         walked = system.side_array > 0
-        value = (axis_of * 3 + sign_of + 1)[walked]
-        loops = loop_of[walked]
-        k = len(system.loops)
-        low = np.full(k, 99)
-        high = np.full(k, -1)
-        np.minimum.at(low, loops, value)
-        np.maximum.at(high, loops, value)
-        if np.any(low != high):
+        low = per_loop(loop_of[walked], (axis_of * 3 + sign_of + 1)[walked], len(system.loops))
+        if low is None:
             return None  # labels disagree along a loop
         axes = tuple(Axis(x) for x in (low // 3).tolist())
         signs = tuple((low % 3 - 1).tolist()) if oriented else None
