@@ -22,6 +22,7 @@ from polyloops.core.directions import Axis
 from polyloops.core.errors import PolyloopsError
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LoopStructure
+from polyloops.core.zones import topological_order
 
 
 class DualityError(PolyloopsError, ValueError):
@@ -90,26 +91,17 @@ def zone_levels(ls: LoopStructure, axis: Axis) -> list[int]:
         raise ValueError("a labelled loop structure has no level graphs; orient it first")
     zones = ls.zones(axis)
     succ: list[list[int]] = [[] for _ in range(zones.count)]
-    indegree = [0] * zones.count
     for loop, (left, right) in zones.sides.items():
         minus, plus = (left, right) if ls.signs[loop] > 0 else (right, left)
         succ[minus].append(plus)
-        indegree[plus] += 1
-    # Kahn's order, each zone one above the highest zone with an arc into it.
-    level = [0] * zones.count
-    ready = [z for z in range(zones.count) if indegree[z] == 0]
-    done = 0
-    while ready:
-        z = ready.pop()
-        done += 1
-        for w in succ[z]:
-            level[w] = max(level[w], level[z] + 1)
-            indegree[w] -= 1
-            if indegree[w] == 0:
-                ready.append(w)
-    if done < zones.count:
+    order = topological_order(succ)
+    if order is None:
         cycle = nx.find_cycle(ls.level_graph(axis))
         raise DualityError(f"the {axis}-graph has a cycle through zones {[u for u, *_ in cycle]}")
+    level = [0] * zones.count  # each zone one above the highest zone with an arc into it
+    for z in order:
+        for w in succ[z]:
+            level[w] = max(level[w], level[z] + 1)
     return level
 
 

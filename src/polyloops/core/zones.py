@@ -127,6 +127,29 @@ def _compute_zones_tuples(ls: LoopStructure, axis: Axis) -> Zones:
     return Zones(axis, tuple(zone_of), count, sides, genera)
 
 
+def topological_order(successors: list[list[int]]) -> list[int] | None:
+    """Nodes ``0..n-1`` in an order where every arc goes forward (Kahn), or ``None`` when
+    the graph has a cycle; ``successors[z]`` lists the heads of the arcs leaving ``z``.
+
+    >>> topological_order([[1], [2], []]), topological_order([[1], [0]])
+    ([0, 1, 2], None)
+    """
+    indegree = [0] * len(successors)
+    for heads in successors:
+        for w in heads:
+            indegree[w] += 1
+    ready = [z for z in range(len(successors)) if indegree[z] == 0]
+    order = []
+    while ready:
+        z = ready.pop()
+        order.append(z)
+        for w in successors[z]:
+            indegree[w] -= 1
+            if indegree[w] == 0:
+                ready.append(w)
+    return order if len(order) == len(successors) else None
+
+
 def level_graph(ls: LoopStructure, axis: Axis) -> nx.MultiDiGraph:
     """The ``axis``-graph: arcs keyed by loop id, from the ``-`` zone to the ``+`` zone."""
     if ls.signs is None:

@@ -48,6 +48,7 @@ from polyloops.core.directions import Axis, Direction
 from polyloops.core.disjoint_sets import DisjointSets
 from polyloops.core.errors import PolyloopsError
 from polyloops.core.structure import LabelError, LoopStructure
+from polyloops.core.zones import topological_order
 
 # -- additions -------------------------------------------------------------------------------
 
@@ -531,7 +532,8 @@ class _LevelArcs:
         cycle already.  Reachability as bit sets, in reverse topological order: one pass."""
         if axis not in self._bypassed:
             succ = self.successors(axis)
-            order = _topological_order(succ, self.ls.zones(axis).count)
+            count = self.ls.zones(axis).count
+            order = topological_order([[w for w, _ in succ.get(z, ())] for z in range(count)])
             if order is None:
                 self._bypassed[axis] = None
                 return None
@@ -569,24 +571,6 @@ def _level_arcs_of(ls: LoopStructure) -> _LevelArcs:
     if found is None:
         found = ls.__dict__["_level_arcs"] = _LevelArcs(ls)
     return found
-
-
-def _topological_order(succ: dict[int, list[tuple[int, int]]], n: int) -> list[int] | None:
-    """The nodes ``0..n-1`` in an order where arcs go forward, or ``None`` on a cycle."""
-    indegree = [0] * n
-    for arcs in succ.values():
-        for w, _ in arcs:
-            indegree[w] += 1
-    ready = [z for z in range(n) if indegree[z] == 0]
-    order = []
-    while ready:
-        z = ready.pop()
-        order.append(z)
-        for w, _ in succ.get(z, ()):
-            indegree[w] -= 1
-            if indegree[w] == 0:
-                ready.append(w)
-    return order if len(order) == n else None
 
 
 def check_removal(ls: LoopStructure, loop: int, arcs: _LevelArcs | None = None) -> RemovalCheck:

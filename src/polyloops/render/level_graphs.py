@@ -9,20 +9,19 @@ import networkx as nx
 from matplotlib.patches import FancyArrowPatch
 
 from polyloops.core.directions import Axis
+from polyloops.core.duality import DualityError, zone_levels
 from polyloops.core.structure import LoopStructure
 from polyloops.render.colors import AXIS_COLOR, LIGHT_COLOR
 from polyloops.render.figure import new_figure, save_figure
 
 
-def _positions(g: nx.MultiDiGraph) -> dict[int, tuple[float, float]]:
-    """Level (longest path from a source) upwards; nodes of one level spread evenly.
-    A graph with a cycle has no levels: its nodes go on a circle."""
-    if not nx.is_directed_acyclic_graph(g):
+def _positions(ls: LoopStructure, axis: Axis, g: nx.MultiDiGraph) -> dict[int, tuple[float, float]]:
+    """Level (longest path from a source, as primalize places zones) upwards; nodes of one
+    level spread evenly.  A graph with a cycle has no levels: its nodes go on a circle."""
+    try:
+        level = zone_levels(ls, axis)
+    except DualityError:
         return {k: (float(x), float(y)) for k, (x, y) in nx.circular_layout(g).items()}
-    level = dict.fromkeys(g.nodes, 0)
-    for z in nx.topological_sort(g):
-        for _, w in g.out_edges(z):
-            level[w] = max(level[w], level[z] + 1)
     rows: dict[int, list[int]] = defaultdict(list)
     for z in sorted(g.nodes):
         rows[level[z]].append(z)
@@ -35,7 +34,7 @@ def _positions(g: nx.MultiDiGraph) -> dict[int, tuple[float, float]]:
 
 def draw_level_graph(ax, ls: LoopStructure, axis: Axis) -> None:
     g = ls.level_graph(axis)
-    pos = _positions(g)
+    pos = _positions(ls, axis, g)
     seen: dict[tuple[int, int], int] = defaultdict(int)
     for u, v, loop in sorted(g.edges(keys=True)):
         pair = (min(u, v), max(u, v))
