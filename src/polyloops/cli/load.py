@@ -6,6 +6,7 @@ one-line message that names the file.
 
 from __future__ import annotations
 
+import dataclasses
 import os
 import stat
 import sys
@@ -55,11 +56,9 @@ def read_document(arg: str, given: str | None = None) -> Document:
         fmt = "json"
     else:
         fmt = format_of(arg, given)
-        if fmt == "planar":
-            return _planar_document(arg)
-        text = read_text_file(arg)
+        text = "" if fmt == "planar" else read_text_file(arg)
     try:
-        doc = READERS[fmt](text)
+        doc = _planar_document(arg) if fmt == "planar" else READERS[fmt](text)
     except FormatError as err:
         raise CliError(f"{arg}: {err}") from None
     for note in doc.notes:
@@ -73,10 +72,7 @@ def _planar_document(arg: str) -> Document:
     from polyloops.core.planar_code import read_planar_code
     from polyloops.enumerate.catalog import polycube_classes_on
 
-    try:
-        maps = read_planar_code(read_bytes_file(arg))
-    except FormatError as err:
-        raise CliError(f"{arg}: {err}") from None
+    maps = read_planar_code(read_bytes_file(arg))
     if len(maps) != 1:
         raise CliError(f"{arg}: holds {len(maps)} maps; polyloops reads one map per file")
     classes = polycube_classes_on(maps[0])
@@ -85,9 +81,9 @@ def _planar_document(arg: str) -> Document:
     if len(classes) > 1:
         raise CliError(f"{arg}: planar code has no axis labels, and the map carries {len(classes)} "
                        "different polycube loop structures; give the one you mean as JSON or .graph")
-    print(f"{arg}: note: planar code has no axis labels; read the map's only polycube loop structure "
-          "(up to symmetry)", file=sys.stderr)
-    return parse_document(dumps(classes[0]))
+    doc = parse_document(dumps(classes[0]))
+    return dataclasses.replace(doc, notes=("planar code has no axis labels; read the map's only polycube "
+                                           "loop structure (up to symmetry)",))
 
 
 # File formats by name and by extension; anything else is read as polyloops JSON.  Planar
@@ -119,16 +115,26 @@ def read_text_file(arg: str, limit: int = MAX_FILE_BYTES) -> str:
 
 def read_bytes_file(arg: str, limit: int = MAX_FILE_BYTES) -> bytes:
     """The bytes of a regular file of at most ``limit`` bytes (see :func:`read_text_file`)."""
+    return _open_regular(arg, limit, read=True)
+
+
+def check_readable_file(arg: str, limit: int = MAX_FILE_BYTES) -> None:
+    """What :func:`read_bytes_file` checks, without reading: for files a library reads."""
+    _open_regular(arg, limit, read=False)
+
+
+def _open_regular(arg: str, limit: int, read: bool) -> bytes:
     try:
         # O_NONBLOCK: opening a FIFO with no writer must not wait; regular files ignore it.
         fd = os.open(arg, os.O_RDONLY | os.O_NONBLOCK)
         with os.fdopen(fd, "rb") as fh:
-            if not stat.S_ISREG(os.fstat(fd).st_mode):
+            info = os.fstat(fd)
+            if not stat.S_ISREG(info.st_mode):
                 raise CliError(f"{arg}: not a regular file")
-            data = fh.read(limit + 1)
+            data = fh.read(limit + 1) if read else b""
     except OSError as err:
         raise CliError(f"{arg}: cannot read: {err.strerror or err}") from None
-    if len(data) > limit:
+    if len(data) > limit or info.st_size > limit:
         raise CliError(f"{arg}: larger than {limit // 2**20} MiB; polyloops reads files up to that size")
     return data
 

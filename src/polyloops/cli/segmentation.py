@@ -8,7 +8,14 @@ import os
 import sys
 from collections.abc import Callable
 
-from polyloops.cli.load import EXIT_INVALID, EXIT_OK, CliError, read_bytes_file, read_text_file, write_output
+from polyloops.cli.load import (
+    EXIT_INVALID,
+    EXIT_OK,
+    CliError,
+    check_readable_file,
+    read_text_file,
+    write_output,
+)
 from polyloops.core.formats import FormatError
 from polyloops.core.halfedge import MapError
 from polyloops.core.labelled_mesh import LabelledMesh, parse_labels, read_triangle_mesh
@@ -41,7 +48,7 @@ def read_labelled_mesh(mesh_arg: str, labels_arg: str | None) -> LabelledMesh:
             raise CliError(f"{mesh_arg}: {err.args[0]}") from None
     if labels_arg is None:
         raise CliError(f"{mesh_arg}: give the LABELS file too (one integer per triangle)")
-    read_bytes_file(mesh_arg)  # a regular file of reasonable size, or a one-line error
+    check_readable_file(mesh_arg)  # a regular file of reasonable size, or a one-line error
     try:
         points, triangles = read_triangle_mesh(mesh_arg)
     except FormatError as err:

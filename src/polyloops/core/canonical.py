@@ -175,12 +175,7 @@ class _Candidates:
         self.rotations = (self.twin[prev], nxt[self.twin])
         degree = np.bincount(a.origin, minlength=m.num_corners)[a.origin]
         face_size = np.diff(np.append(a.face_start, n))[a.face_of]
-        system = m.loop_system
-        if ls.oriented:
-            sign = np.asarray(ls.signs, dtype=np.int64)[system.loop_array] * system.side_array
-            self.base = 2 * np.asarray(ls.axes, dtype=np.int64)[system.loop_array] + (sign < 0)
-        else:
-            self.base = np.asarray(ls.axes, dtype=np.int64)[system.loop_array]
+        self.base = ls.direction_codes
         big = int(max(degree.max(), face_size.max())) + 1
         self.rest = tuple((degree * big + degree[self.twin]) * big + fsize
                           for fsize in (face_size, face_size[self.twin]))
@@ -200,7 +195,8 @@ class _Candidates:
         found: list[tuple[int, bool, np.ndarray]] = []
         least_rest = None
         for i, (_g, table) in enumerate(self.elements):
-            (v,) = [v for v in self.darts_of_base if table[v] == least_label] or [None]
+            # a signed permutation is one-to-one on labels: at most one base label maps there
+            v = next((v for v in self.darts_of_base if table[v] == least_label), None)
             if v is None:
                 continue
             darts = self.darts_of_base[v]

@@ -237,18 +237,26 @@ class LoopStructure:
         return self._directions[d]
 
     @cached_property
+    def direction_codes(self):
+        """``int(direction)`` of every dart as a numpy array, for an oriented structure; for a
+        labelled one, each dart's axis (the array kernels' label of a dart)."""
+        import numpy as np
+
+        system = self.map.loop_system
+        axes = np.asarray(self.axes, dtype=np.int64)[system.loop_array]
+        if self.signs is None:
+            return axes
+        sign = np.asarray(self.signs, dtype=np.int64)[system.loop_array] * system.side_array
+        return 2 * axes + (sign < 0)
+
+    @cached_property
     def _directions(self) -> tuple[Direction, ...]:
         if self.signs is None:
             raise ValueError("a labelled loop structure has no directions; orient it first")
         ls = self.map.loop_system
         if self.map.num_darts >= LARGE:
-            import numpy as np
-
-            loop_of = ls.loop_array
-            sign = np.asarray(self.signs, dtype=np.int64)[loop_of] * ls.side_array
-            codes = 2 * np.asarray(self.axes, dtype=np.int64)[loop_of] + (sign < 0)
             members = list(Direction)
-            return tuple(members[c] for c in codes.tolist())
+            return tuple(members[c] for c in self.direction_codes.tolist())
         return tuple(
             Direction.of(self.axes[ls.loop_of_dart[d]], self.signs[ls.loop_of_dart[d]] * ls.side_of_dart[d])
             for d in range(self.map.num_darts)

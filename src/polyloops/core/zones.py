@@ -59,9 +59,8 @@ def compute_zones(ls: LoopStructure, axis: Axis) -> Zones:
 
 def dart_axes(ls: LoopStructure):
     """The axis of every dart's loop, as an array."""
-    import numpy as np
-
-    return np.asarray(ls.axes, dtype=np.int64)[ls.map.loop_system.loop_array]
+    codes = ls.direction_codes
+    return codes // 2 if ls.oriented else codes
 
 
 def _compute_zones_arrays(ls: LoopStructure, axis: Axis) -> Zones:

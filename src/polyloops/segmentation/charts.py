@@ -82,8 +82,17 @@ class Segmentation:
         return None if a == c else Axis(3 - a - c)
 
     @cached_property
-    def corner_of_vertex(self) -> dict[int, int]:
-        return {c.vertex: c.id for c in self.corners}
+    def chart_angles(self) -> dict[int, list[tuple[int, bool, int, bool]]]:
+        """Per chart, its angles at corners between two perpendicular boundaries (see
+        :func:`polyloops.segmentation.levels.chart_angles`), from one pass over the corners."""
+        out: dict[int, list[tuple[int, bool, int, bool]]] = {}
+        for corner in self.corners:
+            sides = corner.sides
+            for i, (b, forward, ch) in enumerate(sides):
+                b2, forward2, _ = sides[(i + 1) % len(sides)]
+                if self.boundary_axis(b) != self.boundary_axis(b2):
+                    out.setdefault(ch, []).append((b2, forward2, b, forward))
+        return out
 
 
 def segment(mesh: LabelledMesh) -> Segmentation:

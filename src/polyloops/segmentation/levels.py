@@ -152,24 +152,22 @@ def check_global(seg: Segmentation, max_cuts: int = 10_000, try_mesh_first: bool
     if any(b.closed for b in seg.boundaries):
         return GlobalResult(None, "a boundary without corners has no ends to order")
     zones = tuple(corner_zones(seg, axis) for axis in Axis)
-    arcs_by_axis: dict[Axis, list[int]] = {axis: [] for axis in Axis}
     for b in seg.boundaries:
         axis = seg.boundary_axis(b.id)
         assert axis is not None and b.start is not None and b.end is not None
         if zones[axis][b.start] == zones[axis][b.end]:
             return GlobalResult(False, "a boundary joins a zone to itself", Witness("arc-inside-zone",
                                 corners=(b.start, b.end), boundaries=(b.id,)), zones=zones)
-        arcs_by_axis[axis].append(b.id)
-
+    arcs_by_axis = _arcs_by_axis(seg)
+    rules = [corner_rule(seg, c.id) for c in seg.corners]
     geometric = mesh_directions(seg)
-    if try_mesh_first and satisfies(seg, zones, geometric):
+    if try_mesh_first and satisfies(seg, zones, geometric, rules):
         return GlobalResult(True, directions=geometric, zones=zones)
     nb = len(seg.boundaries)
     selectors: dict[int, tuple[str, object]] = {}
     next_var = nb + 1
     with Solver(name="glucose4") as solver:
-        for c in seg.corners:
-            bs, ok = corner_rule(seg, c.id)
+        for c, (bs, ok) in zip(seg.corners, rules, strict=True):
             sel, next_var = next_var, next_var + 1
             selectors[sel] = ("corner", c.id)
             okset = set(ok)
@@ -178,7 +176,7 @@ def check_global(seg: Segmentation, max_cuts: int = 10_000, try_mesh_first: bool
                     solver.add_clause([-sel] + [-(b + 1) * s for b, s in zip(bs, signs, strict=True)])
         # Prefer the directions the mesh's own coordinates suggest, so that a realisation
         # can follow the mesh (any solution would do for the verdict).
-        solver.set_phases([(b + 1) * d for b, d in enumerate(mesh_directions(seg))])
+        solver.set_phases([(b + 1) * d for b, d in enumerate(geometric)])
         for chart in seg.charts:
             sel, next_var = next_var, next_var + 1
             selectors[sel] = ("chart", chart.id)
@@ -209,23 +207,38 @@ def check_global(seg: Segmentation, max_cuts: int = 10_000, try_mesh_first: bool
             solver.add_clause([-sel] + [-(b + 1) * sign[b] for b in cycle.boundaries])
 
 
-def mesh_directions(seg: Segmentation) -> tuple[int, ...]:
-    """Each boundary's direction in the mesh's own coordinates (+1 where its ends tie)."""
+def mesh_steps(seg: Segmentation) -> tuple[float, ...]:
+    """How far each boundary goes along its axis, from start to end, in the mesh's own
+    coordinates."""
     out = []
     for b in seg.boundaries:
         axis = seg.boundary_axis(b.id)
         assert axis is not None and b.start is not None and b.end is not None
-        p = seg.mesh.points[seg.corners[b.start].vertex][axis]
-        q = seg.mesh.points[seg.corners[b.end].vertex][axis]
-        out.append(-1 if q < p else 1)
+        out.append(seg.mesh.points[seg.corners[b.end].vertex][axis]
+                   - seg.mesh.points[seg.corners[b.start].vertex][axis])
     return tuple(out)
 
 
-def satisfies(seg: Segmentation, zones: tuple[tuple[int, ...], ...], directions: tuple[int, ...]) -> bool:
-    """Whether directions meet every corner rule and chart turning number and leave the
-    level graphs acyclic, checked directly (the SAT encoding's slow twin)."""
+def mesh_directions(seg: Segmentation) -> tuple[int, ...]:
+    """Each boundary's direction in the mesh's own coordinates (+1 where its ends tie)."""
+    return tuple(-1 if step < 0 else 1 for step in mesh_steps(seg))
+
+
+def _arcs_by_axis(seg: Segmentation) -> dict[Axis, list[int]]:
+    """The boundaries along each axis (the arcs of its level graph)."""
+    out: dict[Axis, list[int]] = {axis: [] for axis in Axis}
+    for b in seg.boundaries:
+        out[seg.boundary_axis(b.id)].append(b.id)  # type: ignore[index]
+    return out
+
+
+def satisfies(seg: Segmentation, zones: tuple[tuple[int, ...], ...], directions: tuple[int, ...],
+              rules: list[tuple[tuple[int, ...], list[tuple[int, ...]]]] | None = None) -> bool:
+    """Whether directions meet every corner rule (``rules``: :func:`corner_rule` of each
+    corner, computed here if not given) and chart turning number and leave the level graphs
+    acyclic, checked directly (the SAT encoding's slow twin)."""
     for c in seg.corners:
-        bs, ok = corner_rule(seg, c.id)
+        bs, ok = rules[c.id] if rules is not None else corner_rule(seg, c.id)
         if tuple(directions[b] for b in bs) not in ok:
             return False
     for chart in seg.charts:
@@ -237,26 +250,14 @@ def satisfies(seg: Segmentation, zones: tuple[tuple[int, ...], ...], directions:
             reflex += cross(d, d2) != chart.label
         if len(angles) - 2 * reflex != 4 * chart.euler_characteristic:
             return False
-    arcs_by_axis: dict[Axis, list[int]] = {axis: [] for axis in Axis}
-    for b in seg.boundaries:
-        arcs_by_axis[seg.boundary_axis(b.id)].append(b.id)  # type: ignore[index]
-    return _find_cycle(seg, zones, arcs_by_axis, directions) is None
+    return _find_cycle(seg, zones, _arcs_by_axis(seg), directions) is None
 
 
 def chart_angles(seg: Segmentation, chart: int) -> list[tuple[int, bool, int, bool]]:
     """The chart's angles at corners between two perpendicular boundaries, each as (boundary
     arriving, leaves from its start, boundary leaving, leaves from its start) at that corner,
     the first counter-clockwise after the second."""
-    out = []
-    for corner in seg.corners:
-        sides = corner.sides
-        for i, (b, forward, ch) in enumerate(sides):
-            if ch != chart:
-                continue
-            b2, forward2, _ = sides[(i + 1) % len(sides)]
-            if seg.boundary_axis(b) != seg.boundary_axis(b2):
-                out.append((b2, forward2, b, forward))
-    return out
+    return seg.chart_angles.get(chart, [])
 
 
 def _turning_clauses(seg: Segmentation, chart: int, next_var: int) -> tuple[list[list[int]], int]:

@@ -29,7 +29,7 @@ from polyloops.core.directions import Axis
 from polyloops.core.halfedge import FaceListError, MapError
 from polyloops.core.polycube import Polycube
 from polyloops.segmentation.charts import Segmentation
-from polyloops.segmentation.levels import GlobalResult
+from polyloops.segmentation.levels import GlobalResult, mesh_steps
 
 
 @dataclass(frozen=True)
@@ -72,12 +72,7 @@ def corner_positions(seg: Segmentation, result: GlobalResult) -> list[list[int]]
 def _closer_to_mesh(seg: Segmentation, directions: tuple[int, ...]) -> tuple[int, ...]:
     """The directions or all of them reversed (the same labels, see
     :mod:`~polyloops.segmentation.levels`), whichever more boundaries of the mesh follow."""
-    agree = 0
-    for b in seg.boundaries:
-        axis = seg.boundary_axis(b.id)
-        p = seg.mesh.points[seg.corners[b.start].vertex][axis]  # type: ignore[index]
-        q = seg.mesh.points[seg.corners[b.end].vertex][axis]  # type: ignore[index]
-        agree += (1 if q > p else -1 if q < p else 0) * directions[b.id]
+    agree = sum(d * ((s > 0) - (s < 0)) for s, d in zip(mesh_steps(seg), directions, strict=True))
     return directions if agree >= 0 else tuple(-d for d in directions)
 
 

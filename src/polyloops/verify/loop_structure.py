@@ -93,22 +93,12 @@ def _no_crossing_problem(ls: LoopStructure) -> bool:
     return not np.any((l0 == l1) | (axes[l0] == axes[l1]))
 
 
-def _direction_codes(ls: LoopStructure):
-    """``int(direction)`` of every dart, as an array (oriented structures)."""
-    import numpy as np
-
-    system = ls.map.loop_system
-    loop_of = system.loop_array
-    sign = np.asarray(ls.signs, dtype=np.int64)[loop_of] * system.side_array
-    return 2 * np.asarray(ls.axes, dtype=np.int64)[loop_of] + (sign < 0)
-
-
 def repeated_direction_violations(rb: ReportBuilder, ls: LoopStructure) -> list[Violation]:
     m = ls.map
     if m.num_darts >= LARGE:
         from polyloops.core.arrays import all_distinct
 
-        if all_distinct(m.arrays.origin * 6 + _direction_codes(ls)):
+        if all_distinct(m.arrays.origin * 6 + ls.direction_codes):
             return []
     out = []
     for c in range(m.num_corners):
