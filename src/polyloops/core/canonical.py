@@ -33,6 +33,7 @@ import numpy as np
 from polyloops.core.arrays import LARGE, gc_paused
 from polyloops.core.directions import Axis, Direction
 from polyloops.core.errors import PolyloopsError
+from polyloops.core.halfedge import faces_from_next, permutation_orbits
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LoopStructure
 from polyloops.core.symmetry import SIGNED_PERMUTATIONS, SYMMETRY_MODES, SignedPermutation
@@ -562,24 +563,11 @@ def from_signature(sig: str) -> LoopStructure:
     for d, e in enumerate(nxt):
         prev[e] = d
     # Corners are the orbits of rotate(d) = twin(prev(d)).
-    corner = [-1] * n
-    k = 0
-    for d in range(n):
-        if corner[d] < 0:
-            e = d
-            while corner[e] < 0:
-                corner[e] = k
-                e = twin[prev[e]]
-            k += 1
-    faces, seen = [], [False] * n
-    for d in range(n):
-        if not seen[d]:
-            face, e = [], d
-            while not seen[e]:
-                seen[e] = True
-                face.append(corner[e])
-                e = nxt[e]
-            faces.append(face)
+    corner = [0] * n
+    for k, orbit in enumerate(permutation_orbits([twin[prev[d]] for d in range(n)])):
+        for d in orbit:
+            corner[d] = k
+    faces = faces_from_next(nxt, corner)
     labels: dict[tuple[int, int], Direction | Axis] = {}
     for d in range(n):
         u, v = corner[d], corner[nxt[d]]

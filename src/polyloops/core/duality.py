@@ -15,14 +15,12 @@ from __future__ import annotations
 
 from collections import deque
 
-import networkx as nx
-
 from polyloops.core.arrays import LARGE
 from polyloops.core.directions import Axis
 from polyloops.core.errors import PolyloopsError
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LoopStructure
-from polyloops.core.zones import topological_order
+from polyloops.core.zones import find_directed_cycle, level_arcs, topological_order
 
 
 class DualityError(PolyloopsError, ValueError):
@@ -90,13 +88,13 @@ def zone_levels(ls: LoopStructure, axis: Axis) -> list[int]:
     if ls.signs is None:
         raise ValueError("a labelled loop structure has no level graphs; orient it first")
     zones = ls.zones(axis)
+    arcs = level_arcs(ls, axis)
     succ: list[list[int]] = [[] for _ in range(zones.count)]
-    for loop, (left, right) in zones.sides.items():
-        minus, plus = (left, right) if ls.signs[loop] > 0 else (right, left)
+    for minus, plus, _ in arcs:
         succ[minus].append(plus)
     order = topological_order(succ)
     if order is None:
-        cycle = nx.find_cycle(ls.level_graph(axis))
+        cycle = find_directed_cycle(zones.count, arcs) or []
         raise DualityError(f"the {axis}-graph has a cycle through zones {[u for u, *_ in cycle]}")
     level = [0] * zones.count  # each zone one above the highest zone with an arc into it
     for z in order:

@@ -28,9 +28,8 @@ from functools import cached_property
 from itertools import chain
 from typing import TYPE_CHECKING
 
-from networkx.utils import UnionFind
-
 from polyloops.core.arrays import LARGE, gc_paused
+from polyloops.core.disjoint_sets import DisjointSets
 from polyloops.core.errors import PolyloopsError
 
 if TYPE_CHECKING:
@@ -59,6 +58,37 @@ class MapError(PolyloopsError, ValueError):
 
 class FaceListError(PolyloopsError, ValueError):
     """A face list that cannot even be read as polygons over corner ids."""
+
+
+def permutation_orbits(perm: Sequence[int]) -> list[list[int]]:
+    """The orbits of a permutation of ``0..n-1``, each from its lowest element, by that element.
+
+    >>> permutation_orbits([2, 0, 1, 4, 3, 5])
+    [[0, 2, 1], [3, 4], [5]]
+    """
+    seen = [False] * len(perm)
+    out = []
+    for d in range(len(perm)):
+        if not seen[d]:
+            orbit, e = [], d
+            while not seen[e]:
+                seen[e] = True
+                orbit.append(e)
+                e = perm[e]
+            out.append(orbit)
+    return out
+
+
+def faces_from_next(nxt: Sequence[int], origin: Sequence[int]) -> list[list[int]]:
+    """Faces as corner lists from darts: the orbits of ``nxt``, each dart read as its
+    ``origin``.  The one place where a face list is read off a dart permutation (signatures,
+    plantri's batches and planar code all come here).
+
+    >>> m = HalfEdgeMap.from_faces([[0, 1, 2, 3], [3, 2, 1, 0]])
+    >>> faces_from_next(m.next, m.origin_of)
+    [[0, 1, 2, 3], [3, 2, 1, 0]]
+    """
+    return [[int(origin[d]) for d in orbit] for orbit in permutation_orbits(nxt)]
 
 
 def _validate_faces(faces: Sequence[Sequence[int]]) -> tuple[tuple[int, ...], ...]:
@@ -281,7 +311,7 @@ class HalfEdgeMap:
 
     def _component_problems(self) -> list[MapProblem]:
         # The paper: a mesh is connected if every vertex can be reached from any other along edges.
-        parts = UnionFind(range(self.num_corners))
+        parts = DisjointSets(range(self.num_corners))
         for d in range(self.num_darts):
             parts.union(self.origin_of[d], self.target(d))
         components = sorted(sorted(p) for p in parts.to_sets())

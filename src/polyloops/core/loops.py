@@ -20,6 +20,7 @@ contains its lowest dart.  Loops are numbered by that dart.
 from __future__ import annotations
 
 from collections import Counter
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from functools import cached_property
 from itertools import pairwise
@@ -192,3 +193,29 @@ def _trace_loops_tuples(m: HalfEdgeMap) -> LoopSystem:
         faces = tuple(m.face_of[e] for e in orbit)
         loops.append(Loop(k, tuple(orbit), faces, tuple(m.edge_id(e) for e in orbit)))
     return LoopSystem(tuple(loops), tuple(loop_of), tuple(side))
+
+
+def same_axis_meetings(m: HalfEdgeMap, axes: Sequence[int]) -> Iterator[tuple[int, int, int, int]]:
+    """Condition 3's raw material: for each corner and each two darts leaving it across loops
+    ``l1, l2`` with the same label, ``(l1, e1, l2, e2)``, where ``e = +1`` when the corner lies
+    on the left of the loop.  The two darts point in different directions exactly when the
+    loops' signs satisfy ``s_l1 * s_l2 = -e1 * e2`` (the paper's side graph joins side
+    ``(l1, e1)`` to side ``(l2, e2)``).  Both the orientation solvers and the catalog's parity
+    test read Condition 3 from here.
+
+    >>> from polyloops.core.examples import load_example
+    >>> ls = load_example("l-shape").dualize()
+    >>> sorted(set(same_axis_meetings(ls.map, ls.axes)))
+    [(0, -1, 3, 1), (2, 1, 4, 1)]
+    """
+    system = m.loop_system
+    loop_of, side_of = system.loop_of_dart, system.side_of_dart
+    for c in range(m.num_corners):
+        darts = m.outgoing(c)
+        for i, d1 in enumerate(darts):
+            l1 = loop_of[d1]
+            for d2 in darts[i + 1:]:
+                l2 = loop_of[d2]
+                if axes[l1] == axes[l2]:
+                    # side_of_dart = +1: the dart points left to right, so its origin is on the left.
+                    yield l1, side_of[d1], l2, side_of[d2]

@@ -26,7 +26,7 @@ from __future__ import annotations
 from collections.abc import Iterable
 
 from polyloops.core.formats import FormatError
-from polyloops.core.halfedge import FaceListError, HalfEdgeMap, MapError
+from polyloops.core.halfedge import FaceListError, HalfEdgeMap, MapError, faces_from_next
 
 __all__ = ["PlanarCodeError", "planar_code", "read_planar_code"]
 
@@ -99,19 +99,13 @@ def _map_from_rotation(rotation: list[list[int]], where: str) -> HalfEdgeMap:
     for u, v in position:
         if (v, u) not in position:
             raise PlanarCodeError(f"{where}: vertex {u + 1} lists {v + 1} but not the other way round")
-    seen: set[tuple[int, int]] = set()
-    faces = []
-    for dart in position:
-        if dart in seen:
-            continue
-        face = []
-        u, v = dart
-        while (u, v) not in seen:
-            seen.add((u, v))
-            face.append(u)
-            around = rotation[v]
-            u, v = v, around[(position[(v, u)] + 1) % len(around)]
-        faces.append(face)
+    # Darts in the order the file lists them; a face turns at v to the neighbour after u.
+    index = {dart: i for i, dart in enumerate(position)}
+    nxt = [0] * len(index)
+    for (u, v), i in index.items():
+        around = rotation[v]
+        nxt[i] = index[(v, around[(position[(v, u)] + 1) % len(around)])]
+    faces = faces_from_next(nxt, [u for u, _ in index])
     try:
         return HalfEdgeMap.from_faces(faces)
     except (MapError, FaceListError) as err:

@@ -16,9 +16,8 @@ from __future__ import annotations
 from collections import defaultdict
 from collections.abc import Iterable
 
-from networkx.utils import UnionFind
-
 from polyloops.core.directions import Direction
+from polyloops.core.disjoint_sets import DisjointSets
 from polyloops.core.errors import PolyloopsError
 from polyloops.core.halfedge import HalfEdgeMap, MapError
 from polyloops.core.polycube import Polycube
@@ -65,7 +64,7 @@ def polycube_from_voxels(cells: Iterable[Cell]) -> Polycube:
     for f, (_, corners) in enumerate(faces):
         for i in range(4):
             by_edge[frozenset((corners[i], corners[(i + 1) % 4]))].append((f, i))
-    slots = UnionFind()
+    slots = DisjointSets()
 
     for sides in by_edge.values():
         if len(sides) == 2:

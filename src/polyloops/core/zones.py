@@ -16,12 +16,12 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-import networkx as nx
-from networkx.utils import UnionFind
-
 from polyloops.core.directions import Axis
+from polyloops.core.disjoint_sets import DisjointSets
 
 if TYPE_CHECKING:
+    import networkx as nx
+
     from polyloops.core.structure import LoopStructure
 
 
@@ -94,7 +94,7 @@ def _compute_zones_arrays(ls: LoopStructure, axis: Axis) -> Zones:
 def _compute_zones_tuples(ls: LoopStructure, axis: Axis) -> Zones:
     m = ls.map
     system = m.loop_system
-    parts = UnionFind(range(m.num_corners))
+    parts = DisjointSets(range(m.num_corners))
     for d in m.edge_darts:
         if ls.axes[system.loop_of_dart[d]] != axis:
             parts.union(m.origin(d), m.target(d))
@@ -149,14 +149,66 @@ def topological_order(successors: list[list[int]]) -> list[int] | None:
     return order if len(order) == len(successors) else None
 
 
+def find_directed_cycle(n: int, arcs: list[tuple[int, int, int]]) -> list[tuple[int, int, int]] | None:
+    """A directed cycle among ``arcs`` on nodes ``0..n-1`` (iterative DFS), or ``None``.
+
+    The kernel's one cycle finder: level graphs, orientation solvers and segmentations all
+    ask it.  An arc is ``(tail, head, key)``; the cycle comes back as its arcs, in order.
+
+    >>> find_directed_cycle(3, [(0, 1, 7), (1, 2, 8), (2, 1, 9)])
+    [(1, 2, 8), (2, 1, 9)]
+    >>> find_directed_cycle(3, [(0, 1, 7), (1, 2, 8)]) is None
+    True
+    """
+    out: list[list[tuple[int, int, int]]] = [[] for _ in range(n)]
+    for arc in arcs:
+        out[arc[0]].append(arc)
+    state = [0] * n  # 0 new, 1 on stack, 2 done
+    for start in range(n):
+        if state[start]:
+            continue
+        stack: list[tuple[int, int]] = [(start, 0)]
+        via: list[tuple[int, int, int]] = []
+        state[start] = 1
+        while stack:
+            u, i = stack[-1]
+            if i < len(out[u]):
+                stack[-1] = (u, i + 1)
+                arc = out[u][i]
+                w = arc[1]
+                if state[w] == 1:
+                    # The cycle: arcs on the stack from w, then this arc.
+                    nodes = [x for x, _ in stack]
+                    j = nodes.index(w)
+                    return [*via[j:], arc]
+                if state[w] == 0:
+                    state[w] = 1
+                    stack.append((w, 0))
+                    via.append(arc)
+            else:
+                state[u] = 2
+                stack.pop()
+                if via:
+                    via.pop()
+    return None
+
+
+def level_arcs(ls: LoopStructure, axis: Axis) -> list[tuple[int, int, int]]:
+    """The arcs of the ``axis``-graph as ``(minus zone, plus zone, loop)``."""
+    if ls.signs is None:
+        raise ValueError("a labelled loop structure has no level graphs; orient it first")
+    signs = ls.signs
+    return [(left, right, loop) if signs[loop] > 0 else (right, left, loop)
+            for loop, (left, right) in ls.zones(axis).sides.items()]
+
+
 def level_graph(ls: LoopStructure, axis: Axis) -> nx.MultiDiGraph:
     """The ``axis``-graph: arcs keyed by loop id, from the ``-`` zone to the ``+`` zone."""
     if ls.signs is None:
         raise ValueError("a labelled loop structure has no level graphs; orient it first")
-    zones = ls.zones(axis)
+    import networkx as nx
+
     g = nx.MultiDiGraph(axis=str(axis))
-    g.add_nodes_from(range(zones.count))
-    for loop, (left, right) in zones.sides.items():
-        minus, plus = (left, right) if ls.signs[loop] > 0 else (right, left)
-        g.add_edge(minus, plus, key=loop)
+    g.add_nodes_from(range(ls.zones(axis).count))
+    g.add_edges_from(level_arcs(ls, axis))
     return g

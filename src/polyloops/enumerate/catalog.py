@@ -29,6 +29,7 @@ from typing import Any
 from polyloops.core.canonical import CanonicalForm, canonical_form
 from polyloops.core.directions import Axis
 from polyloops.core.halfedge import HalfEdgeMap
+from polyloops.core.loops import same_axis_meetings
 from polyloops.core.structure import LoopStructure
 from polyloops.core.symmetry import SYMMETRY_MODES
 from polyloops.enumerate.corners import CATEGORIES, corner_histogram
@@ -74,21 +75,14 @@ def _sign_choices(m: HalfEdgeMap, axes: list[int]) -> list[list[tuple[int, int]]
             a = parent[a]
         return a, p
 
-    for c in range(m.num_corners):
-        darts = m.outgoing(c)
-        for i, d1 in enumerate(darts):
-            l1 = system.loop_of_dart[d1]
-            for d2 in darts[i + 1:]:
-                l2 = system.loop_of_dart[d2]
-                if axes[l1] != axes[l2]:
-                    continue
-                want = -system.side_of_dart[d1] * system.side_of_dart[d2]  # s_l1 * s_l2
-                (r1, p1), (r2, p2) = find(l1), find(l2)
-                if r1 == r2:
-                    if p1 * p2 != want:
-                        return None
-                else:
-                    parent[r1], parity[r1] = r2, p1 * p2 * want
+    for l1, e1, l2, e2 in same_axis_meetings(m, axes):
+        want = -e1 * e2  # s_l1 * s_l2
+        (r1, p1), (r2, p2) = find(l1), find(l2)
+        if r1 == r2:
+            if p1 * p2 != want:
+                return None
+        else:
+            parent[r1], parity[r1] = r2, p1 * p2 * want
     groups: dict[int, list[tuple[int, int]]] = defaultdict(list)
     for loop in range(n):
         root, p = find(loop)

@@ -42,8 +42,6 @@ from dataclasses import dataclass
 from functools import cached_property
 from itertools import islice
 
-from networkx.utils import UnionFind
-
 from polyloops.core.directions import Axis, Direction
 from polyloops.core.disjoint_sets import DisjointSets
 from polyloops.core.errors import PolyloopsError
@@ -507,11 +505,11 @@ class RemovalCheck:
     reason: str = ""
 
 
-def _removal_groups(ls: LoopStructure, loop: int) -> tuple[UnionFind, list[tuple[int, int]], set[int]]:
+def _removal_groups(ls: LoopStructure, loop: int) -> tuple[DisjointSets, list[tuple[int, int]], set[int]]:
     m = ls.map
     lp = ls.loops[loop]
     rungs = [(m.origin(d), m.target(d)) for d in lp.darts]
-    groups = UnionFind(range(m.num_corners))
+    groups = DisjointSets(range(m.num_corners))
     for u, v in rungs:
         groups.union(u, v)
     return groups, rungs, set(lp.faces)

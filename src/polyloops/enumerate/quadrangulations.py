@@ -26,7 +26,7 @@ from pathlib import Path
 import numpy as np
 
 from polyloops.core.errors import PolyloopsError
-from polyloops.core.halfedge import HalfEdgeMap
+from polyloops.core.halfedge import HalfEdgeMap, faces_from_next
 
 HEADER = b">>planar_code<<"
 
@@ -140,18 +140,7 @@ class Batch:
 
     def faces(self, i: int) -> list[list[int]]:
         """The faces of map ``i`` as corner lists."""
-        nxt, origin = self.nxt[i], self.origin[i]
-        seen = np.zeros(len(nxt), dtype=bool)
-        out = []
-        for d in range(len(nxt)):
-            if not seen[d]:
-                face, e = [], d
-                while not seen[e]:
-                    seen[e] = True
-                    face.append(int(origin[e]))
-                    e = int(nxt[e])
-                out.append(face)
-        return out
+        return faces_from_next(self.nxt[i], self.origin[i])
 
     def map(self, i: int) -> HalfEdgeMap:
         return HalfEdgeMap.from_faces(self.faces(i))

@@ -39,9 +39,9 @@ from pysat.solvers import Solver
 
 from polyloops.core.directions import Axis, Direction
 from polyloops.core.disjoint_sets import DisjointSets
+from polyloops.core.zones import find_directed_cycle
 from polyloops.enumerate.corners import canonical_rotation, chart_corners, cross
 from polyloops.segmentation.charts import Segmentation
-from polyloops.solvers.problem import find_directed_cycle
 
 
 @dataclass(frozen=True)

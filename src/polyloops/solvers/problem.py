@@ -26,7 +26,9 @@ from dataclasses import dataclass
 from functools import cached_property
 
 from polyloops.core.directions import Axis
+from polyloops.core.loops import same_axis_meetings
 from polyloops.core.structure import LoopStructure
+from polyloops.core.zones import find_directed_cycle
 from polyloops.verify.loop_structure import check_polycube_loop_structure
 
 Side = tuple[int, str]  # (loop, "L" or "R")
@@ -84,25 +86,16 @@ class OrientationProblem:
     # -- the side graph ---------------------------------------------------------------------
     def _build_side_edges(self) -> dict[Axis, list[tuple[Side, Side]]]:
         ls = self.structure
-        m = ls.map
-        system = m.loop_system
         edges: dict[Axis, list[tuple[Side, Side]]] = {a: [] for a in Axis}
         for i in range(self.num_loops):
             edges[ls.axes[i]].append(((i, "L"), (i, "R")))
         seen = set()
-        for c in range(m.num_corners):
-            by_axis: dict[Axis, list[Side]] = defaultdict(list)
-            for d in m.outgoing(c):
-                loop = system.loop_of_dart[d]
-                # side_of_dart = +1: the dart points left to right, so its origin is on the left.
-                by_axis[ls.axes[loop]].append((loop, "L" if system.side_of_dart[d] > 0 else "R"))
-            for a, sides in by_axis.items():
-                for i in range(len(sides)):
-                    for j in range(i + 1, len(sides)):
-                        key = (min(sides[i], sides[j]), max(sides[i], sides[j]))
-                        if key not in seen:
-                            seen.add(key)
-                            edges[a].append(key)
+        for l1, e1, l2, e2 in same_axis_meetings(ls.map, ls.axes):
+            a, b = (l1, "L" if e1 > 0 else "R"), (l2, "L" if e2 > 0 else "R")
+            key = (min(a, b), max(a, b))
+            if key not in seen:
+                seen.add(key)
+                edges[ls.axes[l1]].append(key)
         return edges
 
     def side_graph(self, axis: Axis):
@@ -239,38 +232,3 @@ class OrientationProblem:
         sub.components = list(components)
         sub.checked_axes = (axis,)
         return sub
-
-
-def find_directed_cycle(n: int, arcs: list[tuple[int, int, int]]) -> list[tuple[int, int, int]] | None:
-    """A directed cycle among ``arcs`` on nodes ``0..n-1`` (iterative DFS), or ``None``."""
-    out: list[list[tuple[int, int, int]]] = [[] for _ in range(n)]
-    for arc in arcs:
-        out[arc[0]].append(arc)
-    state = [0] * n  # 0 new, 1 on stack, 2 done
-    for start in range(n):
-        if state[start]:
-            continue
-        stack: list[tuple[int, int]] = [(start, 0)]
-        via: list[tuple[int, int, int]] = []
-        state[start] = 1
-        while stack:
-            u, i = stack[-1]
-            if i < len(out[u]):
-                stack[-1] = (u, i + 1)
-                arc = out[u][i]
-                w = arc[1]
-                if state[w] == 1:
-                    # The cycle: arcs on the stack from w, then this arc.
-                    nodes = [x for x, _ in stack]
-                    j = nodes.index(w)
-                    return [*via[j:], arc]
-                if state[w] == 0:
-                    state[w] = 1
-                    stack.append((w, 0))
-                    via.append(arc)
-            else:
-                state[u] = 2
-                stack.pop()
-                if via:
-                    via.pop()
-    return None
