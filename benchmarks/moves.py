@@ -20,8 +20,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _common import markdown_table, timed
 
 from polyloops.core.builders import box
+from polyloops.core.moves import add_loop, additions, count_additions, removals, remove_loop
 from polyloops.core.voxels import polycube_from_voxels
-from polyloops.enumerate.moves import add_loop, additions, count_additions, removals, remove_loop
 from strategies import well_composed_blob
 
 

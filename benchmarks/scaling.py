@@ -29,10 +29,10 @@ from polyloops.core.canonical import canonical_form
 from polyloops.core.directions import Axis
 from polyloops.core.duality import dualize, primalize
 from polyloops.core.halfedge import HalfEdgeMap
+from polyloops.core.moves import additions, removals
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LoopStructure
 from polyloops.core.voxels import polycube_from_voxels
-from polyloops.enumerate.moves import additions, removals
 from polyloops.verify import check_polycube, verify
 
 

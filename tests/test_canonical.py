@@ -111,7 +111,7 @@ def test_from_signature_round_trip(ls):
 
 
 def pool():
-    from polyloops.enumerate.moves import add_loop, additions
+    from polyloops.core.moves import add_loop, additions
 
     items = [load_example(n) for n in EXAMPLES]
     items = [x.dualize() if hasattr(x, "dualize") else x for x in items]

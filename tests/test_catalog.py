@@ -210,8 +210,8 @@ def shipped_records():
 def test_shipped_records_describe_their_own_signature():
     """Every column is recomputed from the structure that ``sig:SIGNATURE`` loads."""
     from polyloops.core.canonical import from_signature
-    from polyloops.enumerate.corners import corner_histogram
-    from polyloops.enumerate.moves import removals
+    from polyloops.core.corners import corner_histogram
+    from polyloops.core.moves import removals
 
     for rec in shipped_records():
         ls = from_signature(rec["signature"])

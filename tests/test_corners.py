@@ -9,17 +9,10 @@ import pytest
 from hypothesis import given
 
 from polyloops.cli import main
+from polyloops.core.corners import CATEGORIES, classify, corner_configurations, corner_histogram, transform
 from polyloops.core.directions import Direction
 from polyloops.core.symmetry import ROTATIONS, SIGNED_PERMUTATIONS, SYMMETRY_MODES
-from polyloops.enumerate.corners import (
-    CATEGORIES,
-    classify,
-    corner_classes,
-    corner_configurations,
-    corner_histogram,
-    transform,
-    witness,
-)
+from polyloops.enumerate.corners import corner_classes, witness
 from polyloops.verify import check_polycube, check_polycube_loop_structure
 from strategies import perturbed_structures, polycubes
 

@@ -11,9 +11,9 @@ from polyloops.core.canonical import signature, transformed
 from polyloops.core.directions import Axis
 from polyloops.core.examples import load_example
 from polyloops.core.holes import PAIRS, hole_orientation, intersection_matrix, invariant_factors
+from polyloops.core.moves import add_loop, additions, removals, remove_loop
 from polyloops.core.symmetry import SIGNED_PERMUTATIONS
 from polyloops.core.voxels import polycube_from_voxels
-from polyloops.enumerate.moves import add_loop, additions, removals, remove_loop
 from polyloops.enumerate.reach import explore, from_signature, neighbours
 from strategies import handle_zone_polycubes, polycubes, transform_cells
 

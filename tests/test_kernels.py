@@ -261,7 +261,7 @@ def test_dualize_twins(q, seed):
 def test_removal_by_reachability_sets_equals_the_search(q):
     """Whether another path joins the ends of a loop's arc, from bit sets computed once,
     agrees with a depth-first search per loop."""
-    from polyloops.enumerate import moves
+    from polyloops.core import moves
 
     ls = q.dualize()
     fast = [moves.check_removal(ls, lp.id).valid for lp in ls.loops]

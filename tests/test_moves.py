@@ -13,7 +13,7 @@ from polyloops.core.canonical import signature
 from polyloops.core.directions import Axis
 from polyloops.core.examples import load_example
 from polyloops.core.formats import loads
-from polyloops.enumerate.moves import (
+from polyloops.core.moves import (
     Addition,
     add_loop,
     additions,
@@ -275,7 +275,7 @@ def test_max_length_keeps_exactly_the_short_loops(q, k):
 
 
 def test_count_of_one_label_counts_only_that_label(capsys, monkeypatch):
-    from polyloops.enumerate import moves
+    from polyloops.core import moves
 
     seen = []
     original = moves._AdditionGraph.__init__
@@ -295,7 +295,7 @@ def test_count_of_one_label_counts_only_that_label(capsys, monkeypatch):
 @settings(max_examples=20)
 @given(polycubes(kinds=("blob", "smooth", "frame1"), max_size=3), st.integers(1, 12))
 def test_shortest_additions_are_the_shortest(q, k):
-    from polyloops.enumerate.moves import shortest_additions
+    from polyloops.core.moves import shortest_additions
 
     ls = q.dualize()
     for a in Axis:
@@ -312,7 +312,7 @@ def test_shortest_additions_are_the_shortest(q, k):
 @settings(max_examples=20)
 @given(polycubes(kinds=("blob", "smooth", "frame1"), max_size=3), st.integers(0, 2**16), st.integers(1, 6))
 def test_sampled_additions_are_listed_valid_and_reproducible(q, seed, n):
-    from polyloops.enumerate.moves import sample_additions
+    from polyloops.core.moves import sample_additions
 
     ls = q.dualize()
     for a in Axis:
@@ -332,7 +332,7 @@ def test_counting_within_a_time_limit_on_a_large_slab():
     import time
 
     from polyloops.core.builders import box
-    from polyloops.enumerate.moves import count_additions_within
+    from polyloops.core.moves import count_additions_within
 
     ls = box(8, 8, 1).dualize()  # 162 corners; Z-loops: every cycle of a 9x9 grid
     start = time.monotonic()

@@ -15,8 +15,8 @@ from polyloops.cli import main
 from polyloops.core.canonical import from_signature, signature
 from polyloops.core.directions import Axis
 from polyloops.core.examples import load_example
+from polyloops.core.moves import Addition, add_loop, canonical_cycle, try_remove
 from polyloops.enumerate.conjecture import certificate_lines, check_certificate, settle_catalog
-from polyloops.enumerate.moves import Addition, add_loop, canonical_cycle, try_remove
 from polyloops.enumerate.reach import MoveKind, check_path, explore, neighbours, shortest_path
 from polyloops.verify import check_polycube_loop_structure
 
@@ -109,7 +109,7 @@ def test_at_30_corners_the_missing_classes_lead_only_to_the_non_incremental_poly
     the labelled versions of the classes whose every removal gives the non-incremental polycube
     (about 2 minutes)."""
     from polyloops.core.canonical import canonical_form, from_signature
-    from polyloops.enumerate.moves import removals, remove_loop
+    from polyloops.core.moves import removals, remove_loop
 
     target = canonical_form(load_example("non-incremental"), "full").signature
     records = [json.loads(line) for line in (CATALOG / "catalog.jsonl").read_text().splitlines()]

@@ -13,12 +13,12 @@ from typing import Any
 
 import networkx as nx
 
+from polyloops.core.corners import corner_histogram
 from polyloops.core.directions import Axis
 from polyloops.core.duality import DualityError, dualize
 from polyloops.core.formats import Structure
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LoopStructure
-from polyloops.enumerate.corners import corner_histogram
 from polyloops.verify.loop_structure import genus_balance
 
 

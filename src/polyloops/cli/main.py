@@ -164,12 +164,8 @@ def cmd_info(args: argparse.Namespace) -> int:
 
 
 def cmd_corners(args: argparse.Namespace) -> int:
-    from polyloops.enumerate.corners import (
-        corner_classes,
-        corner_configurations,
-        corner_histogram,
-        witness,
-    )
+    from polyloops.core.corners import corner_configurations, corner_histogram
+    from polyloops.enumerate.corners import corner_classes, witness
 
     configs = corner_configurations()
     in_examples: dict[int, list[str]] = {c.id: [] for c in configs}
@@ -292,7 +288,7 @@ def cmd_orient(args: argparse.Namespace) -> int:
 
 def cmd_moves(args: argparse.Namespace) -> int:
     from polyloops.core.directions import Axis
-    from polyloops.enumerate.moves import check_removal
+    from polyloops.core.moves import check_removal
 
     if sum(map(bool, (args.count, args.shortest is not None, args.sample is not None))) > 1:
         raise CliError("--count, --shortest and --sample are different questions: ask one")
@@ -346,7 +342,7 @@ def _stream(args: argparse.Namespace, line: str) -> None:
 def _count_additions(ls: Any, axes: list[Any], args: argparse.Namespace) -> Any:
     from tqdm import tqdm
 
-    from polyloops.enumerate.moves import count_additions_within
+    from polyloops.core.moves import count_additions_within
 
     bar = tqdm(unit=" loops", desc="counting", disable=None, file=sys.stderr, leave=False)
     shown = dict.fromkeys((a.name for a in axes), 0)
@@ -368,7 +364,7 @@ def _list_additions(ls: Any, axes: list[Any], args: argparse.Namespace) -> tuple
     value says per label whether the listing is complete."""
     import time
 
-    from polyloops.enumerate.moves import (
+    from polyloops.core.moves import (
         SearchStopped,
         addition_index,
         additions,
@@ -429,7 +425,7 @@ MOVE_HELP = "write an index from 'polyloops moves' (such as Y3), or AXIS:c0,c1,.
 
 def _parse_move(arg: str, ls, text: str):
     from polyloops.core.directions import Axis
-    from polyloops.enumerate.moves import Addition, addition_at, is_valid_addition, parse_cycle
+    from polyloops.core.moves import Addition, addition_at, is_valid_addition, parse_cycle
 
     if ":" in text:
         label, _, corners = text.partition(":")
@@ -450,7 +446,7 @@ def _parse_move(arg: str, ls, text: str):
 
 
 def cmd_add(args: argparse.Namespace) -> int:
-    from polyloops.enumerate.moves import add_loop
+    from polyloops.core.moves import add_loop
 
     ls = read_valid_structure(args.file)
     result = add_loop(ls, _parse_move(args.file, ls, args.move))
@@ -461,7 +457,7 @@ def cmd_add(args: argparse.Namespace) -> int:
 
 
 def cmd_remove(args: argparse.Namespace) -> int:
-    from polyloops.enumerate.moves import check_removal, remove_loop
+    from polyloops.core.moves import check_removal, remove_loop
 
     ls = read_valid_structure(args.file)
     if not 0 <= args.loop < len(ls.loops):

@@ -27,13 +27,13 @@ from itertools import product
 from typing import Any
 
 from polyloops.core.canonical import CanonicalForm, canonical_form
+from polyloops.core.corners import CATEGORIES, corner_histogram
 from polyloops.core.directions import Axis
 from polyloops.core.halfedge import HalfEdgeMap
 from polyloops.core.loops import same_axis_meetings
+from polyloops.core.moves import removals
 from polyloops.core.structure import LoopStructure
 from polyloops.core.symmetry import SYMMETRY_MODES
-from polyloops.enumerate.corners import CATEGORIES, corner_histogram
-from polyloops.enumerate.moves import removals
 
 MODES = tuple(SYMMETRY_MODES)  # "labelled", "rotation", "full"
 

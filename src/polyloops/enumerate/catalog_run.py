@@ -19,9 +19,9 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from polyloops.core.corners import CATEGORIES
 from polyloops.core.formats import replace_atomic, write_atomic
 from polyloops.enumerate.catalog import MODES, map_classes
-from polyloops.enumerate.corners import CATEGORIES
 from polyloops.enumerate.parallel import run_jobs
 from polyloops.enumerate.quadrangulations import FilteredBatch, candidate_maps, resolve_method
 

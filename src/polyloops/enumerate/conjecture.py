@@ -26,8 +26,8 @@ from typing import Any
 
 from polyloops.core.canonical import canonical_form, from_signature
 from polyloops.core.errors import PolyloopsError
+from polyloops.core.moves import check_removal
 from polyloops.core.structure import LoopStructure
-from polyloops.enumerate.moves import check_removal
 from polyloops.enumerate.reach import Move, neighbours
 
 CERTIFICATE_KIND = "genus0-reachability-certificate"
@@ -255,7 +255,7 @@ def check_record(data: Any, corners_bound: int) -> str | None:
             return "the cube is the base of the induction and must be marked so"
         return None
     if "removable" in data:
-        from polyloops.enumerate.moves import try_remove
+        from polyloops.core.moves import try_remove
 
         loop = data["removable"]
         if type(loop) is not int or not 0 <= loop < len(ls.loops):

@@ -1,124 +1,30 @@
-"""The 126 polycube corner configurations.
+"""Corner configurations seen through symmetry and through pictures of cubes: classes under
+rotations or all signed permutations, small witness polycubes, and the corners a labelled
+segmentation can have.  The configurations themselves are :mod:`polyloops.core.corners`.
 
-A corner is a cyclic order of 3 to 6 distinct directions, counter-clockwise
-seen from outside, in which cyclically adjacent directions have different
-axes (loops of one axis do not cross).  Orders that differ by a rotation of
-the cycle are the same configuration; the reversed order is a different one
-(its mirror image).  The paper sorts them into six categories:
-
->>> from collections import Counter
->>> configs = corner_configurations()
->>> len(configs)
-126
->>> dict(Counter(c.category for c in configs))  # doctest: +NORMALIZE_WHITESPACE
-{'simple': 16, 'edge': 24, 'flat': 6, 'bent': 48, 'symmetric-complex': 8, 'asymmetric-complex': 24}
->>> classify([Direction.PX, Direction.PY, Direction.PZ]).category
-'simple'
+>>> len(corner_classes("rotation")), len(corner_classes("full"))
+(10, 9)
 """
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cache
-from itertools import combinations, permutations
 
+from polyloops.core.corners import (
+    CornerCategory,
+    CornerConfig,
+    canonical_rotation,
+    classify,
+    corner_configurations,
+    cross,
+    transform,
+)
 from polyloops.core.directions import Direction
 from polyloops.core.polycube import Polycube
-from polyloops.core.structure import LoopStructure
-from polyloops.core.symmetry import MODE_ALIASES, SYMMETRY_MODES, SignedPermutation
+from polyloops.core.symmetry import MODE_ALIASES, SYMMETRY_MODES
 from polyloops.core.voxels import Cell, VoxelError, polycube_from_voxels
-
-CATEGORIES = ("simple", "edge", "flat", "bent", "symmetric-complex", "asymmetric-complex")
-
-
-@dataclass(frozen=True, order=True)
-class CornerConfig:
-    """One configuration: ``directions`` in its canonical rotation (the smallest)."""
-
-    id: int
-    degree: int
-    category: str
-    directions: tuple[Direction, ...]
-
-    @property
-    def label(self) -> str:
-        return " ".join(str(d) for d in self.directions)
-
-    def to_json(self) -> dict[str, object]:
-        return {"id": self.id, "degree": self.degree, "category": self.category,
-                "directions": [str(d) for d in self.directions]}
-
-
-def canonical_rotation(directions: Sequence[Direction]) -> tuple[Direction, ...]:
-    """The lexicographically smallest rotation of a cyclic sequence."""
-    seq = tuple(directions)
-    return min(seq[i:] + seq[:i] for i in range(len(seq)))
-
-
-def is_corner(directions: Sequence[Direction]) -> bool:
-    """3 to 6 distinct directions, cyclically adjacent ones on different axes."""
-    k = len(directions)
-    return (3 <= k <= 6 and len(set(directions)) == k
-            and all(directions[i].axis != directions[(i + 1) % k].axis for i in range(k)))
-
-
-def category_of(directions: Sequence[Direction]) -> str:
-    """The paper's category of a corner (which must satisfy :func:`is_corner`)."""
-    k = len(directions)
-    if k == 3:
-        return "simple"
-    if k == 4:
-        return "edge" if len({d.axis for d in directions}) == 3 else "flat"
-    if k == 5:
-        return "bent"
-    symmetric = all(directions[(i + 3) % 6] == -directions[i] for i in range(6))
-    return "symmetric-complex" if symmetric else "asymmetric-complex"
-
-
-def _generate() -> list[tuple[Direction, ...]]:
-    """Every cyclic order of every subset, keeping those that are corners, once per rotation class."""
-    found = set()
-    for k in range(3, 7):
-        for subset in combinations(Direction, k):
-            first, rest = subset[0], subset[1:]
-            for perm in permutations(rest):  # fixing the first element fixes the rotation
-                seq = (first, *perm)
-                if is_corner(seq):
-                    found.add(canonical_rotation(seq))
-    return sorted(found, key=lambda s: (len(s), CATEGORIES.index(category_of(s)), s))
-
-
-@cache
-def corner_configurations() -> tuple[CornerConfig, ...]:
-    """All configurations, numbered by degree, category, then directions."""
-    return tuple(CornerConfig(i, len(s), category_of(s), s) for i, s in enumerate(_generate()))
-
-
-@cache
-def _by_directions() -> dict[tuple[Direction, ...], CornerConfig]:
-    return {c.directions: c for c in corner_configurations()}
-
-
-def classify(directions: Iterable[Direction | None]) -> CornerConfig | None:
-    """The configuration of a corner's cyclic directions, or ``None`` if it is no polycube corner."""
-    seq = tuple(directions)
-    if any(d is None for d in seq):
-        return None
-    return _by_directions().get(canonical_rotation(seq))  # type: ignore[arg-type]
-
-
-# -- symmetry ---------------------------------------------------------------------------
-
-def transform(config: CornerConfig, g: SignedPermutation) -> CornerConfig:
-    """The image of a configuration under ``g``; a reflection also reverses the cyclic order,
-    because it reverses the orientation of the surface."""
-    seq = [g(d) for d in config.directions]
-    if g.det < 0:
-        seq.reverse()
-    image = classify(seq)
-    assert image is not None
-    return image
 
 
 @dataclass(frozen=True)
@@ -126,7 +32,7 @@ class CornerClass:
     """An orbit of configurations under a symmetry group; its representative has the lowest id."""
 
     id: int
-    category: str
+    category: CornerCategory
     members: tuple[int, ...]
 
     @property
@@ -184,39 +90,6 @@ def witness(config: CornerConfig | int) -> tuple[tuple[Cell, ...], Polycube] | N
     cid = config if isinstance(config, int) else config.id
     cells = _octant_witnesses().get(cid)
     return None if cells is None else (cells, polycube_from_voxels(cells))
-
-
-def corner_histogram(obj: Polycube | LoopStructure) -> tuple[dict[int, int], dict[str, int], int]:
-    """Counts of configuration ids and of categories over the corners of a structure,
-    and the number of corners that are no polycube corner (or need sides to tell)."""
-    ids: dict[int, int] = {}
-    categories = dict.fromkeys(CATEGORIES, 0)
-    unclassified = 0
-    if isinstance(obj, LoopStructure) and not obj.oriented:
-        return ids, categories, obj.map.num_corners
-    for v in range(obj.map.num_corners):
-        config = classify(obj.corner_directions(v))
-        if config is None:
-            unclassified += 1
-            continue
-        ids[config.id] = ids.get(config.id, 0) + 1
-        categories[config.category] += 1
-    return dict(sorted(ids.items())), categories, unclassified
-
-
-# -- corners of labelled segmentations ----------------------------------------------------
-
-def cross(a: Direction, b: Direction) -> Direction:
-    """The cross product of two directions on different axes.
-
-    >>> str(cross(Direction.PX, Direction.PY)), str(cross(Direction.PY, Direction.PX))
-    ('+Z', '-Z')
-    """
-    if a.axis == b.axis:
-        raise ValueError(f"{a} and {b} are parallel")
-    third = 3 - a.axis - b.axis
-    right_handed = (b.axis - a.axis) % 3 == 1
-    return Direction.of(third, a.sign * b.sign * (1 if right_handed else -1))
 
 
 ChartCorner = tuple[tuple[Direction, Direction], ...]

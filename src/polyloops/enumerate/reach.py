@@ -33,8 +33,7 @@ from typing import Any
 from polyloops.core.canonical import canonical_form, from_signature
 from polyloops.core.directions import Axis
 from polyloops.core.errors import PolyloopsError
-from polyloops.core.structure import LoopStructure
-from polyloops.enumerate.moves import (
+from polyloops.core.moves import (
     Addition,
     _AdditionGraph,
     add_loop,
@@ -43,6 +42,7 @@ from polyloops.enumerate.moves import (
     remove_loop,
     try_remove,
 )
+from polyloops.core.structure import LoopStructure
 from polyloops.enumerate.parallel import run_jobs
 
 MODES = ("labelled", "rotation", "full")
@@ -107,7 +107,7 @@ BOTH = (MoveKind.ADD, MoveKind.REMOVE)
 def neighbours(ls: LoopStructure, max_corners: int,
                kinds: Sequence[MoveKind] = BOTH) -> Iterator[tuple[Move, LoopStructure]]:
     """Every valid move from ``ls`` whose result has at most ``max_corners`` corners, with the
-    result: additions first (X, Y, Z, in :func:`~polyloops.enumerate.moves.additions` order),
+    result: additions first (X, Y, Z, in :func:`~polyloops.core.moves.additions` order),
     then removals by loop id."""
     room = max_corners - ls.map.num_corners
     if MoveKind.ADD in kinds and room >= 3:

@@ -7,8 +7,8 @@ import os
 
 from matplotlib.patches import Polygon
 
+from polyloops.core.corners import CATEGORIES, CornerConfig, corner_configurations
 from polyloops.core.directions import Direction
-from polyloops.enumerate.corners import CATEGORIES, CornerConfig, corner_configurations
 from polyloops.render.colors import direction_color
 from polyloops.render.figure import new_figure, save_figure
 from polyloops.render.projection import View

@@ -37,10 +37,11 @@ from itertools import product
 from pysat.card import CardEnc, EncType
 from pysat.solvers import Solver
 
+from polyloops.core.corners import canonical_rotation, cross
 from polyloops.core.directions import Axis, Direction
 from polyloops.core.disjoint_sets import DisjointSets
 from polyloops.core.zones import find_directed_cycle
-from polyloops.enumerate.corners import canonical_rotation, chart_corners, cross
+from polyloops.enumerate.corners import chart_corners
 from polyloops.segmentation.charts import Segmentation
 
 

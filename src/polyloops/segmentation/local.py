@@ -15,8 +15,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from polyloops.core.corners import canonical_rotation
 from polyloops.core.directions import Direction
-from polyloops.enumerate.corners import canonical_rotation, chart_label_cycles
+from polyloops.enumerate.corners import chart_label_cycles
 from polyloops.segmentation.charts import Segmentation
 
 
