@@ -299,7 +299,7 @@ def test_names_and_identify_every_shipped_record(tmp_path, capsys):
     from polyloops.core.canonical import from_signature, transformed
     from polyloops.core.formats import dumps
     from polyloops.core.symmetry import SIGNED_PERMUTATIONS
-    from polyloops.enumerate.catalog_run import identify
+    from polyloops.enumerate.census import identify
     from test_canonical import mirror, renumber
 
     rng = random.Random(7)

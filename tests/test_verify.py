@@ -86,7 +86,7 @@ def test_theorems_1_and_2_on_perturbed_structures(ls):
 
 @given(perturbed_structures())
 def test_theorem3_whenever_loops_of_one_axis_are_disjoint(ls):
-    rb = ReportBuilder("loop-structure", "x")
+    rb = ReportBuilder("loop-structure", "Theorem 3")
     if not crossing_violations(rb, ls):
         assert check_theorem3(ls).valid
 

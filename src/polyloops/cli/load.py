@@ -6,7 +6,6 @@ one-line message that names the file.
 
 from __future__ import annotations
 
-import dataclasses
 import os
 import stat
 import sys
@@ -45,7 +44,7 @@ def read_document(arg: str, given: str | None = None) -> Document:
         from polyloops.core.canonical import SignatureError, from_signature
 
         try:
-            return parse_document(dumps(from_signature(arg.removeprefix("sig:"))))
+            return Document.of(from_signature(arg.removeprefix("sig:")))
         except SignatureError as err:
             raise CliError(f"{arg}: {err}") from None
     if arg.startswith("example:"):
@@ -81,8 +80,7 @@ def _planar_document(arg: str) -> Document:
     if len(classes) > 1:
         raise CliError(f"{arg}: planar code has no axis labels, and the map carries {len(classes)} "
                        "different polycube loop structures; give the one you mean as JSON or .graph")
-    doc = parse_document(dumps(classes[0]))
-    return dataclasses.replace(doc, notes=("planar code has no axis labels; read the map's only polycube "
+    return Document.of(classes[0], notes=("planar code has no axis labels; read the map's only polycube "
                                            "loop structure (up to symmetry)",))
 
 
@@ -161,42 +159,27 @@ def read_structure(arg: str, fix_orientation: bool = False, given: str | None = 
     return obj
 
 
-def first_violation(report) -> str:
-    """The first violation of a report, for a one-line message."""
-    v = report.violations[0]
-    n = len(report.violations)
-    more = f" (and {n - 1} more; see 'polyloops verify')" if n > 1 else ""
-    return f"{v.definition} condition {v.condition}: {v.message}{more}"
+def read_loop_structure(arg: str, oriented: bool = False, valid: bool = False,
+                        built: Structure | None = None) -> LoopStructure:
+    """A FILE argument as a loop structure (:func:`polyloops.verify.as_loop_structure`): a
+    polycube must pass Definition 1 and is dualized, and with ``valid`` the structure must be
+    a polycube loop structure (exit 1 naming the first violation otherwise); with ``oriented``
+    a structure without sides is refused (exit 2).  ``built`` is FILE already read."""
+    from polyloops.verify import NeedsSidesError, NotAPolycubeError, as_loop_structure
 
-
-def read_loop_structure(arg: str, oriented: bool = False) -> LoopStructure:
-    """A FILE argument as a loop structure: a polycube must pass Definition 1 and is dualized
-    (exit 1 naming its first violation otherwise); with ``oriented``, a structure without
-    sides is refused."""
-    from polyloops.core.duality import dualize
-    from polyloops.verify import check_polycube
-
-    obj = read_structure(arg)
-    if isinstance(obj, Polycube):
-        report = check_polycube(obj)
-        if not report.valid:
-            raise CliError(f"{arg}: not a polycube: {first_violation(report)}", EXIT_INVALID)
-        obj = dualize(obj)
-    if oriented and not obj.oriented:
-        raise CliError(f"{arg}: is a labelled loop structure without sides; orient it first")
-    return obj
+    try:
+        return as_loop_structure(read_structure(arg) if built is None else built,
+                                 oriented=oriented, valid=valid)
+    except NotAPolycubeError as err:
+        raise CliError(f"{arg}: {err}", EXIT_INVALID) from None
+    except NeedsSidesError as err:
+        raise CliError(f"{arg}: {err}") from None
 
 
 def read_valid_structure(arg: str) -> LoopStructure:
     """A FILE argument as a polycube loop structure (Definition 4): exit 1 naming the first
     violation otherwise."""
-    from polyloops.verify import verify
-
-    ls = read_loop_structure(arg, oriented=True)
-    report = verify(ls)
-    if not report.valid:
-        raise CliError(f"{arg}: not a polycube loop structure: {first_violation(report)}", EXIT_INVALID)
-    return ls
+    return read_loop_structure(arg, valid=True)
 
 
 def write_output(path: str | None, obj: Structure, given: str | None = None) -> str | None:

@@ -9,6 +9,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
+from polyloops.cli.args import FILE_HELP, AddCommand, Parser, count_arg, emit
 from polyloops.cli.load import (
     EXIT_INVALID,
     EXIT_OK,
@@ -19,10 +20,6 @@ from polyloops.cli.load import (
     write_text,
 )
 from polyloops.core.formats import to_data
-
-
-def _emit(args: argparse.Namespace, data: Any, text: str) -> None:
-    print(json.dumps(data, indent=2) if getattr(args, "json", False) else text)
 
 
 def _kinds(text: str):
@@ -80,7 +77,7 @@ def cmd_reach(args: argparse.Namespace) -> int:
     lines += [f"{c:>7}  {n:>6}" for c, n in result.by_corners.items()]
     if out is not None:
         lines.append(f"wrote {out / 'reach.sqlite'} and {out / 'summary.json'}")
-    _emit(args, data, "\n".join(lines))
+    emit(args, data, "\n".join(lines))
     return EXIT_OK
 
 
@@ -103,28 +100,19 @@ def cmd_path(args: argparse.Namespace) -> int:
     data = {"moves": len(steps) - 1, "corners": corners, "max_corners": max(corners)}
     text = (f"{len(steps) - 1} moves; corners along the path: {' '.join(map(str, corners))}"
             + (f"\nwrote {args.output}" if args.output else ""))
-    _emit(args, data, text)
+    emit(args, data, text)
     return EXIT_OK
 
 
 def verify_path_file(source: str, data: dict[str, Any], as_json: bool) -> int:
     """``polyloops verify`` on a path file: every step, then every consecutive pair."""
-    from polyloops.core.formats import FormatError, parse_document
-    from polyloops.enumerate.reach import check_path
+    from polyloops.core.formats import FormatError
+    from polyloops.enumerate.reach import check_path, path_steps
 
-    steps = data.get("steps")
-    if not isinstance(steps, list) or not steps:
-        raise CliError(f"{source}: a path needs a non-empty list \"steps\"")
-    structures = []
-    for i, step in enumerate(steps):
-        try:
-            doc = parse_document(json.dumps(step))
-            if doc.kind != "loop-structure":
-                raise FormatError("a step must be a loop structure")
-            structures.append(doc.build())
-        except (ValueError, RecursionError) as err:
-            raise CliError(f"{source}: step {i}: {err}") from None
-    check = check_path(structures)
+    try:
+        check = check_path(path_steps(data))
+    except FormatError as err:
+        raise CliError(f"{source}: {err}") from None
     result = {"valid": check.valid, "kind": "path", "steps": check.steps, "bad_step": check.bad_step,
               "reason": check.reason}
     if as_json:
@@ -153,12 +141,8 @@ def read_path_file(source: str) -> dict[str, Any] | None:
 def cmd_conjecture_genus0(args: argparse.Namespace) -> int:
     from tqdm import tqdm
 
-    from polyloops.enumerate.conjecture import (
-        CatalogError,
-        catalog_signatures,
-        certificate_lines,
-        settle_catalog,
-    )
+    from polyloops.enumerate.census import CatalogError
+    from polyloops.enumerate.conjecture import catalog_signatures, certificate_lines, settle_catalog
 
     catalog = Path(args.catalog)
     try:
@@ -185,12 +169,13 @@ def cmd_conjecture_genus0(args: argparse.Namespace) -> int:
     if result.unsettled:
         lines.append("unsettled within slack " + str(args.slack) + ": "
                      + ", ".join(r.signature for r in result.unsettled))
-    _emit(args, data, "\n".join(lines))
+    emit(args, data, "\n".join(lines))
     return EXIT_INVALID if result.unsettled else EXIT_OK
 
 
 def cmd_conjecture_check(args: argparse.Namespace) -> int:
-    from polyloops.enumerate.conjecture import CatalogError, check_certificate
+    from polyloops.enumerate.census import CatalogError
+    from polyloops.enumerate.conjecture import check_certificate
 
     text = read_text_file(args.certificate)
     try:
@@ -206,5 +191,56 @@ def cmd_conjecture_check(args: argparse.Namespace) -> int:
     else:
         text = (f"{args.certificate}: valid: every class through {header['max_corners']} corners "
                 "is reachable from the cube (each record replayed with the Definition-4 checker)")
-    _emit(args, data, text)
+    emit(args, data, text)
     return EXIT_INVALID if problems else EXIT_OK
+
+
+def add_commands(command: AddCommand) -> None:
+    modes = ("labelled", "rotation", "full")
+    moves_help = "add, remove, or add,remove (default)"
+    p = command("reach", cmd_reach, "breadth-first search over loop additions and removals from "
+                "START (default: the cube), every state within --max-corners", file_arg=False)
+    p.add_argument("start", metavar="START", nargs="?", default="example:cube", help=FILE_HELP)
+    p.add_argument("--max-corners", type=count_arg(8), required=True, metavar="M")
+    p.add_argument("--max-depth", type=count_arg(0), metavar="D", help="stop after D moves")
+    p.add_argument("--moves", default="add,remove", help=moves_help)
+    p.add_argument("--symmetry", choices=modes, default="labelled",
+                   help="states up to renumbering (labelled, default), rotations, or all 48 symmetries")
+    p.add_argument("-o", "--output", metavar="DIR", help="store the states in DIR/reach.sqlite "
+                   "(resumable level by level) and the counts in DIR/summary.json")
+    p.add_argument("--workers", type=count_arg(1), default=1, metavar="K", help="local worker processes")
+    p.add_argument("--dask", metavar="ADDRESS", help="expand levels on a Dask cluster (an address, or local)")
+    p = command("path", cmd_path, "a shortest sequence of loop additions and removals from SOURCE "
+                "to TARGET, every structure within --max-corners (exit 1 when there is none)",
+                file_arg=False)
+    p.add_argument("source", metavar="SOURCE", help=FILE_HELP)
+    p.add_argument("target", metavar="TARGET", help=FILE_HELP)
+    p.add_argument("--max-corners", type=count_arg(8), required=True, metavar="M")
+    p.add_argument("--moves", default="add,remove", help=moves_help)
+    p.add_argument("-o", "--output", metavar="OUT.json", help="write the path: every step as a loop "
+                   "structure ('polyloops verify OUT.json' checks it)")
+    p = command("conjecture", cmd_conjecture_genus0, "the genus-0 reachability conjecture: "
+                "'conjecture genus0' settles every catalog class, 'conjecture check' re-checks a "
+                "certificate", file_arg=False, json_flag=False)
+    sub = p.add_subparsers(dest="which", metavar="WHICH", parser_class=Parser)
+    sub.required = True
+    g = sub.add_parser("genus0", help="settle every class of a genus-0 catalog up to N corners",
+                       description="settle every class of a genus-0 catalog up to N corners: a removable "
+                       "loop, or a detour to fewer corners within the slack; exit 1 if some class "
+                       "is not settled")
+    g.add_argument("--catalog", required=True, metavar="DIR", help="a catalog directory (catalogs/genus0)")
+    g.add_argument("--max-corners", type=count_arg(8), required=True, metavar="N")
+    g.add_argument("--slack", type=count_arg(2), default=10, metavar="K",
+                   help="detours may go up to K corners above the class (tried 2, 4, ..., K; default 10)")
+    g.add_argument("-o", "--output", required=True, metavar="CERT", help="the certificate (JSON lines)")
+    g.add_argument("--workers", type=count_arg(1), default=1, metavar="K", help="local worker processes")
+    g.add_argument("--dask", metavar="ADDRESS", help="a Dask cluster (an address, or local)")
+    g.add_argument("--json", action="store_true", help="print one JSON object for scripts")
+    g.set_defaults(func=cmd_conjecture_genus0)
+    c = sub.add_parser("check", help="re-check a certificate without trusting the search",
+                       description="re-check a certificate against a catalog: every class present, "
+                       "every removal and detour replayed with the Definition-4 checker")
+    c.add_argument("certificate", metavar="CERT")
+    c.add_argument("--catalog", required=True, metavar="DIR")
+    c.add_argument("--json", action="store_true", help="print one JSON object for scripts")
+    c.set_defaults(func=cmd_conjecture_check)

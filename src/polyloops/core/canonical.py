@@ -36,7 +36,7 @@ from polyloops.core.errors import PolyloopsError
 from polyloops.core.halfedge import faces_from_next, permutation_orbits
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LoopStructure
-from polyloops.core.symmetry import SIGNED_PERMUTATIONS, SYMMETRY_MODES, SignedPermutation
+from polyloops.core.symmetry import SIGNED_PERMUTATIONS, SYMMETRY_MODES, SignedPermutation, Symmetry
 
 MODES = SYMMETRY_MODES
 ALPHABET = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789-_"
@@ -52,7 +52,7 @@ class CanonicalForm:
     code: tuple[int, ...]
     oriented: bool
     automorphisms: int
-    mode: str
+    mode: Symmetry
     # Mode "full" only: whether some reflection of space maps the structure to itself
     # (it is then equivalent to its mirror image under rotations); None in other modes.
     achiral: bool | None
@@ -167,7 +167,7 @@ class _Candidates:
     at most 2 x 6 arrays, not one full array per candidate; labels are made only for the
     candidates that own a root."""
 
-    def __init__(self, ls: LoopStructure, mode: str):
+    def __init__(self, ls: LoopStructure, mode: Symmetry):
         m = ls.map
         a = m.arrays
         n = m.num_darts
@@ -242,7 +242,7 @@ def _code_prefix(succ, twin, lab, root: int, best: list[int] | None) -> list[int
 
 
 @gc_paused
-def _canonical_form_arrays(ls: LoopStructure, mode: str) -> CanonicalForm:
+def _canonical_form_arrays(ls: LoopStructure, mode: Symmetry) -> CanonicalForm:
     """:func:`canonical_form` for large maps: the same roots and codes, found with arrays.
 
     Invariants are computed for every dart at once; the labels around both ends of the
@@ -320,10 +320,13 @@ def _less(a: np.ndarray, b: np.ndarray) -> bool:
     return bool(len(differ)) and a[differ[0]] < b[differ[0]]
 
 
-def canonical_form(obj: LoopStructure | Polycube, mode: str = "full") -> CanonicalForm:
-    """The canonical form of a structure (a polycube is dualized first)."""
-    if mode not in MODES:
-        raise ValueError(f"unknown symmetry mode {mode!r}; choose labelled, rotation or full")
+def canonical_form(obj: LoopStructure | Polycube, mode: Symmetry | str = Symmetry.FULL) -> CanonicalForm:
+    """The canonical form of a structure (a polycube is dualized first).
+
+    ``mode`` is a :class:`~polyloops.core.symmetry.Symmetry` or its name; an unknown name
+    raises ``ValueError``.
+    """
+    mode = Symmetry.parse(mode)
     ls = obj.dualize() if isinstance(obj, Polycube) else obj
     m = ls.map
     if m.num_darts >= LARGE:
@@ -382,12 +385,13 @@ def canonical_form(obj: LoopStructure | Polycube, mode: str = "full") -> Canonic
     return CanonicalForm(best, ls.oriented, len(hits), mode, achiral)
 
 
-def signature(obj: LoopStructure | Polycube, mode: str = "full") -> str:
+def signature(obj: LoopStructure | Polycube, mode: Symmetry | str = Symmetry.FULL) -> str:
     """A short printable name: equal exactly for isomorphic structures (in that mode)."""
     return canonical_form(obj, mode).signature
 
 
-def is_isomorphic(a: LoopStructure | Polycube, b: LoopStructure | Polycube, mode: str = "full") -> bool:
+def is_isomorphic(a: LoopStructure | Polycube, b: LoopStructure | Polycube,
+                  mode: Symmetry | str = Symmetry.FULL) -> bool:
     """Whether two structures are isomorphic in a symmetry mode; the default is
     :func:`signature`'s, so that ``is_isomorphic(a, b)`` says ``signature(a) == signature(b)``.
 

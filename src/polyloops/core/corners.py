@@ -62,7 +62,7 @@ class CornerConfig:
         return " ".join(str(d) for d in self.directions)
 
     def to_json(self) -> dict[str, object]:
-        return {"id": self.id, "degree": self.degree, "category": self.category,
+        return {"id": self.id, "degree": self.degree, "category": str(self.category),
                 "directions": [str(d) for d in self.directions]}
 
 

@@ -60,6 +60,25 @@ class Document:
     labels: Mapping[tuple[int, int], Direction | Axis] | None = None
     notes: tuple[str, ...] = ()  # what a reader wants its user to know (not errors)
 
+    @classmethod
+    def of(cls, obj: Structure, notes: tuple[str, ...] = ()) -> Document:
+        """The document of a structure already built (what reading its JSON would give),
+        without writing and parsing text.
+
+        >>> from polyloops.core.examples import load_example
+        >>> ls = load_example("l-shape").dualize()
+        >>> doc = Document.of(ls)
+        >>> doc.kind, doc.build().edge_labels() == ls.edge_labels()
+        ('loop-structure', True)
+        """
+        if isinstance(obj, Polycube):
+            return cls("polycube", [list(f) for f in obj.faces], [tuple(p) for p in obj.positions],
+                       notes=notes)
+        m = obj.map
+        label = obj.direction if obj.oriented else obj.axis_of_dart
+        labels = {(m.origin(d), m.target(d)): label(d) for d in m.edge_darts}
+        return cls("loop-structure", [list(f) for f in obj.map.faces], labels=labels, notes=notes)
+
     def build(self) -> Structure:
         """The model; raises ``MapError``, ``LabelError`` or ``FaceListError``."""
         if self.kind == "polycube":

@@ -707,3 +707,120 @@ def canonical_cycle(cycle: Sequence[int]) -> tuple[int, ...]:
     """The rotation that starts at the lowest corner (the direction is kept)."""
     i = cycle.index(min(cycle))
     return tuple(cycle[i:]) + tuple(cycle[:i])
+
+
+class MoveError(PolyloopsError, ValueError):
+    """A move that names nothing: bad syntax, or an index past the end of the listing."""
+
+
+class InvalidMoveError(MoveError):
+    """A well-formed loop addition that is not valid on this structure."""
+
+
+MOVE_SYNTAX = "write an index from 'polyloops moves' (such as Y3), or AXIS:c0,c1,..."
+
+
+def parse_addition(ls: LoopStructure, text: str) -> Addition:
+    """The addition ``text`` names on ``ls``: an index from :func:`addition_at` (``Y3``, or a
+    plain ``n``), or ``AXIS:c0,c1,...`` (the corners the new loop walks past, ``+`` side on
+    the right).
+
+    Raises :class:`MoveError` when ``text`` names no addition, and :class:`InvalidMoveError`
+    when it names a loop whose addition is not valid here.
+
+    >>> from polyloops.core.examples import load_example
+    >>> box = load_example("box-2x1x1").dualize()
+    >>> parse_addition(box, "Y0") == addition_at(box, "Y0")
+    True
+    >>> parse_addition(box, "Q7")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    polyloops.core.moves.MoveError: move 'Q7': write an index from 'polyloops moves' (such as Y3), ...
+    """
+    if ":" in text:
+        label, _, corners = text.partition(":")
+        try:
+            move = Addition(Axis.parse(label.strip().upper()), parse_cycle(corners))
+        except ValueError:
+            raise MoveError(f"move {text!r}: {MOVE_SYNTAX}") from None
+        if not is_valid_addition(ls, move):
+            raise InvalidMoveError(f"move {text!r} is not a valid loop addition here")
+        return move
+    try:
+        found = addition_at(ls, int(text) if text.strip().lstrip("-").isdigit() else text)
+    except ValueError:
+        raise MoveError(f"move {text!r}: {MOVE_SYNTAX}") from None
+    if found is None:
+        raise MoveError(f"there is no addition {text} ('polyloops moves' lists them)")
+    return found
+
+
+@dataclass(frozen=True)
+class AdditionListing:
+    """Additions found by :func:`list_additions`, each with its name, and per label whether
+    the listing is complete (``False`` where a limit or the time limit stopped it)."""
+
+    additions: tuple[tuple[str, Addition], ...]
+    complete: dict[str, bool]
+    stopped_by: str | None  # "a limit", "the time limit", or None when complete
+
+
+def list_additions(ls: LoopStructure, axes: Sequence[Axis] = tuple(Axis), *, limit: int | None = None,
+                   seconds: float | None = None, shortest: int | None = None,
+                   sample: int | None = None, seed: int = 0,
+                   on_found: Callable[[str, Addition], None] | None = None) -> AdditionListing:
+    """Valid additions of the labels ``axes``: all of them in :func:`additions` order (named
+    ``Y3``, at most ``limit`` in all), the ``shortest`` per label, or a random ``sample`` per
+    label (named by their cycle, ``Y:0,4,5,1``, since their place in the full listing is
+    unknown).  ``seconds`` bounds the time; ``on_found(name, move)`` is called as each is found,
+    so a caller can show a long listing as it grows.
+
+    >>> from polyloops.core.examples import load_example
+    >>> box = load_example("box-2x1x1").dualize()
+    >>> listing = list_additions(box, [Axis.X], limit=2)
+    >>> [name for name, _ in listing.additions], listing.complete, listing.stopped_by
+    (['X0', 'X1'], {'X': False}, 'a limit')
+    >>> [name for name, _ in list_additions(box, [Axis.Y], shortest=1).additions]
+    ['Y:0,4,5,1']
+    """
+    found: list[tuple[str, Addition]] = []
+    complete = {a.name: True for a in axes}
+    deadline = None if seconds is None else time.monotonic() + seconds
+
+    def expired() -> bool:
+        return deadline is not None and time.monotonic() > deadline
+
+    def show(name: str, move: Addition) -> None:
+        found.append((name, move))
+        if on_found is not None:
+            on_found(name, move)
+
+    if shortest is not None or sample is not None:
+        for a in axes:
+            try:
+                picked = (shortest_additions(ls, a, shortest, expired) if shortest is not None
+                          else sample_additions(ls, a, sample or 0, seed))
+            except SearchStopped:
+                complete[a.name] = False
+                continue
+            for move in picked:
+                show(f"{a.name}:" + ",".join(map(str, move.cycle)), move)
+        return AdditionListing(tuple(found), complete,
+                               None if all(complete.values()) else "the time limit")
+    total = 0
+    for a in axes:
+        i = 0
+        try:
+            for move in additions(ls, a, stop=expired):
+                if (limit is not None and total >= limit) or expired():
+                    complete[a.name] = False
+                    break
+                show(addition_index(a, i), move)
+                i += 1
+                total += 1
+        except SearchStopped:
+            complete[a.name] = False
+    stopped = None
+    if not all(complete.values()):
+        stopped = "a limit" if limit is not None and total >= limit else "the time limit"
+    return AdditionListing(tuple(found), complete, stopped)

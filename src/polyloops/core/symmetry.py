@@ -15,6 +15,7 @@ the orientation of the surface.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from enum import StrEnum
 from itertools import permutations, product
 
 from polyloops.core.directions import Axis, Direction
@@ -51,6 +52,37 @@ SIGNED_PERMUTATIONS: tuple[SignedPermutation, ...] = tuple(
 ROTATIONS: tuple[SignedPermutation, ...] = tuple(g for g in SIGNED_PERMUTATIONS if g.is_rotation)
 IDENTITY = SIGNED_PERMUTATIONS[0]
 
-# The symmetry modes, one name each: "labelled" keeps the axes and sides as they are.
-SYMMETRY_MODES = {"labelled": (IDENTITY,), "rotation": ROTATIONS, "full": SIGNED_PERMUTATIONS}
-MODE_ALIASES = {"none": "labelled"}  # the corners command's older name for "labelled"
+class Symmetry(StrEnum):
+    """What two structures may differ by and still count as one: nothing but numbering
+    (``labelled``: order-equivalence, axes and sides fixed), a rotation of space
+    (``rotation``: 24), or any signed permutation of the axes (``full``: 48, mirror images
+    identified).  One enum for corners, signatures, catalogs, reachability and the CLI; a
+    string enum, so ``Symmetry.FULL == "full"`` and it serialises as its name.
+
+    >>> Symmetry.parse("none"), len(Symmetry.FULL.group), len(Symmetry("rotation").group)
+    (<Symmetry.LABELLED: 'labelled'>, 48, 24)
+    """
+
+    LABELLED = "labelled"
+    ROTATION = "rotation"
+    FULL = "full"
+
+    @classmethod
+    def parse(cls, value: str) -> Symmetry:
+        """A mode from its name; ``none`` is the corners command's older name for ``labelled``.
+        Raises ``ValueError`` naming the modes for anything else."""
+        try:
+            return cls(MODE_ALIASES.get(value, value))
+        except ValueError:
+            raise ValueError(f"unknown symmetry {value!r} (choose from "
+                             f"{', '.join(m.value for m in cls)})") from None
+
+    @property
+    def group(self) -> tuple[SignedPermutation, ...]:
+        """The signed permutations this mode identifies by."""
+        return SYMMETRY_MODES[self]
+
+
+SYMMETRY_MODES: dict[Symmetry, tuple[SignedPermutation, ...]] = {
+    Symmetry.LABELLED: (IDENTITY,), Symmetry.ROTATION: ROTATIONS, Symmetry.FULL: SIGNED_PERMUTATIONS}
+MODE_ALIASES = {"none": "labelled"}

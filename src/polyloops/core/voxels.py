@@ -144,3 +144,24 @@ def voxels_from_grid(grid: object) -> list[Cell]:
     if not cells:
         raise ValueError("no cubes: the grid is empty")
     return cells
+
+
+def voxels_from_npy(data: bytes) -> list[Cell]:
+    """Cubes from the bytes of a NumPy ``.npy`` file holding a 3D grid (no pickles).
+    Raises ``ValueError`` naming the problem for anything else.
+
+    >>> import io, numpy as np
+    >>> buf = io.BytesIO(); np.save(buf, np.ones((1, 1, 2), dtype=bool))
+    >>> voxels_from_npy(buf.getvalue())
+    [(0, 0, 0), (0, 0, 1)]
+    """
+    import io
+
+    import numpy as np
+
+    try:
+        grid = np.load(io.BytesIO(data), allow_pickle=False)
+    except (ValueError, OSError, EOFError) as err:
+        message = " ".join(w if len(w) <= 80 else w[:60] + "..." for w in str(err).split(" "))
+        raise ValueError(f"not a NumPy .npy array: {message}") from None
+    return voxels_from_grid(grid)

@@ -14,7 +14,7 @@ different maps never coincide: classes are counted map by map.
 >>> from polyloops.core.examples import load_example
 >>> cube = load_example("cube").map
 >>> classes = map_classes(cube)
->>> {mode: len(v) for mode, v in classes.items()}
+>>> {str(mode): len(v) for mode, v in classes.items()}
 {'labelled': 1, 'rotation': 1, 'full': 1}
 """
 
@@ -33,9 +33,9 @@ from polyloops.core.halfedge import HalfEdgeMap
 from polyloops.core.loops import same_axis_meetings
 from polyloops.core.moves import removals
 from polyloops.core.structure import LoopStructure
-from polyloops.core.symmetry import SYMMETRY_MODES
+from polyloops.core.symmetry import Symmetry
 
-MODES = tuple(SYMMETRY_MODES)  # "labelled", "rotation", "full"
+MODES = tuple(Symmetry)  # labelled, rotation, full
 
 
 def _colourings(adjacency: list[set[int]]) -> Iterator[list[int]]:
@@ -113,7 +113,7 @@ def polycube_structures(m: HalfEdgeMap) -> Iterator[LoopStructure]:
             yield LoopStructure(m, axes, tuple(signs))
 
 
-def polycube_classes_on(m: HalfEdgeMap, mode: str = "full") -> list[LoopStructure]:
+def polycube_classes_on(m: HalfEdgeMap, mode: Symmetry | str = Symmetry.FULL) -> list[LoopStructure]:
     """One polycube loop structure on ``m`` (in ``m``'s own numbering) per class in a
     symmetry mode, in the order :func:`polycube_structures` meets them.
 

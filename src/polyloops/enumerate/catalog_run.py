@@ -20,7 +20,9 @@ from pathlib import Path
 from typing import Any
 
 from polyloops.core.corners import CATEGORIES
+from polyloops.core.errors import PolyloopsError
 from polyloops.core.formats import replace_atomic, write_atomic
+from polyloops.core.symmetry import Symmetry
 from polyloops.enumerate.catalog import MODES, map_classes
 from polyloops.enumerate.parallel import run_jobs
 from polyloops.enumerate.quadrangulations import FilteredBatch, candidate_maps, resolve_method
@@ -29,6 +31,11 @@ from polyloops.enumerate.quadrangulations import FilteredBatch, candidate_maps, 
 # versioned signatures; version 4: the number of maps whose strips are all simple.  Parts of
 # older versions are recomputed.
 SCHEMA_VERSION = 4
+
+
+class CatalogRunError(PolyloopsError, ValueError):
+    """A catalog run that cannot start or finish: bad arguments, an output that is no
+    directory, a worker that failed; the message names the problem."""
 
 
 @dataclass(frozen=True)
@@ -161,7 +168,7 @@ def summarize(results: list[dict[str, Any]], min_n: int, max_n: int, partial: bo
 NAME_PREFIX = {"full": "P", "rotation": "R", "labelled": "L"}
 
 
-def class_names(records: list[dict[str, Any]], symmetry: str) -> list[str]:
+def class_names(records: list[dict[str, Any]], symmetry: Symmetry | str) -> list[str]:
     """Short stable names, like a census's: ``P26.3`` is the third class with 26 corners up to
     all 48 symmetries (``R`` up to rotation, ``L`` labelled), classes of one corner count ranked
     by signature (as strings).  A name never changes once its corner count is complete."""
@@ -184,12 +191,14 @@ def _row(rec: dict[str, Any]) -> list[Any]:
             rec["automorphisms"], int(rec["chiral"]), rec["removable_loops"], int(rec["irreducible"])]
 
 
-def write_catalog(out: Path, results: list[dict[str, Any]], symmetry: str, summary: dict[str, Any]) -> int:
+def write_catalog(out: Path, results: list[dict[str, Any]], symmetry: Symmetry | str,
+                  summary: dict[str, Any]) -> int:
     records = sorted((rec for r in results for rec in r["records"][symmetry]),
                      key=lambda rec: (rec["corners"], rec["signature"]))
+    symmetry = Symmetry.parse(symmetry)
     names = class_names(records, symmetry)
     records = [{"name": name, **rec} for name, rec in zip(names, records, strict=True)]
-    lines = [json.dumps({**rec, "symmetry": symmetry}, separators=(",", ":")) for rec in records]
+    lines = [json.dumps({**rec, "symmetry": str(symmetry)}, separators=(",", ":")) for rec in records]
     write_atomic(out / "catalog.jsonl", "\n".join(lines) + ("\n" if lines else ""))
     fd, tmp = tempfile.mkstemp(dir=out, prefix=".catalog.sqlite.", suffix=".tmp")
     os.close(fd)
@@ -201,7 +210,7 @@ def write_catalog(out: Path, results: list[dict[str, Any]], symmetry: str, summa
         con.executemany(f"INSERT INTO polycubes VALUES ({', '.join('?' * len(COLUMNS))})",
                         [_row(rec) for rec in records])
         con.execute("CREATE TABLE meta (key TEXT PRIMARY KEY, value TEXT)")
-        con.execute("INSERT INTO meta VALUES ('symmetry', ?)", (symmetry,))
+        con.execute("INSERT INTO meta VALUES ('symmetry', ?)", (str(symmetry),))
         con.execute("CREATE INDEX by_corners ON polycubes (corners)")
         con.commit()
         con.close()
@@ -213,73 +222,82 @@ def write_catalog(out: Path, results: list[dict[str, Any]], symmetry: str, summa
     return len(records)
 
 
-def query(out: Path, where: str) -> tuple[list[str], list[tuple[Any, ...]]]:
-    """Rows of ``DIR/catalog.sqlite`` matching an SQL WHERE clause (read-only connection)."""
-    path = out / "catalog.sqlite"
-    if not path.is_file():
-        raise FileNotFoundError(f"{path}: no catalog here")
-    con = sqlite3.connect(f"file:{path}?mode=ro", uri=True)
-    try:
-        cur = con.execute(f"SELECT * FROM polycubes WHERE {where} ORDER BY corners, signature")
-        return [d[0] for d in cur.description], cur.fetchall()
-    finally:
-        con.close()
-
-
-def export_csv(out: Path) -> str:
-    """The whole ``polycubes`` table as CSV text (a header line, then one row per class)."""
-    import csv
-    import io
-
-    columns, rows = query(out, "1")
-    buf = io.StringIO()
-    writer = csv.writer(buf, lineterminator="\n")
-    writer.writerow(columns)
-    writer.writerows(rows)
-    return buf.getvalue()
-
-
-def default_catalog() -> Path:
-    """``catalogs/genus0`` of the source tree this package was installed from."""
-    return Path(__file__).resolve().parents[3] / "catalogs" / "genus0"
-
-
 @dataclass(frozen=True)
-class Identification:
-    name: str | None  # None: not in the catalog
-    signature: str
-    corners: int
-    genus: int
-    max_corners: int  # how far the catalog goes
-    catalog_genus: int
+class CatalogBuild:
+    """What :func:`build_catalog` wrote: the summary (counts in every mode, by corners) and the
+    number of records listed in the chosen mode."""
 
-    @property
-    def beyond(self) -> bool:
-        """Outside what the catalog lists (another genus, or more corners)."""
-        return self.name is None and (self.genus != self.catalog_genus or self.corners > self.max_corners)
-
-    def to_json(self) -> dict[str, Any]:
-        return {"name": self.name, "signature": self.signature, "corners": self.corners,
-                "genus": self.genus, "catalog_max_corners": self.max_corners,
-                "catalog_genus": self.catalog_genus, "in_catalog": self.name is not None}
+    directory: Path
+    symmetry: Symmetry
+    summary: dict[str, Any]
+    records: int
 
 
-def identify(obj: Any, catalog: Path | None = None) -> Identification:
-    """The catalog name of a polycube or loop structure (any numbering, position or mirror
-    image): its signature up to the catalog's symmetry, looked up in ``DIR/catalog.jsonl``.
+def build_catalog(out: Path | str, max_corners: int, min_corners: int = 8,
+                  symmetry: Symmetry | str = Symmetry.FULL, *, workers: int = 1,
+                  res: int | None = None, mod: int | None = None, dask: str | None = None,
+                  plantri: str | None = None, method: str = "auto",
+                  progress: Callable[[dict[str, Any]], None] | None = None,
+                  on_plan: Callable[[list[Job]], None] | None = None) -> CatalogBuild:
+    """Build (or resume) the genus-0 catalog in directory ``out``.
 
-    >>> from polyloops.core.examples import load_example
-    >>> identify(load_example("l-shape")).name
-    'P16.2'
+    Parameters
+    ----------
+    out:
+        The catalog directory; its parent must exist.  Finished jobs are kept in
+        ``out/parts``, so a second call resumes an interrupted one.
+    max_corners, min_corners:
+        The corner counts to cover.
+    symmetry:
+        The mode the records list (``summary.json`` counts all three).
+    workers, dask, res, mod:
+        Split the work over local processes or a Dask cluster, or do only plantri's slice
+        ``res`` of ``mod``; the bytes written do not depend on the split.
+    plantri, method:
+        Which plantri binary and which strip filter (see
+        :func:`polyloops.enumerate.quadrangulations.filtered_batches`).
+    progress, on_plan:
+        Called with each finished job's result, and once with the list of jobs.
+
+    Returns
+    -------
+    CatalogBuild
+
+    Raises
+    ------
+    CatalogRunError
+        For arguments that do not fit together or an output that is not a directory.
+    PlantriError
+        When plantri cannot be found or fails.
+
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     built = build_catalog(Path(tmp) / "cat", max_corners=12)
+    >>> built.records, {str(mode): n for mode, n in built.summary["counts"]["12"].items()}
+    (2, {'labelled': 3, 'rotation': 1, 'full': 1})
     """
-    from polyloops.core.canonical import canonical_form
+    from polyloops.enumerate.quadrangulations import find_plantri
 
-    directory = catalog or default_catalog()
-    lines = (directory / "catalog.jsonl").read_text(encoding="utf-8").splitlines()
-    summary = json.loads((directory / "summary.json").read_text(encoding="utf-8"))
-    records = [json.loads(line) for line in lines]
-    mode = records[0]["symmetry"] if records else "full"
-    sig = canonical_form(obj, mode).signature
-    by_signature = {r["signature"]: r["name"] for r in records}
-    return Identification(by_signature.get(sig), sig, obj.map.num_corners, obj.map.genus,
-                          max(int(n) for n in summary["counts"]), int(summary.get("genus", 0)))
+    out = Path(out)
+    if max_corners < min_corners:
+        raise CatalogRunError("--max-corners must be at least --min-corners")
+    if (res is None) != (mod is None) or (mod is not None and not 0 <= res < mod):  # type: ignore[operator]
+        raise CatalogRunError("--res R --mod M go together, with 0 <= R < M")
+    if workers < 1:
+        raise CatalogRunError("--workers must be at least 1")
+    symmetry = Symmetry.parse(symmetry)
+    binary = find_plantri(plantri)
+    if out.exists() and not out.is_dir():
+        raise CatalogRunError(f"{out}: exists and is not a directory")
+    if not out.absolute().parent.is_dir():  # like every other output: the directory above must exist
+        raise CatalogRunError(f"{out}: the directory {out.absolute().parent} does not exist")
+    jobs = plan_jobs(min_corners, max_corners, res, mod, workers)
+    if on_plan:
+        on_plan(jobs)
+    try:
+        results = execute(jobs, out, binary, workers, dask, progress, method=method)
+    except (RuntimeError, OSError) as err:
+        raise CatalogRunError(f"{out}: {err}") from None
+    summary = summarize(results, min_corners, max_corners, partial=mod is not None)
+    written = write_catalog(out, results, symmetry, summary)
+    return CatalogBuild(out, symmetry, summary, written)

@@ -25,9 +25,9 @@ from pathlib import Path
 from typing import Any
 
 from polyloops.core.canonical import canonical_form, from_signature
-from polyloops.core.errors import PolyloopsError
 from polyloops.core.moves import check_removal
 from polyloops.core.structure import LoopStructure
+from polyloops.enumerate.census import read_entries
 from polyloops.enumerate.reach import Move, neighbours
 
 CERTIFICATE_KIND = "genus0-reachability-certificate"
@@ -171,32 +171,10 @@ class ConjectureResult:
                 "by_corners": [row.to_json() for row in self.table()]}
 
 
-class CatalogError(PolyloopsError, ValueError):
-    """A catalog directory that cannot be read."""
-
-
 def catalog_signatures(directory: Path, max_corners: int) -> list[tuple[str, int]]:
-    """``(signature, corners)`` of every record of ``DIR/catalog.jsonl`` with at most
+    """``(signature, corners)`` of every record of a catalog directory with at most
     ``max_corners`` corners (the catalog of one symmetry mode)."""
-    path = directory / "catalog.jsonl"
-    try:
-        lines = path.read_text(encoding="utf-8").splitlines()
-    except OSError as err:
-        raise CatalogError(f"{path}: cannot read: {err.strerror or err}") from None
-    except UnicodeDecodeError as err:
-        raise CatalogError(f"{path}: cannot read: not UTF-8 text ({err.reason})") from None
-    out = []
-    for i, line in enumerate(lines):
-        try:
-            rec = json.loads(line)
-            sig, corners = rec["signature"], rec["corners"]
-            if not isinstance(sig, str) or type(corners) is not int:
-                raise TypeError("bad types")
-        except (ValueError, KeyError, TypeError) as err:
-            raise CatalogError(f"{path}: line {i + 1}: not a catalog record ({err})") from None
-        if corners <= max_corners:
-            out.append((sig, corners))
-    return out
+    return [(e.signature, e.corners) for e in read_entries(directory) if e.corners <= max_corners]
 
 
 def settle_catalog(directory: Path, max_corners: int, slack: int, workers: int = 1,

@@ -23,7 +23,7 @@ from polyloops.core.corners import (
 )
 from polyloops.core.directions import Direction
 from polyloops.core.polycube import Polycube
-from polyloops.core.symmetry import MODE_ALIASES, SYMMETRY_MODES
+from polyloops.core.symmetry import Symmetry
 from polyloops.core.voxels import Cell, VoxelError, polycube_from_voxels
 
 
@@ -40,16 +40,16 @@ class CornerClass:
         return corner_configurations()[self.members[0]]
 
     def to_json(self) -> dict[str, object]:
-        return {"class": self.id, "category": self.category, "size": len(self.members),
+        return {"class": self.id, "category": str(self.category), "size": len(self.members),
                 "representative": [str(d) for d in self.representative.directions],
                 "members": list(self.members)}
 
 
 @cache
-def corner_classes(symmetry: str = "rotation") -> tuple[CornerClass, ...]:
+def corner_classes(symmetry: Symmetry | str = Symmetry.ROTATION) -> tuple[CornerClass, ...]:
     """Orbits under ``"labelled"`` (each configuration alone), ``"rotation"`` (24) or ``"full"``
     (48 signed permutations); ``"none"`` is an older name for ``"labelled"``."""
-    group = SYMMETRY_MODES[MODE_ALIASES.get(symmetry, symmetry)]
+    group = Symmetry.parse(symmetry).group
     seen: set[int] = set()
     out = []
     for c in corner_configurations():
@@ -124,3 +124,32 @@ def chart_label_cycles() -> frozenset[tuple[Direction, ...]]:
     """The cyclic sequences of chart labels, from the smallest rotation, that some corner of
     :func:`chart_corners` has around it."""
     return frozenset(canonical_rotation([n for _, n in c]) for c in chart_corners())
+
+
+# -- the table the corners command prints ------------------------------------------------
+
+def corner_rows(witnesses: bool = False) -> list[dict[str, object]]:
+    """One JSON-ready row per configuration: its id, degree, category and directions, the
+    valid bundled examples that have such a corner, and with ``witnesses`` the cubes of a
+    small polycube that has one.
+
+    >>> rows = corner_rows()
+    >>> len(rows), rows[0]["category"], sum("cube" in row["examples"] for row in rows)
+    (126, 'simple', 8)
+    """
+    from polyloops.core.corners import corner_histogram
+    from polyloops.core.examples import EXAMPLES
+
+    in_examples: dict[int, list[str]] = {c.id: [] for c in corner_configurations()}
+    for name, ex in EXAMPLES.items():
+        if ex.valid:
+            for cid in corner_histogram(ex.build())[0]:
+                in_examples[cid].append(name)
+    rows = []
+    for c in corner_configurations():
+        row = {**c.to_json(), "examples": in_examples[c.id]}
+        if witnesses:
+            found = witness(c)
+            row["witness_cubes"] = [list(cell) for cell in found[0]] if found else None
+        rows.append(row)
+    return rows

@@ -43,9 +43,10 @@ from polyloops.core.moves import (
     try_remove,
 )
 from polyloops.core.structure import LoopStructure
+from polyloops.core.symmetry import Symmetry
 from polyloops.enumerate.parallel import run_jobs
 
-MODES = ("labelled", "rotation", "full")
+MODES = tuple(Symmetry)
 
 
 class MoveKind(StrEnum):
@@ -257,7 +258,7 @@ def path_to(store_dir: Path, signature: str) -> list[State]:
 @dataclass
 class ReachResult:
     start: str
-    mode: str
+    mode: Symmetry
     max_corners: int
     kinds: tuple[MoveKind, ...]
     by_corners: dict[int, int] = field(default_factory=dict)
@@ -283,7 +284,7 @@ class ReachResult:
 
 
 def explore(start: LoopStructure, max_corners: int, max_depth: int | None = None,
-            kinds: Sequence[MoveKind] = BOTH, mode: str = "labelled",
+            kinds: Sequence[MoveKind] = BOTH, mode: Symmetry | str = Symmetry.LABELLED,
             directory: Path | None = None, workers: int = 1, dask: str | None = None,
             progress: Callable[[dict[str, Any]], None] | None = None) -> ReachResult:
     """Breadth-first search of the move graph from ``start`` (see the module docstring).
@@ -293,8 +294,7 @@ def explore(start: LoopStructure, max_corners: int, max_depth: int | None = None
     split.  With ``directory``, states go to ``directory/reach.sqlite`` level by level and a
     rerun resumes after the last complete level.
     """
-    if mode not in MODES:
-        raise ValueError(f"unknown symmetry mode {mode!r}; choose labelled, rotation or full")
+    mode = Symmetry.parse(mode)
     if not start.oriented:
         raise ValueError("reachability needs an oriented loop structure")
     kinds = tuple(k for k in MoveKind if k in kinds)
@@ -439,3 +439,33 @@ def check_path(steps: Sequence[LoopStructure]) -> PathCheck:
         if i and not one_move_apart(steps[i - 1], ls):
             return PathCheck(False, len(steps), i, f"not one loop addition or removal from step {i - 1}")
     return PathCheck(True, len(steps))
+
+
+def path_steps(data: dict[str, Any]) -> list[LoopStructure]:
+    """The steps of a path document (``{"polyloops": 1, "kind": "path", "steps": [...]}``, as
+    ``polyloops path -o`` writes it), each built as a loop structure.  Raises
+    :class:`~polyloops.core.formats.FormatError` naming the step for anything else.
+
+    >>> from polyloops.core.examples import load_example
+    >>> from polyloops.core.formats import to_data
+    >>> cube = load_example("cube").dualize()
+    >>> len(path_steps({"kind": "path", "steps": [to_data(cube)]}))
+    1
+    """
+    from polyloops.core.formats import FormatError, parse_document
+
+    steps = data.get("steps")
+    if not isinstance(steps, list) or not steps:
+        raise FormatError('a path needs a non-empty list "steps"')
+    out = []
+    for i, step in enumerate(steps):
+        try:
+            doc = parse_document(json.dumps(step))
+            if doc.kind != "loop-structure":
+                raise FormatError("a step must be a loop structure")
+            built = doc.build()
+        except (ValueError, RecursionError) as err:
+            raise FormatError(f"step {i}: {err}") from None
+        assert isinstance(built, LoopStructure)
+        out.append(built)
+    return out

@@ -3,16 +3,18 @@
 >>> from polyloops.core.examples import load_example
 >>> verify(load_example("ring")).valid
 True
->>> [v.condition for v in verify(load_example("degree-two")).violations][:1]
+>>> [str(v.condition) for v in verify(load_example("degree-two")).violations][:1]
 ['2']
 """
 
 from __future__ import annotations
 
+from polyloops.core.errors import PolyloopsError
 from polyloops.core.formats import Document, Structure
 from polyloops.core.halfedge import FaceListError, MapError
 from polyloops.core.loops import OddFaceError
 from polyloops.core.polycube import Polycube
+from polyloops.core.structure import LoopStructure
 from polyloops.verify.definition1 import POLYGONS, check_polycube, check_polycube_faces
 from polyloops.verify.loop_structure import (
     GenusBalance,
@@ -21,11 +23,12 @@ from polyloops.verify.loop_structure import (
     check_theorem3,
     genus_balance,
 )
-from polyloops.verify.report import Check, Report, ReportBuilder, Violation
+from polyloops.verify.report import Check, Condition, Kind, Report, ReportBuilder, Source, Status, Violation
 from polyloops.verify.surface import add_surface_checks
 
 __all__ = [
-    "Check", "GenusBalance", "Report", "Violation", "check_polycube", "check_polycube_faces",
+    "Check", "Condition", "GenusBalance", "Kind", "NeedsSidesError", "NotAPolycubeError", "Report",
+    "Source", "Status", "Violation", "as_loop_structure", "check_polycube", "check_polycube_faces",
     "check_polycube_loop_structure", "check_quad_loop_structure", "check_theorem3",
     "genus_balance", "verify", "verify_document",
 ]
@@ -61,3 +64,65 @@ def verify_document(doc: Document) -> Report:
                          rb.violation("polygons", str(err))])
         return rb.build()
     return verify(obj)
+
+
+class NotAPolycubeError(PolyloopsError, ValueError):
+    """A structure that fails its definition where a valid one is needed; ``report`` has
+    every violation."""
+
+    def __init__(self, message: str, report: Report):
+        super().__init__(message)
+        self.report = report
+
+
+class NeedsSidesError(PolyloopsError, ValueError):
+    """A labelled loop structure (no sides) where an oriented one is needed."""
+
+
+def as_loop_structure(obj: Structure, *, oriented: bool = False, valid: bool = False) -> LoopStructure:
+    """``obj`` as a loop structure: a polycube must satisfy Definition 1 and is dualized.
+
+    Parameters
+    ----------
+    obj:
+        A :class:`~polyloops.core.polycube.Polycube` or a
+        :class:`~polyloops.core.structure.LoopStructure`.
+    oriented:
+        Refuse a labelled structure without sides.
+    valid:
+        Require a polycube loop structure (Definition 4); implies ``oriented``.
+
+    Returns
+    -------
+    LoopStructure
+
+    Raises
+    ------
+    NotAPolycubeError
+        When Definition 1 (for a polycube) or, with ``valid``, Definition 4 fails; the message
+        names the first violation.
+    NeedsSidesError
+        When sides are needed and ``obj`` has none.
+
+    >>> from polyloops.core.examples import load_example
+    >>> as_loop_structure(load_example("l-shape"), valid=True).map.num_corners
+    16
+    >>> as_loop_structure(load_example("torus-cycle"), valid=True)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    polyloops.verify.NotAPolycubeError: not a polycube loop structure: Definition 4 condition 5: ...
+    """
+    if isinstance(obj, Polycube):
+        report = check_polycube(obj)
+        if not report.valid:
+            raise NotAPolycubeError(f"not a polycube: {report.first_violation()}", report)
+        from polyloops.core.duality import dualize
+
+        obj = dualize(obj)
+    if (oriented or valid) and not obj.oriented:
+        raise NeedsSidesError("is a labelled loop structure without sides; orient it first")
+    if valid:
+        report = verify(obj)
+        if not report.valid:
+            raise NotAPolycubeError(f"not a polycube loop structure: {report.first_violation()}", report)
+    return obj

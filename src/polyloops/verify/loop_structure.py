@@ -6,7 +6,7 @@ the reports say so instead of skipping them.
 
 >>> from polyloops.core.examples import load_example
 >>> r = check_polycube_loop_structure(load_example("torus-cycle"))
->>> r.valid, sorted({v.condition for v in r.violations})
+>>> r.valid, sorted({str(v.condition) for v in r.violations})
 (False, ['5'])
 """
 

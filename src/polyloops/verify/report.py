@@ -3,25 +3,76 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from enum import StrEnum
 from typing import Any
 
-HOLDS = "holds"
-VIOLATED = "violated"
-BY_CONSTRUCTION = "holds by construction"
-NOT_APPLICABLE = "not applicable"
+
+class Status(StrEnum):
+    """How one condition came out."""
+
+    HOLDS = "holds"
+    VIOLATED = "violated"
+    BY_CONSTRUCTION = "holds by construction"
+    NOT_APPLICABLE = "not applicable"
+    NOT_CHECKED = "not checked"
+
+
+class Kind(StrEnum):
+    """What was checked."""
+
+    POLYCUBE = "polycube"
+    LOOP_STRUCTURE = "loop-structure"
+
+
+class Source(StrEnum):
+    """Where a condition comes from: the paper's statements, or the surface and file
+    conventions every structure meets first."""
+
+    SURFACE = "surface"
+    FILE_CONVENTION = "file convention"
+    DEFINITION_1 = "Definition 1"
+    DEFINITION_3 = "Definition 3"
+    DEFINITION_4 = "Definition 4"
+    THEOREM_3 = "Theorem 3"
+
+
+class Condition(StrEnum):
+    """The id of a condition within its :class:`Source`: the paper's numbers, and names for
+    the surface and convention checks (``docs/model.md`` lists each with its statement)."""
+
+    ONE = "1"
+    TWO = "2"
+    THREE = "3"
+    FOUR = "4"
+    FIVE = "5"
+    CLOSED = "closed"
+    ORIENTABLE = "orientable"
+    MANIFOLD = "manifold"
+    CONNECTED = "connected"
+    POLYGONS = "polygons"
+    QUAD = "quad"
+    OUTWARD = "outward"
+    ZONE_GENERA = "zone genera"
+    X = "X"  # Theorem 3 is checked graph by graph
+    Y = "Y"
+    Z = "Z"
+
+
+HOLDS, VIOLATED = Status.HOLDS, Status.VIOLATED
+BY_CONSTRUCTION, NOT_APPLICABLE = Status.BY_CONSTRUCTION, Status.NOT_APPLICABLE
 
 
 @dataclass(frozen=True)
 class Violation:
     """One failure of one condition, with the objects that witness it."""
 
-    definition: str
-    condition: str
+    definition: Source
+    condition: Condition
     message: str
     witness: dict[str, Any] = field(default_factory=dict)
 
     def to_json(self) -> dict[str, Any]:
-        return {"definition": self.definition, "condition": self.condition,
+        return {"definition": str(self.definition), "condition": str(self.condition),
                 "message": self.message, "witness": self.witness}
 
 
@@ -29,15 +80,15 @@ class Violation:
 class Check:
     """The outcome of one condition; ``note`` says why when it holds by construction."""
 
-    definition: str
-    condition: str
+    definition: Source
+    condition: Condition
     statement: str
-    status: str
+    status: Status
     note: str = ""
 
     def to_json(self) -> dict[str, Any]:
-        out = {"definition": self.definition, "condition": self.condition,
-               "statement": self.statement, "status": self.status}
+        out = {"definition": str(self.definition), "condition": str(self.condition),
+               "statement": self.statement, "status": str(self.status)}
         if self.note:
             out["note"] = self.note
         return out
@@ -47,7 +98,7 @@ class Check:
 class Report:
     """All checks of one structure against the definitions for its kind."""
 
-    kind: str
+    kind: Kind
     checks: tuple[Check, ...]
     violations: tuple[Violation, ...]
 
@@ -55,11 +106,19 @@ class Report:
     def valid(self) -> bool:
         return not self.violations
 
-    def violated(self, definition: str, condition: str) -> list[Violation]:
+    def first_violation(self) -> str:
+        """The first violation in one line, with how many more there are (empty when valid)."""
+        if not self.violations:
+            return ""
+        v, n = self.violations[0], len(self.violations)
+        more = f" (and {n - 1} more; see 'polyloops verify')" if n > 1 else ""
+        return f"{v.definition} condition {v.condition}: {v.message}{more}"
+
+    def violated(self, definition: Source | str, condition: Condition | str) -> list[Violation]:
         return [v for v in self.violations if v.definition == definition and v.condition == condition]
 
     def to_json(self) -> dict[str, Any]:
-        return {"valid": self.valid, "kind": self.kind,
+        return {"valid": self.valid, "kind": str(self.kind),
                 "checks": [c.to_json() for c in self.checks],
                 "violations": [v.to_json() for v in self.violations]}
 
@@ -70,21 +129,25 @@ class Report:
 class ReportBuilder:
     """Collects checks and violations condition by condition."""
 
-    def __init__(self, kind: str, definition: str):
-        self.kind = kind
-        self.definition = definition
+    def __init__(self, kind: Kind | str, definition: Source | str):
+        self.kind = Kind(kind)
+        self.definition = Source(definition)
         self.checks: list[Check] = []
         self.violations: list[Violation] = []
 
-    def condition(self, condition: str, statement: str, found: list[Violation], note: str = "") -> None:
+    def condition(self, condition: Condition | str, statement: str, found: list[Violation],
+                  note: str = "") -> None:
         self.violations.extend(found)
-        self.checks.append(Check(self.definition, condition, statement, VIOLATED if found else HOLDS, note))
+        self.checks.append(Check(self.definition, Condition(condition), statement,
+                                 VIOLATED if found else HOLDS, note))
 
-    def given(self, condition: str, statement: str, note: str, status: str = BY_CONSTRUCTION) -> None:
-        self.checks.append(Check(self.definition, condition, statement, status, note))
+    def given(self, condition: Condition | str, statement: str, note: str,
+              status: Status | str = BY_CONSTRUCTION) -> None:
+        self.checks.append(Check(self.definition, Condition(condition), statement, Status(status), note))
 
-    def violation(self, condition: str, message: str, **witness: Any) -> Violation:
-        return Violation(self.definition, condition, message, witness)
+    def violation(self, condition: Condition | str, message: str, **witness: Any) -> Violation:
+        return Violation(self.definition, Condition(condition), message, witness)
 
     def build(self) -> Report:
+        """The report of everything recorded so far."""
         return Report(self.kind, tuple(self.checks), tuple(self.violations))

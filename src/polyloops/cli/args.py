@@ -1,0 +1,67 @@
+"""What every command shares: the parser class, argument types, output, and the FILE help."""
+
+from __future__ import annotations
+
+import argparse
+import json
+from collections.abc import Callable
+from typing import Any
+
+from polyloops.cli.load import EXIT_USAGE
+
+FILE_HELP = ("a polyloops JSON file, a DualCube .graph/.apg file or an OBJ quad mesh, "
+             "example:NAME for a bundled example ('polyloops examples' lists them), or sig:SIGNATURE")
+
+Command = Callable[[argparse.Namespace], int]
+# command(name, func, help, file_arg=True, json_flag=True) -> the command's parser
+AddCommand = Callable[..., argparse.ArgumentParser]
+
+
+class Parser(argparse.ArgumentParser):
+    """Usage errors as one line and exit status 2."""
+
+    def error(self, message: str) -> None:  # type: ignore[override]
+        self.exit(EXIT_USAGE, f"{self.prog}: {message} (see --help)\n")
+
+
+def emit(args: argparse.Namespace, data: Any, text: str) -> None:
+    """JSON for scripts with ``--json``, else the text."""
+    print(json.dumps(data, indent=2) if getattr(args, "json", False) else text)
+
+
+def stream(args: argparse.Namespace, line: str) -> None:
+    """Text output goes out as it is found (flushed), so a long listing shows progress."""
+    if not getattr(args, "json", False):
+        print(line, flush=True)
+
+
+def count_arg(low: int, high: int | None = None) -> Callable[[str], int]:
+    """An argparse type: an integer in ``low..high``; anything else is a usage error (exit 2)
+    rather than a value quietly changed."""
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{text!r} is not an integer") from None
+        if value < low or (high is not None and value > high):
+            span = f"at least {low}" if high is None else f"from {low} to {high}"
+            raise argparse.ArgumentTypeError(f"{value} is out of range: must be {span}")
+        return value
+
+    parse.__name__ = "count"
+    return parse
+
+
+def seconds_arg(text: str) -> float:
+    """An argparse type: a positive number of seconds."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number of seconds") from None
+    if not value > 0 or value == float("inf"):
+        raise argparse.ArgumentTypeError(f"{text} is out of range: must be a positive number of seconds")
+    return value
+
+
+def json_flag(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--json", action="store_true", help="print one JSON object for scripts")

@@ -1,0 +1,134 @@
+"""The catalog commands: ``catalog`` (build or resume), ``catalog query`` and ``catalog export``."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+from typing import Any
+
+from polyloops.cli.args import AddCommand, Parser, count_arg, emit
+from polyloops.cli.load import EXIT_OK, CliError, write_text
+
+
+def cmd_catalog(args: argparse.Namespace) -> int:
+    if args.action == "query":
+        return cmd_catalog_query(args)
+    if args.action == "export":
+        return cmd_catalog_export(args)
+    missing = [flag for flag, value in (("--max-corners", args.max_corners), ("-o/--output", args.output))
+               if value is None]
+    if missing:
+        raise CliError(f"the following arguments are required: {', '.join(missing)} (see --help)")
+    from tqdm import tqdm
+
+    from polyloops.enumerate.catalog_run import CatalogRunError, build_catalog
+    from polyloops.enumerate.quadrangulations import PlantriError
+
+    bar = tqdm(unit="job", desc="catalog", disable=None, file=sys.stderr)
+    maps = [0]
+
+    def planned(jobs: list[Any]) -> None:
+        bar.reset(total=len(jobs))
+
+    def progress(result: dict[str, Any]) -> None:
+        maps[0] += result["quadrangulations"]
+        bar.update(1)
+        bar.set_postfix(corners=result["n"], maps=maps[0])
+
+    try:
+        built = build_catalog(args.output, args.max_corners, args.min_corners, args.symmetry,
+                              workers=args.workers, res=args.res, mod=args.mod, dask=args.dask,
+                              plantri=args.plantri, method=args.method, progress=progress, on_plan=planned)
+    except (CatalogRunError, PlantriError) as err:
+        raise CliError(str(err)) from None
+    finally:
+        bar.close()
+    summary = built.summary
+
+    def shown(table: str, k: str) -> Any:
+        return "-" if summary[table][k] is None else summary[table][k]
+
+    rows = [[k, shown("quadrangulations", k), shown("simple_strips", k), *v.values()]
+            for k, v in summary["counts"].items()]
+    text = "corners  quadrangulations  simple strips  labelled  rotation  full\n" + "\n".join(
+        f"{r[0]:>7}  {r[1]:>16}  {r[2]:>13}  {r[3]:>8}  {r[4]:>8}  {r[5]:>4}" for r in rows)
+    emit(args, summary, f"{text}\nwrote {built.records} records ({args.symmetry}) to {args.output}")
+    return EXIT_OK
+
+
+def cmd_catalog_query(args: argparse.Namespace) -> int:
+    from polyloops.enumerate.census import CatalogError, query
+
+    try:
+        columns, rows = query(Path(args.dir), args.where)
+    except CatalogError as err:
+        raise CliError(str(err)) from None
+    if args.json:
+        print(json.dumps([dict(zip(columns, r, strict=True)) for r in rows], indent=1))
+    else:
+        print("\t".join(columns))
+        for r in rows:
+            print("\t".join(str(x) for x in r))
+    return EXIT_OK
+
+
+def cmd_catalog_export(args: argparse.Namespace) -> int:
+    from polyloops.enumerate.census import CatalogError, export_csv
+
+    try:
+        text = export_csv(Path(args.dir))
+    except CatalogError as err:
+        raise CliError(str(err)) from None
+    if args.output:
+        write_text(args.output, text)
+    else:
+        print(text, end="")
+    return EXIT_OK
+
+
+QUERY_HELP = "rows of a catalog matching an SQL WHERE clause"
+EXPORT_HELP = "a catalog's table as CSV"
+
+
+def _query_arguments(p: argparse.ArgumentParser) -> None:
+    p.add_argument("dir", metavar="DIR")
+    p.add_argument("where", metavar="WHERE", help='an SQL condition, e.g. "corners = 20 AND chiral"')
+
+
+def _export_arguments(p: argparse.ArgumentParser) -> None:
+    p.add_argument("dir", metavar="DIR")
+    p.add_argument("--csv", action="store_true", required=True, help="CSV (the only format so far)")
+    p.add_argument("-o", "--output", metavar="OUT.csv", help="write here instead of to standard output")
+
+
+def add_commands(command: AddCommand, hidden: AddCommand) -> None:
+    p = command("catalog", cmd_catalog, "the catalog of genus-0 polycubes up to order-equivalence, by "
+                "number of corners, from plantri's quadrangulations; 'catalog query DIR WHERE' "
+                "searches one, 'catalog export DIR --csv' writes its table", file_arg=False)
+    p.add_argument("--max-corners", type=count_arg(0), metavar="N", help="required to build")
+    p.add_argument("--min-corners", type=count_arg(8), default=8, metavar="M")
+    p.add_argument("--symmetry", choices=("labelled", "rotation", "full"), default="full",
+                   help="which classes the records list (summary.json counts all three); default full")
+    p.add_argument("--workers", type=count_arg(1), default=1, metavar="K", help="local worker processes")
+    p.add_argument("--res", type=count_arg(0), metavar="R", help="only plantri's slice R of M (with --mod)")
+    p.add_argument("--mod", type=count_arg(1), metavar="M")
+    p.add_argument("--dask", metavar="ADDRESS", help="run the jobs on a Dask cluster (an address, or local)")
+    p.add_argument("--plantri", metavar="PATH", help="the plantri to use (default: the one from "
+                   "passagemath-plantri, $POLYLOOPS_PLANTRI, or PATH)")
+    p.add_argument("--method", choices=("auto", "compiled", "numpy"), default="auto",
+                   help="the strip filter: compiled (built at install when a C compiler is there), "
+                   "numpy (the reference twin), or auto (compiled when built); same output either way")
+    p.add_argument("-o", "--output", metavar="DIR", help="catalog directory (resumable); required to build")
+    actions = p.add_subparsers(dest="action", metavar="[query|export]", parser_class=Parser)
+    q = actions.add_parser("query", help=QUERY_HELP, description=QUERY_HELP)
+    _query_arguments(q)
+    q.add_argument("--json", action="store_true", default=argparse.SUPPRESS,
+                   help="print one JSON object for scripts")
+    e = actions.add_parser("export", help=EXPORT_HELP, description=EXPORT_HELP)
+    _export_arguments(e)
+    # The older spellings 'catalog-query' and 'catalog-export' still work.
+    _query_arguments(hidden("catalog-query", cmd_catalog_query, QUERY_HELP))
+    _export_arguments(hidden("catalog-export", cmd_catalog_export, EXPORT_HELP, json_flag=False))
+

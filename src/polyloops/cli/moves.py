@@ -1,0 +1,151 @@
+"""The loop-move commands: ``moves`` (list or count), ``add`` and ``remove``."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from typing import Any
+
+from polyloops.cli.args import AddCommand, count_arg, emit, seconds_arg, stream
+from polyloops.cli.load import EXIT_INVALID, EXIT_OK, CliError, read_valid_structure, write_output
+from polyloops.core.directions import Axis
+
+
+def _count_additions(ls: Any, axes: list[Axis], args: argparse.Namespace) -> Any:
+    from tqdm import tqdm
+
+    from polyloops.core.moves import count_additions_within
+
+    bar = tqdm(unit=" loops", desc="counting", disable=None, file=sys.stderr, leave=False)
+    shown = dict.fromkeys((a.name for a in axes), 0)
+
+    def progress(label: str, n: int) -> None:
+        shown[label] = n
+        bar.n = sum(shown.values())
+        bar.set_postfix(label=label, refresh=False)
+        bar.refresh()
+
+    try:
+        return count_additions_within(ls, axes, args.limit, args.time_limit, progress)
+    finally:
+        bar.close()
+
+
+def cmd_moves(args: argparse.Namespace) -> int:
+    from polyloops.core.moves import check_removal, list_additions
+
+    if sum(map(bool, (args.count, args.shortest is not None, args.sample is not None))) > 1:
+        raise CliError("--count, --shortest and --sample are different questions: ask one")
+    if (args.shortest is not None or args.sample is not None) and args.remove:
+        raise CliError("--shortest and --sample choose additions; --remove lists loops")
+    if args.seed is not None and args.sample is None:
+        raise CliError("--seed goes with --sample")
+    ls = read_valid_structure(args.file)
+    picking = args.shortest is not None or args.sample is not None
+    want_add = args.add is not None or not args.remove or picking
+    want_remove = not picking and (args.remove or args.add is None)
+    axes = list(Axis) if args.add in (None, "all") else [Axis.parse(args.add)]
+    data: dict[str, Any] = {}
+    if args.count:
+        lines: list[str] = []
+        if want_add:
+            counted = _count_additions(ls, axes, args)
+            data["additions"], data["complete"] = counted.counts, counted.complete
+            shown = [f"{a}:{'' if counted.complete[a] else '>='}{n}" for a, n in counted.counts.items()]
+            lines.append("additions " + "  ".join(shown))
+            if not all(counted.complete.values()):
+                why = "the time limit" if args.time_limit is not None and args.limit is None else "a limit"
+                lines.append(f"(>=: stopped by {why}; a lower bound)")
+        if want_remove:
+            data["removals"] = sum(1 for lp in ls.loops if check_removal(ls, lp.id).valid)
+            lines.append(f"removals  {data['removals']}")
+        emit(args, data, "\n".join(lines))
+        return EXIT_OK
+    if want_add:
+        rows: list[dict[str, Any]] = []
+
+        def show(index: str, mv: Any) -> None:
+            row = {"index": index, **mv.to_json(ls)}
+            rows.append(row)
+            stream(args, f"add {index:>5}  {mv.axis}-loop past corners {list(mv.cycle)} "
+                   f"(+ side on the right), crossing segments {row['segments']}")
+
+        listing = list_additions(ls, axes, limit=args.limit, seconds=args.time_limit,
+                                 shortest=args.shortest, sample=args.sample, seed=args.seed or 0,
+                                 on_found=show)
+        if listing.stopped_by:
+            stream(args, f"(stopped by {listing.stopped_by}: the listing is incomplete)")
+        data["additions"], data["complete"] = rows, listing.complete
+    if want_remove:
+        removal_rows = []
+        for lp in ls.loops:
+            check = check_removal(ls, lp.id)
+            removal_rows.append({"loop": lp.id, "axis": str(ls.axes[lp.id]), "segments": list(lp.edges),
+                                 "removable": check.valid, "reason": check.reason})
+            stream(args, f"remove {lp.id:>3}  {ls.axes[lp.id]}-loop of {len(lp)} segments: "
+                   + ("removable" if check.valid else f"not removable: {check.reason}"))
+        data["removals"] = removal_rows
+    if args.json:
+        emit(args, data, "")
+    return EXIT_OK
+
+
+def cmd_add(args: argparse.Namespace) -> int:
+    from polyloops.core.moves import InvalidMoveError, MoveError, add_loop, parse_addition
+
+    ls = read_valid_structure(args.file)
+    try:
+        move = parse_addition(ls, args.move)
+    except InvalidMoveError as err:
+        raise CliError(f"{args.file}: {err}", EXIT_INVALID) from None
+    except MoveError as err:
+        raise CliError(f"{args.file}: {err}") from None
+    text = write_output(args.output, add_loop(ls, move))
+    if text is not None:
+        print(text, end="")
+    return EXIT_OK
+
+
+def cmd_remove(args: argparse.Namespace) -> int:
+    from polyloops.core.moves import check_removal, remove_loop
+
+    ls = read_valid_structure(args.file)
+    if not 0 <= args.loop < len(ls.loops):
+        raise CliError(f"{args.file}: there is no loop {args.loop} (loops are 0..{len(ls.loops) - 1})")
+    check = check_removal(ls, args.loop)
+    if not check.valid:
+        raise CliError(f"{args.file}: loop {args.loop} is not removable: {check.reason}", EXIT_INVALID)
+    text = write_output(args.output, remove_loop(ls, args.loop))
+    if text is not None:
+        print(text, end="")
+    return EXIT_OK
+
+
+def add_commands(command: AddCommand) -> None:
+    p = command("moves", cmd_moves, "the valid loop additions and removals of a polycube loop structure")
+    p.add_argument("--add", choices=("X", "Y", "Z", "all"), help="list additions of this label "
+                   "(default: all labels, together with removals)")
+    p.add_argument("--remove", action="store_true", help="list the loops and whether each is removable")
+    p.add_argument("--limit", type=count_arg(0), metavar="N",
+                   help="stop after N additions (per label with --count)")
+    p.add_argument("--count", action="store_true", help="only count the moves")
+    p.add_argument("--time-limit", type=seconds_arg, metavar="SECONDS",
+                   help="stop counting or listing after this long; the answer then says it is a "
+                   "lower bound (incomplete)")
+    p.add_argument("--shortest", type=count_arg(1), metavar="K",
+                   help="the K valid additions past the fewest corners, per label, found without "
+                   "listing longer loops")
+    p.add_argument("--sample", type=count_arg(1), metavar="N",
+                   help="N different random valid additions per label (random walks: quick on large "
+                   "structures, reproducible with --seed, not uniform)")
+    p.add_argument("--seed", type=count_arg(0), metavar="S", help="the seed of --sample (default 0)")
+    p = command("add", cmd_add, "add one loop: MOVE is an index from 'polyloops moves' (Y3: the "
+                "fourth valid Y-loop; a plain N counts through X, Y and Z), or AXIS:c0,c1,... (the "
+                "corners the loop walks past, + side on the right)", json_flag=False)
+    p.add_argument("move", metavar="MOVE")
+    p.add_argument("-o", "--output", metavar="OUT", help="write the new structure here")
+    p = command("remove", cmd_remove, "remove one loop, if that leaves a polycube loop structure",
+                json_flag=False)
+    p.add_argument("loop", metavar="LOOP", type=count_arg(0),
+                   help="a loop id from 'polyloops moves --remove'")
+    p.add_argument("-o", "--output", metavar="OUT", help="write the new structure here")

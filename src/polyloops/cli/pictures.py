@@ -1,0 +1,133 @@
+"""The picture commands: ``render`` (one structure) and ``sheet`` (many, with captions)."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+from typing import Any
+
+from polyloops.cli.args import FILE_HELP, AddCommand, count_arg
+from polyloops.cli.load import EXIT_INVALID, EXIT_OK, CliError, read_structure
+from polyloops.core.duality import DualityError
+from polyloops.core.polycube import Polycube
+from polyloops.core.structure import LoopStructure
+
+
+def _picture_path(path: str) -> str:
+    if Path(path).suffix.lower() not in (".png", ".svg"):  # ".png" alone has no suffix
+        raise CliError(f"{path}: pictures are written as NAME.png or NAME.svg")
+    return path
+
+
+def cmd_render(args: argparse.Namespace) -> int:
+    from polyloops.core.duality import dualize
+    from polyloops.render.level_graphs import render_level_graphs
+    from polyloops.render.polycube import PictureError, render_polycube
+    from polyloops.verify import verify
+
+    out = _picture_path(args.output)
+    obj = read_structure(args.file)
+    report = verify(obj)
+    ls = dualize(obj) if isinstance(obj, Polycube) and report.valid else obj
+    if isinstance(ls, LoopStructure) and not ls.oriented:
+        raise CliError(f"{args.file}: is a labelled loop structure without sides; orient it first")
+    try:
+        if args.level_graphs:
+            if not isinstance(ls, LoopStructure):
+                raise CliError(f"{args.file}: not a polycube, so it has no loop structure", EXIT_INVALID)
+            render_level_graphs(ls, out)
+        else:
+            title = None if report.valid else f"not valid: {report.first_violation()}"[:110]
+            try:
+                render_polycube(obj, out, views=args.views, loops=args.loops, title=title)
+            except DualityError as err:
+                render_level_graphs(obj, out)  # type: ignore[arg-type]
+                print(f"polyloops render: {args.file}: no polycube ({err}); drew the level graphs instead",
+                      file=sys.stderr)
+    except PictureError as err:
+        raise CliError(f"{args.file}: {err}") from None
+    except OSError as err:
+        raise CliError(f"{out}: cannot write: {err.strerror or err}") from None
+    return EXIT_OK
+
+
+def _is_dir(path: Path) -> bool:
+    try:
+        return path.is_dir()
+    except OSError:  # a name too long for the file system, for example
+        return False
+
+
+def _caption(source: str, obj: Any) -> str:
+    """A structure's catalog name when the shipped catalog has it, else where it came from;
+    never a cut-off signature."""
+    from polyloops.enumerate.census import CatalogError, identify
+
+    try:
+        found = identify(obj).name
+    except CatalogError:  # no shipped catalog next to this install
+        found = None
+    if found:
+        return found
+    label = "signature" if source.startswith("sig:") else source if source.startswith("example:") \
+        else Path(source).name
+    return f"{label} ({obj.map.num_corners} corners)"
+
+
+def cmd_sheet(args: argparse.Namespace) -> int:
+    from polyloops.enumerate.census import CatalogError, read_entries
+    from polyloops.render.polycube import PictureError
+    from polyloops.render.sheet import render_sheet
+
+    out = _picture_path(args.output)
+    items = []
+    for source in args.sources:
+        path = Path(source)
+        if not source.startswith(("sig:", "example:")) and _is_dir(path):
+            if not (path / "catalog.jsonl").is_file():
+                raise CliError(f"{source}: a directory, but no catalog.jsonl in it")
+            try:
+                entries = read_entries(path)
+            except CatalogError as err:
+                raise CliError(str(err)) from None
+            for i, entry in enumerate(entries):
+                try:
+                    items.append((entry.name or f"#{i} {entry.corners}c", entry.structure()))
+                except ValueError as err:  # a signature that does not decode
+                    raise CliError(f"{path / 'catalog.jsonl'}: line {i + 1}: not a catalog record: "
+                                   f"{err}") from None
+        else:
+            obj = read_structure(source)
+            items.append((_caption(source, obj), obj))
+    if args.limit is not None:
+        items = items[: args.limit]
+    if not items:
+        raise CliError("nothing to draw")
+    try:
+        render_sheet(items, out, columns=args.columns)
+    except DualityError as err:
+        raise CliError(f"cannot draw: {err}", EXIT_INVALID) from None
+    except PictureError as err:
+        raise CliError(f"cannot draw: {err}") from None
+    except OSError as err:
+        raise CliError(f"{out}: cannot write: {err.strerror or err}") from None
+    print(f"drew {len(items)} polycubes to {out}")
+    return EXIT_OK
+
+
+def add_commands(command: AddCommand) -> None:
+    p = command("render", cmd_render, "draw the polycube in 3D with its loops (a loop structure is "
+                "primalized first), or its three level graphs", json_flag=False)
+    p.add_argument("-o", "--output", metavar="OUT", required=True, help="OUT.png or OUT.svg")
+    p.add_argument("--views", type=count_arg(1, 8), default=1, metavar="N",
+                   help="N views from different octants (1 to 8)")
+    p.add_argument("--loops", action=argparse.BooleanOptionalAction, default=True,
+                   help="draw the loops on the surface (default) or not")
+    p.add_argument("--level-graphs", action="store_true", help="draw the X-, Y- and Z-graphs instead")
+    p = command("sheet", cmd_sheet, "a grid of small renders with captions, from files or a catalog "
+                "directory", file_arg=False, json_flag=False)
+    p.add_argument("sources", metavar="DIR|FILE", nargs="+", help="catalog directories or " + FILE_HELP)
+    p.add_argument("-o", "--output", metavar="OUT", required=True, help="OUT.png or OUT.svg")
+    p.add_argument("--columns", type=count_arg(1), default=6, metavar="N", help="pictures per row")
+    p.add_argument("--limit", type=count_arg(1), metavar="N", help="draw at most N")

@@ -1,0 +1,234 @@
+"""Reading a catalog directory as a census: typed entries, names, identification, queries.
+
+A catalog directory (written by :func:`polyloops.enumerate.catalog_run.build_catalog`) holds
+``catalog.jsonl`` (one record per class, in one symmetry mode), ``catalog.sqlite`` (the same
+rows as a table, for SQL queries) and ``summary.json`` (counts in every mode).  This module
+is the one place that reads them.
+
+>>> census = read_catalog()
+>>> entry = census.by_name["P16.2"]
+>>> entry.corners, entry.symmetry, entry.record.loops
+(16, <Symmetry.FULL: 'full'>, {'X': 1, 'Y': 2, 'Z': 2})
+"""
+
+from __future__ import annotations
+
+import json
+import sqlite3
+from dataclasses import dataclass
+from functools import cached_property
+from pathlib import Path
+from typing import Any
+
+from polyloops.core.corners import CATEGORIES
+from polyloops.core.errors import PolyloopsError
+from polyloops.core.symmetry import Symmetry
+from polyloops.enumerate.catalog import CatalogRecord
+
+
+class CatalogError(PolyloopsError, ValueError):
+    """A catalog directory that cannot be read; the message names the file (and line)."""
+
+
+@dataclass(frozen=True)
+class CatalogEntry:
+    """One line of ``catalog.jsonl``: a class's stable name, the symmetry mode the catalog
+    lists classes in, and its record."""
+
+    name: str
+    symmetry: Symmetry
+    record: CatalogRecord
+
+    @property
+    def signature(self) -> str:
+        return self.record.signature
+
+    @property
+    def corners(self) -> int:
+        return self.record.corners
+
+    @classmethod
+    def from_json(cls, data: Any) -> CatalogEntry:
+        """An entry from a parsed JSON line; raises ``KeyError``, ``TypeError`` or
+        ``ValueError`` for anything that is not a catalog record."""
+        if not isinstance(data, dict):
+            raise TypeError("a record is a JSON object")
+        signature, corners = data["signature"], data["corners"]
+        if not isinstance(signature, str) or type(corners) is not int:
+            raise TypeError("signature must be text and corners an integer")
+        record = CatalogRecord(
+            signature, corners, int(data["faces"]), {a: int(n) for a, n in data["loops"].items()},
+            {c: int(data["corner_categories"][c]) for c in CATEGORIES}, int(data["automorphisms"]),
+            bool(data["chiral"]), int(data["removable_loops"]))
+        return cls(str(data.get("name", "")), Symmetry.parse(data.get("symmetry", "full")), record)
+
+    def to_json(self) -> dict[str, Any]:
+        return {"name": self.name, **self.record.to_json(), "symmetry": str(self.symmetry)}
+
+    def structure(self):
+        """The class's canonical representative (a :class:`~polyloops.core.structure.LoopStructure`)."""
+        from polyloops.core.canonical import from_signature
+
+        return from_signature(self.signature)
+
+
+@dataclass(frozen=True)
+class Census:
+    """A catalog directory, read: its entries (in catalog order) and its summary."""
+
+    directory: Path
+    entries: tuple[CatalogEntry, ...]
+    summary: dict[str, Any]
+
+    @property
+    def symmetry(self) -> Symmetry:
+        return self.entries[0].symmetry if self.entries else Symmetry.FULL
+
+    @property
+    def max_corners(self) -> int:
+        """How far the catalog goes (its largest corner count, counted or not)."""
+        return max((int(n) for n in self.summary.get("counts", {})), default=0)
+
+    @property
+    def genus(self) -> int:
+        return int(self.summary.get("genus", 0))
+
+    @cached_property
+    def by_name(self) -> dict[str, CatalogEntry]:
+        return {e.name: e for e in self.entries}
+
+    @cached_property
+    def by_signature(self) -> dict[str, CatalogEntry]:
+        return {e.signature: e for e in self.entries}
+
+
+def default_catalog() -> Path:
+    """``catalogs/genus0`` of the source tree this package was installed from."""
+    return Path(__file__).resolve().parents[3] / "catalogs" / "genus0"
+
+
+def _read_text(path: Path) -> str:
+    try:
+        return path.read_text(encoding="utf-8")
+    except OSError as err:
+        raise CatalogError(f"{path}: cannot read: {err.strerror or err}") from None
+    except UnicodeDecodeError as err:
+        raise CatalogError(f"{path}: cannot read: not UTF-8 text ({err.reason})") from None
+
+
+def read_entries(directory: Path) -> list[CatalogEntry]:
+    """The entries of ``directory/catalog.jsonl``, in file order; a bad line raises
+    :class:`CatalogError` naming the file and line."""
+    path = Path(directory) / "catalog.jsonl"
+    out = []
+    for i, line in enumerate(_read_text(path).splitlines()):
+        try:
+            out.append(CatalogEntry.from_json(json.loads(line)))
+        except (ValueError, KeyError, TypeError, AttributeError) as err:
+            raise CatalogError(f"{path}: line {i + 1}: not a catalog record ({err})") from None
+    return out
+
+
+def read_catalog(directory: Path | None = None) -> Census:
+    """A catalog directory (default: the shipped ``catalogs/genus0``) as a :class:`Census`."""
+    directory = Path(directory) if directory is not None else default_catalog()
+    entries = read_entries(directory)
+    path = directory / "summary.json"
+    try:
+        summary = json.loads(_read_text(path))
+    except ValueError as err:
+        raise CatalogError(f"{path}: not JSON ({err})") from None
+    if not isinstance(summary, dict) or not isinstance(summary.get("counts", {}), dict):
+        raise CatalogError(f"{path}: not a catalog summary")
+    return Census(directory, tuple(entries), summary)
+
+
+def query(out: Path, where: str) -> tuple[list[str], list[tuple[Any, ...]]]:
+    """Rows of ``DIR/catalog.sqlite`` matching an SQL WHERE clause (read-only connection):
+    the column names and the rows, by corners then signature.  A missing table or a bad
+    clause raises :class:`CatalogError`.
+
+    >>> columns, rows = query(default_catalog(), "corners = 16")
+    >>> columns[:3], [r[0] for r in rows]
+    (['name', 'signature', 'corners'], ['P16.1', 'P16.2'])
+    """
+    path = Path(out) / "catalog.sqlite"
+    if not path.is_file():
+        raise CatalogError(f"{path}: no catalog here")
+    con = sqlite3.connect(f"file:{path}?mode=ro", uri=True)
+    try:
+        cur = con.execute(f"SELECT * FROM polycubes WHERE {where} ORDER BY corners, signature")
+        return [d[0] for d in cur.description], cur.fetchall()
+    except sqlite3.Error as err:
+        raise CatalogError(f"{out}: bad query: {err}") from None
+    finally:
+        con.close()
+
+
+def export_csv(out: Path) -> str:
+    """The whole ``polycubes`` table as CSV text (a header line, then one row per class)."""
+    import csv
+    import io
+
+    columns, rows = query(out, "1")
+    buf = io.StringIO()
+    writer = csv.writer(buf, lineterminator="\n")
+    writer.writerow(columns)
+    writer.writerows(rows)
+    return buf.getvalue()
+
+
+@dataclass(frozen=True)
+class Identification:
+    name: str | None  # None: not in the catalog
+    signature: str
+    corners: int
+    genus: int
+    max_corners: int  # how far the catalog goes
+    catalog_genus: int
+
+    @property
+    def beyond(self) -> bool:
+        """Outside what the catalog lists (another genus, or more corners)."""
+        return self.name is None and (self.genus != self.catalog_genus or self.corners > self.max_corners)
+
+    def to_json(self) -> dict[str, Any]:
+        return {"name": self.name, "signature": self.signature, "corners": self.corners,
+                "genus": self.genus, "catalog_max_corners": self.max_corners,
+                "catalog_genus": self.catalog_genus, "in_catalog": self.name is not None}
+
+
+def identify(obj: Any, catalog: Path | Census | None = None) -> Identification:
+    """The catalog name of a polycube or loop structure (any numbering, position or mirror
+    image): its signature up to the catalog's symmetry, looked up in the catalog.
+
+    Parameters
+    ----------
+    obj:
+        A :class:`~polyloops.core.polycube.Polycube` (dualized first) or an oriented
+        :class:`~polyloops.core.structure.LoopStructure`.
+    catalog:
+        A catalog directory or a :class:`Census` already read (default: the shipped
+        ``catalogs/genus0``).
+
+    Returns
+    -------
+    Identification
+        ``name`` is ``None`` when the class is not in the catalog.
+
+    Raises
+    ------
+    CatalogError
+        When the catalog directory cannot be read.
+
+    >>> from polyloops.core.examples import load_example
+    >>> identify(load_example("l-shape")).name
+    'P16.2'
+    """
+    from polyloops.core.canonical import canonical_form
+
+    census = catalog if isinstance(catalog, Census) else read_catalog(catalog)
+    sig = canonical_form(obj, census.symmetry).signature
+    found = census.by_signature.get(sig)
+    return Identification(found.name if found else None, sig, obj.map.num_corners, obj.map.genus,
+                          census.max_corners, census.genus)
