@@ -14,3 +14,14 @@ def test_ruff_clean():
     res = subprocess.run(["ruff", "check", "src", "tests", "tools", "benchmarks"], cwd=ROOT,
                          capture_output=True, text=True, check=False)
     assert res.returncode == 0, res.stdout + res.stderr
+
+
+def test_mypy_clean():
+    """The package's type hints hold: mypy (a test extra) finds nothing in ``src/``, with the
+    settings of ``[tool.mypy]`` in pyproject.toml."""
+    pytest.importorskip("mypy")
+    import sys
+
+    res = subprocess.run([sys.executable, "-m", "mypy", "--no-incremental"], cwd=ROOT,
+                         capture_output=True, text=True, check=False)
+    assert res.returncode == 0, res.stdout + res.stderr

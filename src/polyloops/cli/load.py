@@ -188,6 +188,7 @@ def write_output(path: str | None, obj: Structure, given: str | None = None) -> 
     if path is None:
         return dumps(obj)
     fmt = format_of(path, given)
+    text: str | bytes
     if fmt == "obj":
         if not isinstance(obj, Polycube):
             raise CliError(f"{path}: only a polycube can be written as OBJ (make one with "

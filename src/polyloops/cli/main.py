@@ -33,7 +33,8 @@ def build_parser() -> argparse.ArgumentParser:
     def command(name: str, func: Command, help_text: str, file_arg: bool = True,
                 json_flag: bool = True, listed: bool = True) -> argparse.ArgumentParser:
         # An unlisted command (an older spelling) gets no line in 'polyloops --help'.
-        p = sub.add_parser(name, description=help_text, **({"help": help_text} if listed else {}))
+        p = (sub.add_parser(name, description=help_text, help=help_text) if listed
+             else sub.add_parser(name, description=help_text))
         if file_arg:
             p.add_argument("file", metavar="FILE", help=FILE_HELP)
         if json_flag:

@@ -27,7 +27,7 @@ from polyloops.verify import Report
 
 def cmd_examples(args: argparse.Namespace) -> int:
     rows = [{"name": e.name, "valid": e.valid, "description": e.description} for e in EXAMPLES.values()]
-    width = max(len(r["name"]) for r in rows)
+    width = max(len(name) for name in EXAMPLES)
     text = "\n".join(f"{r['name']:<{width}}  {'valid  ' if r['valid'] else 'invalid'}  {r['description']}"
                      for r in rows)
     emit(args, rows, text)

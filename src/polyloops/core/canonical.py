@@ -287,7 +287,8 @@ def _canonical_form_arrays(ls: LoopStructure, mode: Symmetry) -> CanonicalForm:
     least_prefix: list[int] | None = None
     tied: list[tuple[int, int]] = []
     for k, root in chosen:
-        i, mirrored = divmod(k, 2)
+        i, side = divmod(k, 2)
+        mirrored = bool(side)
         succ, lab = cands.succ[mirrored], cands.labels(i)
         args = (listed(("succ", mirrored), succ, k), listed("twin", twin, k), listed(("lab", i), lab, k))
         prefix = _code_prefix(*args, root, least_prefix)
@@ -301,7 +302,8 @@ def _canonical_form_arrays(ls: LoopStructure, mode: Symmetry) -> CanonicalForm:
     hits: list[tuple[SignedPermutation, bool]] = []
     scratch = _Scratch(len(twin))
     for k, root in tied:
-        i, mirrored = divmod(k, 2)
+        i, side = divmod(k, 2)
+        mirrored = bool(side)
         g = cands.elements[i][0]
         code = _code_arrays(cands.succ[mirrored], twin, cands.labels(i), root, best, scratch)
         if code is None:

@@ -23,14 +23,18 @@ from dataclasses import dataclass
 from enum import StrEnum
 from functools import cache
 from itertools import combinations, permutations
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, TypeVar
 
 from polyloops.core.directions import Direction
 
 if TYPE_CHECKING:
+    from _typeshed import SupportsRichComparison
+
     from polyloops.core.polycube import Polycube
     from polyloops.core.structure import LoopStructure
     from polyloops.core.symmetry import SignedPermutation
+
+Ordered = TypeVar("Ordered", bound="SupportsRichComparison")
 
 
 class CornerCategory(StrEnum):
@@ -66,9 +70,10 @@ class CornerConfig:
                 "directions": [str(d) for d in self.directions]}
 
 
-def canonical_rotation(directions: Sequence[Direction]) -> tuple[Direction, ...]:
-    """The lexicographically smallest rotation of a cyclic sequence."""
-    seq = tuple(directions)
+def canonical_rotation(items: Sequence[Ordered]) -> tuple[Ordered, ...]:
+    """The lexicographically smallest rotation of a cyclic sequence (of directions, or of
+    anything ordered: chart corners rotate pairs)."""
+    seq = tuple(items)
     return min(seq[i:] + seq[:i] for i in range(len(seq)))
 
 
@@ -119,10 +124,11 @@ def _by_directions() -> dict[tuple[Direction, ...], CornerConfig]:
 
 def classify(directions: Iterable[Direction | None]) -> CornerConfig | None:
     """The configuration of a corner's cyclic directions, or ``None`` if it is no polycube corner."""
-    seq = tuple(directions)
-    if any(d is None for d in seq):
+    given = tuple(directions)
+    seq = tuple(d for d in given if d is not None)
+    if len(seq) != len(given):
         return None
-    return _by_directions().get(canonical_rotation(seq))  # type: ignore[arg-type]
+    return _by_directions().get(canonical_rotation(seq))
 
 
 def transform(config: CornerConfig, g: SignedPermutation) -> CornerConfig:

@@ -15,9 +15,12 @@ from __future__ import annotations
 
 from collections import defaultdict
 from collections.abc import Hashable, Iterable, Iterator
+from typing import Generic, TypeVar
+
+T = TypeVar("T", bound=Hashable)
 
 
-class DisjointSets:
+class DisjointSets(Generic[T]):
     """Disjoint sets of hashable items; an item unseen so far is a set of its own.
 
     Parameters
@@ -27,10 +30,10 @@ class DisjointSets:
         if they are never joined.
     """
 
-    def __init__(self, items: Iterable[Hashable] = ()) -> None:
-        self.parent: dict[Hashable, Hashable] = {x: x for x in items}
+    def __init__(self, items: Iterable[T] = ()) -> None:
+        self.parent: dict[T, T] = {x: x for x in items}
 
-    def find(self, x: Hashable) -> Hashable:
+    def find(self, x: T) -> T:
         """The representative of ``x``'s set."""
         p = self.parent
         p.setdefault(x, x)
@@ -41,15 +44,15 @@ class DisjointSets:
 
     __getitem__ = find
 
-    def union(self, a: Hashable, b: Hashable) -> None:
+    def union(self, a: T, b: T) -> None:
         """Join the sets of ``a`` and ``b``."""
         ra, rb = self.find(a), self.find(b)
         if ra != rb:
             self.parent[ra] = rb
 
-    def to_sets(self) -> Iterator[set[Hashable]]:
+    def to_sets(self) -> Iterator[set[T]]:
         """The sets, each once, over every item seen so far."""
-        groups: dict[Hashable, set[Hashable]] = defaultdict(set)
+        groups: dict[T, set[T]] = defaultdict(set)
         for x in list(self.parent):
             groups[self.find(x)].add(x)
         yield from groups.values()

@@ -122,9 +122,10 @@ def _positions_from_lengths(n: int, labels: dict[tuple[int, int], Direction | Ax
     adjacency: list[list[tuple[int, tuple[int, int, int]]]] = [[] for _ in range(n)]
     for (u, v), d in labels.items():
         assert isinstance(d, Direction)
-        step = tuple(int(lengths[(u, v)]) * x for x in d.vector)
-        adjacency[u].append((v, step))
-        adjacency[v].append((u, tuple(-x for x in step)))
+        k = int(lengths[(u, v)])
+        x, y, z = d.vector
+        adjacency[u].append((v, (k * x, k * y, k * z)))
+        adjacency[v].append((u, (-k * x, -k * y, -k * z)))
     pos: list[tuple[int, int, int] | None] = [None] * n
     for root in range(n):
         if pos[root] is not None:

@@ -72,7 +72,7 @@ class Document:
         ('loop-structure', True)
         """
         if isinstance(obj, Polycube):
-            return cls("polycube", [list(f) for f in obj.faces], [tuple(p) for p in obj.positions],
+            return cls("polycube", [list(f) for f in obj.faces], [(p[0], p[1], p[2]) for p in obj.positions],
                        notes=notes)
         m = obj.map
         label = obj.direction if obj.oriented else obj.axis_of_dart

@@ -206,6 +206,8 @@ def labelled_mesh_from_polycube(q: Polycube, labels: Sequence[Direction] | None 
     for f, (a, b, c, d) in enumerate(q.faces):
         triangles += [(a, b, c), (a, c, d)]
         label = labels[f] if labels is not None else q.face_normal(f)
+        if label is None:
+            raise ValueError(f"face {f} is not axis-aligned, so it has no label")
         normals += [label, label]
     points = tuple((float(x), float(y), float(z)) for x, y, z in q.positions)
     return LabelledMesh(points, tuple(triangles), tuple(normals))

@@ -109,7 +109,7 @@ class _Successors(dict):
         self[d] = out
         return out
 
-    def get(self, d, default=None):  # type: ignore[override]
+    def get(self, d, default=None):
         try:
             return self[d]  # fills the entry (dict.get would not)
         except KeyError:
@@ -244,7 +244,7 @@ def separates_zone(ls: LoopStructure, move: Addition) -> bool:
         while d != forward:  # strictly between back and forward (CCW): the right side
             copy[d] = plus_id[v]
             d = m.rotate(d)
-    parts = DisjointSets()
+    parts: DisjointSets[int] = DisjointSets()
     for c in range(m.num_corners):
         if zones.zone_of[c] != zone:
             continue
@@ -586,7 +586,7 @@ def check_removal(ls: LoopStructure, loop: int, arcs: _LevelArcs | None = None) 
     if lp.self_crossings:
         return RemovalCheck(loop, False, "the loop crosses itself")
     rungs = [(m.origin(d), m.target(d)) for d in lp.darts]
-    groups = DisjointSets()
+    groups: DisjointSets[int] = DisjointSets()
     for u, v in rungs:
         groups.union(u, v)
     members: dict[object, list[int]] = defaultdict(list)

@@ -47,7 +47,8 @@ class SignedPermutation:
 
 
 SIGNED_PERMUTATIONS: tuple[SignedPermutation, ...] = tuple(
-    SignedPermutation(p, s) for p in permutations(range(3)) for s in product((1, -1), repeat=3)
+    SignedPermutation((p[0], p[1], p[2]), (s[0], s[1], s[2]))
+    for p in permutations(range(3)) for s in product((1, -1), repeat=3)
 )
 ROTATIONS: tuple[SignedPermutation, ...] = tuple(g for g in SIGNED_PERMUTATIONS if g.is_rotation)
 IDENTITY = SIGNED_PERMUTATIONS[0]

@@ -64,7 +64,7 @@ def polycube_from_voxels(cells: Iterable[Cell]) -> Polycube:
     for f, (_, corners) in enumerate(faces):
         for i in range(4):
             by_edge[frozenset((corners[i], corners[(i + 1) % 4]))].append((f, i))
-    slots = DisjointSets()
+    slots: DisjointSets[tuple[int, int]] = DisjointSets()
 
     for sides in by_edge.values():
         if len(sides) == 2:

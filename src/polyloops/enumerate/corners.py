@@ -51,7 +51,7 @@ def corner_classes(symmetry: Symmetry | str = Symmetry.ROTATION) -> tuple[Corner
     (48 signed permutations); ``"none"`` is an older name for ``"labelled"``."""
     group = Symmetry.parse(symmetry).group
     seen: set[int] = set()
-    out = []
+    out: list[CornerClass] = []
     for c in corner_configurations():
         if c.id in seen:
             continue

@@ -417,8 +417,8 @@ def one_move_apart(a: LoopStructure, b: LoopStructure) -> bool:
                         return True
     elif grow < 0:
         for lp in a.loops:
-            child = try_remove(a, lp.id)
-            if child is not None and canonical_form(child, "labelled").signature == target:
+            smaller = try_remove(a, lp.id)
+            if smaller is not None and canonical_form(smaller, "labelled").signature == target:
                 return True
     return False
 

@@ -4,11 +4,11 @@ unique corners)."""
 from __future__ import annotations
 
 import os
+from typing import Any
 
 from matplotlib.patches import Polygon
 
 from polyloops.core.corners import CATEGORIES, CornerConfig, corner_configurations
-from polyloops.core.directions import Direction
 from polyloops.render.colors import direction_color
 from polyloops.render.figure import new_figure, save_figure
 from polyloops.render.projection import View
@@ -24,7 +24,7 @@ def draw_corner(ax, config: CornerConfig, view: View) -> None:
     """The corner's edges as coloured rays and the quarter faces between consecutive edges,
     light where their outside faces the viewer and dark where their inside does."""
     dirs = config.directions
-    items = []
+    items: list[tuple[float, str, Any, Any]] = []
     for i, d in enumerate(dirs):
         e = dirs[(i + 1) % len(dirs)]
         a, b = d.vector, e.vector
@@ -40,9 +40,8 @@ def draw_corner(ax, config: CornerConfig, view: View) -> None:
             colour = FRONT if view.facing(normal) > 0 else BACK
             ax.add_patch(Polygon(pts, closed=True, facecolor=colour, edgecolor="white", lw=0.5, alpha=0.9))
         else:
-            d: Direction = obj
-            x, y = view.project(d.vector)
-            ax.plot([0, x], [0, y], color=direction_color(d), lw=2.5, solid_capstyle="round")
+            x, y = view.project(obj.vector)
+            ax.plot([0, x], [0, y], color=direction_color(obj), lw=2.5, solid_capstyle="round")
     ax.plot([0], [0], "o", color="black", ms=2.5)
     ax.set_xlim(-1.25, 1.25)
     ax.set_ylim(-1.25, 1.25)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 from collections import defaultdict
+from typing import Any
 
 import networkx as nx
 from matplotlib.patches import FancyArrowPatch
@@ -40,7 +41,7 @@ def draw_level_graph(ax, ls: LoopStructure, axis: Axis) -> None:
         pair = (min(u, v), max(u, v))
         k = seen[pair]
         seen[pair] += 1
-        style = dict(arrowstyle="-|>", mutation_scale=14, color=AXIS_COLOR[axis], lw=1.6)
+        style: dict[str, Any] = dict(arrowstyle="-|>", mutation_scale=14, color=AXIS_COLOR[axis], lw=1.6)
         if u == v:  # a self-loop (an invalid structure): a small arc above the node, stacked
             (x, y), lift = pos[u], 0.25 * k
             arrow = FancyArrowPatch((x + 0.12, y + 0.1 + lift), (x - 0.12, y + 0.1 + lift),

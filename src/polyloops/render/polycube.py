@@ -12,6 +12,7 @@ from __future__ import annotations
 import io
 import math
 import os
+from collections.abc import Iterable
 from itertools import product
 
 from matplotlib.patches import Polygon
@@ -28,6 +29,12 @@ from polyloops.render.projection import View
 FACE_SHADE = {Axis.X: "#cfcfcf", Axis.Y: "#e8e8e8", Axis.Z: "#b4b4b4"}
 
 Vec = tuple[float, float, float]
+
+
+def _vec(xs: Iterable[float]) -> Vec:
+    """Three numbers as a point (the type checker cannot count a generator's items)."""
+    x, y, z = xs
+    return (x, y, z)
 
 
 def _sub(a, b):
@@ -55,12 +62,12 @@ def candidate_views() -> list[tuple[float, float]]:
 
 def choose_views(q: Polycube, count: int) -> list[View]:
     """Greedy: each view shows the most faces (facing the camera) not shown by earlier ones."""
-    normals = [face_normal(q, f) for f in range(q.map.num_faces)]
-    remaining = {f for f, n in enumerate(normals) if n is not None}
+    normals = {f: n for f in range(q.map.num_faces) if (n := face_normal(q, f)) is not None}
+    remaining = set(normals)
     chosen: list[View] = []
     pool = [View(az, el) for az, el in candidate_views()]
     for _ in range(count):
-        best = max(pool, key=lambda v: (sum(1 for f in remaining if v.facing(normals[f].vector) > 0),
+        best = max(pool, key=lambda v: (sum(v.facing(normals[f].vector) > 0 for f in remaining),
                                         -pool.index(v)))
         chosen.append(best)
         pool.remove(best)
@@ -88,7 +95,7 @@ def _cells(q: Polycube, f: int) -> list[tuple[tuple[int, int], list[Vec]]]:
     p = [q.positions[c] for c in q.faces[f]]
     frame = _face_frame(q, f)
     if frame is None:
-        return [((0, 0), [tuple(map(float, x)) for x in p])]
+        return [((0, 0), [_vec(map(float, x)) for x in p])]
     a, b, lo, hi = frame
     out = []
     for u, v in product(range(lo[a], hi[a]), range(lo[b], hi[b])):
@@ -106,7 +113,7 @@ def _pieces(a: Vec, b: Vec, longest: float = 0.5) -> list[tuple[Vec, Vec]]:
     """A segment cut into pieces no longer than ``longest``."""
     length = math.dist(a, b)
     k = max(1, math.ceil(length / longest))
-    pts = [tuple(a[i] + (b[i] - a[i]) * j / k for i in range(3)) for j in range(k + 1)]
+    pts = [_vec(a[i] + (b[i] - a[i]) * j / k for i in range(3)) for j in range(k + 1)]
     return [(pts[j], pts[j + 1]) for j in range(k)]
 
 
@@ -168,18 +175,18 @@ def draw_polycube(ax, q: Polycube, view: View, loops: LoopStructure | None) -> N
         return cells[(f, u, v)]
 
     for f in frames:
-        corners = [tuple(map(float, q.positions[c])) for c in q.faces[f]]
-        inward = tuple(sum(c[k] for c in corners) / 4 for k in range(3))
+        corners = [_vec(map(float, q.positions[c])) for c in q.faces[f]]
+        inward = _vec(sum(c[k] for c in corners) / 4 for k in range(3))
         for i in range(4):
             for piece in _pieces(corners[i], corners[(i + 1) % 4], 1.0):
-                mid = tuple((piece[0][k] + piece[1][k]) / 2 for k in range(3))
+                mid = _vec((piece[0][k] + piece[1][k]) / 2 for k in range(3))
                 # Nudge towards the face centre to find the cell the piece borders.
-                probe = tuple(mid[k] + 0.25 * math.copysign(1, inward[k] - mid[k]) * (inward[k] != mid[k])
+                probe = _vec(mid[k] + 0.25 * math.copysign(1, inward[k] - mid[k]) * (inward[k] != mid[k])
                               for k in range(3))
                 cell_of(f, probe)[3].append(piece)
     if loops is not None:
         for f, piece, colour, width in _loop_strokes(q, loops, 0.02, set(frames)):
-            mid = tuple((piece[0][k] + piece[1][k]) / 2 for k in range(3))
+            mid = _vec((piece[0][k] + piece[1][k]) / 2 for k in range(3))
             cell_of(f, mid)[4].append((piece, colour, width))
     xs, ys = [], []
     for _, poly, colour, edges, strokes in sorted(cells.values(), key=lambda c: c[0]):

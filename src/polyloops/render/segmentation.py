@@ -62,9 +62,10 @@ def draw_segmentation(ax, report, view: View) -> None:
         fill = _tint(color) if chart_of[f] in hot_charts else color
 
         def at(i: int, j: int, a=a, b=b, c=c) -> tuple[float, float, float]:
-            return tuple(a[k] + i / n * (b[k] - a[k]) + j / n * (c[k] - a[k]) for k in range(3))  # type: ignore[return-value]
+            x, y, z = (a[k] + i / n * (b[k] - a[k]) + j / n * (c[k] - a[k]) for k in range(3))
+            return (x, y, z)
 
-        edge_kind = []
+        edge_kind: list[tuple[str, float] | None] = []
         for k in range(3):
             d = m.face_start[f] + k
             if chart_of[m.face_of[m.twin[d]]] == chart_of[f]:
@@ -91,10 +92,11 @@ def draw_segmentation(ax, report, view: View) -> None:
                 if i == 0:
                     sides.append((2, (0, j + 1), (0, j)))
                 for k, p, q in sides:
-                    if edge_kind[k] is not None:
+                    kind = edge_kind[k]
+                    if kind is not None:
                         pts = [at(*p), at(*q)]
                         depth = sum(view.depth(x) for x in pts) / 2 + 1e-6
-                        color_k, width = edge_kind[k]
+                        color_k, width = kind
                         items.append((depth, [view.project(x) for x in pts], "none", color_k, width))
     items.sort(key=lambda item: item[0])
     ax.add_collection(PolyCollection([it[1] for it in items], facecolors=[it[2] for it in items],

@@ -152,7 +152,7 @@ def segment(mesh: LabelledMesh) -> Segmentation:
 
 
 def _charts(m: HalfEdgeMap, labels) -> list[int]:
-    sets = DisjointSets()
+    sets: DisjointSets[int] = DisjointSets()
     for d in range(m.num_darts):
         f, g = m.face_of[d], m.face_of[m.twin[d]]
         sets.find(f)

@@ -33,6 +33,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from itertools import product
+from typing import Any
 
 from pysat.card import CardEnc, EncType
 from pysat.solvers import Solver
@@ -109,11 +110,11 @@ class GlobalResult:
 
 def corner_zones(seg: Segmentation, axis: Axis) -> tuple[int, ...]:
     """The zone of each corner along ``axis``, numbered from 0 in order of first corner."""
-    sets = DisjointSets()
+    sets: DisjointSets[int] = DisjointSets()
     for c in seg.corners:
         sets.find(c.id)
     for b in seg.boundaries:
-        if b.start is not None and seg.boundary_axis(b.id) != axis:
+        if b.start is not None and b.end is not None and seg.boundary_axis(b.id) != axis:
             sets.union(b.start, b.end)
     for chart in seg.charts:
         if chart.label.axis == axis:
@@ -165,7 +166,7 @@ def check_global(seg: Segmentation, max_cuts: int = 10_000, try_mesh_first: bool
     if try_mesh_first and satisfies(seg, zones, geometric, rules):
         return GlobalResult(True, directions=geometric, zones=zones)
     nb = len(seg.boundaries)
-    selectors: dict[int, tuple[str, object]] = {}
+    selectors: dict[int, tuple[str, Any]] = {}
     next_var = nb + 1
     with Solver(name="glucose4") as solver:
         for c, (bs, ok) in zip(seg.corners, rules, strict=True):
@@ -191,8 +192,7 @@ def check_global(seg: Segmentation, max_cuts: int = 10_000, try_mesh_first: bool
                 corners = tuple(sorted(selectors[s][1] for s in core if selectors[s][0] == "corner"))
                 charts = tuple(sorted(selectors[s][1] for s in core if selectors[s][0] == "chart"))
                 cycles = tuple(selectors[s][1] for s in core if selectors[s][0] == "cycle")
-                witness = Witness("no-directions", corners=corners, cycles=cycles,  # type: ignore[arg-type]
-                                  turning=charts)  # type: ignore[arg-type]
+                witness = Witness("no-directions", corners=corners, cycles=cycles, turning=charts)
                 return GlobalResult(False, "no directions satisfy the corners and charts with acyclic "
                                     "level graphs", witness, zones=zones)
             model = solver.get_model()

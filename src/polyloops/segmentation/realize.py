@@ -132,23 +132,23 @@ def realise(seg: Segmentation, result: GlobalResult) -> Realisation:
         faces += quads
         chart_of_face += [chart.id] * len(quads)
     try:
-        q = Polycube.from_faces(faces, points)
+        cube = Polycube.from_faces(faces, points)
     except (MapError, FaceListError) as err:
         return Realisation(None, f"the quads do not close up: {err}")
-    volume = q.signed_volume()
+    volume = cube.signed_volume()
     if volume == 0:
         return Realisation(None, "the realisation has zero volume, so no side is outside")
     if volume < 0:
-        q = Polycube(q.map, tuple((-x, -y, -z) for x, y, z in q.positions))
-    report = check_polycube(q)
+        cube = Polycube(cube.map, tuple((-x, -y, -z) for x, y, z in cube.positions))
+    report = check_polycube(cube)
     if not report.valid:
         v = report.violations[0]
         return Realisation(None, f"the quads fail Definition 1 condition {v.condition}: {v.message}")
     for f, c in enumerate(chart_of_face):
-        if q.face_normal(f) != seg.charts[c].label:
-            facing = q.face_normal(f)
+        if cube.face_normal(f) != seg.charts[c].label:
+            facing = cube.face_normal(f)
             return Realisation(None, f"a quad of chart {c} faces {facing}, not {seg.charts[c].label}")
-    return Realisation(q, chart_of_face=tuple(chart_of_face))
+    return Realisation(cube, chart_of_face=tuple(chart_of_face))
 
 
 def _chart_quads(seg: Segmentation, c: int, corner_pos, inner, points) -> list[list[int]] | str:
@@ -175,8 +175,9 @@ def _chart_quads(seg: Segmentation, c: int, corner_pos, inner, points) -> list[l
             first, last = corner_pos[ids[0]], corner_pos[ids[-1]]
             if first[u] == last[u]:
                 edges_v.append((first[u], first[v], last[v]))
-    if not on_boundary:
+    if not on_boundary or level is None:
         return f"chart {c} has no corners"
+    plane: int = level
     us = [k[0] for k in on_boundary]
     vs = [k[1] for k in on_boundary]
     u0, v0 = min(us), min(vs)
@@ -204,7 +205,7 @@ def _chart_quads(seg: Segmentation, c: int, corner_pos, inner, points) -> list[l
             return None  # on the chart's outline without being on one of its boundaries
         if key not in interior:
             x = [0, 0, 0]
-            x[a], x[u], x[v] = level, pu, pv
+            x[a], x[u], x[v] = plane, pu, pv
             interior[key] = len(points)
             points.append((x[0], x[1], x[2]))
         return interior[key]

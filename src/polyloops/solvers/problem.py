@@ -21,7 +21,6 @@ from __future__ import annotations
 
 import copy
 from collections import defaultdict, deque
-from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -191,7 +190,7 @@ class OrientationProblem:
             out.append((left, right, loop) if signs[loop] > 0 else (right, left, loop))
         return out
 
-    def find_cycle(self, signs: Sequence[int]) -> tuple[Axis, list[Arc]] | None:
+    def find_cycle(self, signs: tuple[int, ...] | list[int]) -> tuple[Axis, list[Arc]] | None:
         """A directed cycle in some level graph under these signs, as arcs, or ``None``."""
         for axis in self.checked_axes:
             cycle = find_directed_cycle(self.zone_counts[axis], self.arcs(signs, axis))

@@ -45,7 +45,7 @@ class CellComplex:
 
     def betti1(self) -> int:
         """``dim ker d1 - rank d2`` (exact when every edge lies in at most two faces)."""
-        parts = DisjointSets()
+        parts: DisjointSets[Hashable] = DisjointSets()
         for v in self.vertices:
             parts.find(v)
         for u, v in self.edges:
@@ -67,7 +67,7 @@ class CellComplex:
         """``dim ker d2``: groups of faces joined across edges in two faces, touching no edge
         that lies in one face only."""
         by_edge = self.faces_of_edge()
-        parts = DisjointSets()
+        parts: DisjointSets[Hashable] = DisjointSets()
         for f in range(len(self.faces)):
             parts.find(f)
         for fs in by_edge.values():
@@ -78,7 +78,7 @@ class CellComplex:
 
     def boundary_circles(self) -> int:
         """Connected components of the edges that lie in exactly one face."""
-        parts = DisjointSets()
+        parts: DisjointSets[Hashable] = DisjointSets()
         for e, fs in self.faces_of_edge().items():
             if len(fs) == 1:
                 u, v = self.edges[e]
@@ -142,19 +142,19 @@ def cut_zones(ls: LoopStructure, axis: Axis) -> dict[int, CellComplex]:
                 continue
             faces.append(tuple(edge(piece[i], piece[(i + 1) % len(piece)]) for i in range(len(piece))))
     vertices = sorted({v for uv in edges for v in uv}, key=repr)
-    parts = DisjointSets()
+    parts: DisjointSets[Hashable] = DisjointSets()
     for v in vertices:
         parts.find(v)
-    for u, v in edges:
-        parts.union(u, v)
+    for a, b in edges:
+        parts.union(a, b)
     zones = ls.zones(axis)
     zone_of_root = {parts.find(("c", c)): zones.zone_of[c] for c in range(m.num_corners)}
     grouped_v: dict[int, list[Hashable]] = defaultdict(list)
     for v in vertices:
         grouped_v[zone_of_root[parts.find(v)]].append(v)
     grouped_e: dict[int, list[int]] = defaultdict(list)
-    for e, (u, _) in enumerate(edges):
-        grouped_e[zone_of_root[parts.find(u)]].append(e)
+    for e, (a, _) in enumerate(edges):
+        grouped_e[zone_of_root[parts.find(a)]].append(e)
     grouped_f: dict[int, list[int]] = defaultdict(list)
     for f, face in enumerate(faces):
         grouped_f[zone_of_root[parts.find(edges[face[0]][0])]].append(f)

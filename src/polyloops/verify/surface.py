@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from polyloops.core.halfedge import MapProblem
-from polyloops.verify.report import ReportBuilder
+from polyloops.verify.report import ReportBuilder, Violation
 
 # MapProblem.kind -> (condition name, statement)
 SURFACE_CONDITIONS = {
@@ -23,7 +23,7 @@ _CONDITION_OF_KIND = {
 
 def add_surface_checks(rb: ReportBuilder, problems: tuple[MapProblem, ...] | None) -> None:
     """Record the surface conditions; ``problems`` is ``None`` when the map was built."""
-    found = {name: [] for name in SURFACE_CONDITIONS}
+    found: dict[str, list[Violation]] = {name: [] for name in SURFACE_CONDITIONS}
     for p in problems or ():
         found[_CONDITION_OF_KIND[p.kind]].append(rb.violation(_CONDITION_OF_KIND[p.kind], p.message,
                                                               **p.witness))
