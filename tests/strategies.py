@@ -1,13 +1,18 @@
-"""Hypothesis strategies: random polycubes (unions of unit cubes) and perturbed loop structures.
+"""Hypothesis strategies: polycubes (unions of unit cubes), loop structures grown by drawn
+loop additions, and perturbed loop structures.
 
-Every random choice comes from a seeded ``random.Random``, so a failing case
-shrinks to a seed and a size that reproduce it.
+The strategies draw the shape itself, as curver's draw move sequences: every cube added is a
+drawn index into the sorted frontier, every frame dimension and every loop addition a drawn
+number.  Hypothesis therefore shrinks a failing case towards fewer cubes, smaller indices and
+fewer moves, down to a small shape that still fails (``tests/test_strategies.py`` checks that
+it does).  ``random_polycube(seed, ...)`` remains for benchmarks and seeded sweeps.
 """
 
 from __future__ import annotations
 
 import random
 
+from hypothesis import assume
 from hypothesis import strategies as st
 
 from polyloops.core.directions import Axis, Direction
@@ -76,21 +81,15 @@ def _grow(rng: random.Random, cells: set[Cell], extra: int, allowed=None) -> set
     return cells
 
 
+def frame_cells(holes: int, w: int, hole: int, height: int) -> set[Cell]:
+    """A slab with ``holes`` square holes (side ``hole``) through it, bars ``w`` wide and
+    ``height`` thick: genus ``holes``."""
+    return {(i, j, k) for i in range(holes * (w + hole) + w) for j in range(2 * w + hole)
+            for k in range(height) if not ((i % (w + hole)) >= w and w <= j < w + hole)}
+
+
 def _frame(rng: random.Random, holes: int) -> set[Cell]:
-    """A slab with ``holes`` square holes through it (genus ``holes``)."""
-    w = rng.randint(1, 2)  # width of the bars
-    hole = rng.randint(1, 2)
-    height = rng.randint(1, 2)
-    length_x = holes * (w + hole) + w
-    length_y = 2 * w + hole
-    cells = set()
-    for i in range(length_x):
-        for j in range(length_y):
-            in_hole = (i % (w + hole)) >= w and w <= j < w + hole
-            if not in_hole:
-                for k in range(height):
-                    cells.add((i, j, k))
-    return cells
+    return frame_cells(holes, rng.randint(1, 2), rng.randint(1, 2), rng.randint(1, 2))
 
 
 def random_voxels(seed: int, kind: str, size: int) -> set[Cell]:
@@ -119,10 +118,74 @@ def random_polycube(seed: int, kind: str = "blob", size: int = 6) -> Polycube:
 KINDS = ("blob", "smooth", "frame1", "frame2")
 
 
+def _frontier(cells: set[Cell], allowed=None) -> list[Cell]:
+    out = sorted({(c[0] + v[0], c[1] + v[1], c[2] + v[2]) for c in cells for v in NEIGHBOURS} - cells)
+    return out if allowed is None else [c for c in out if allowed(c, cells)]
+
+
+def grow_by_choices(cells: set[Cell], choices: list[int], smooth: bool = False, allowed=None) -> set[Cell]:
+    """Add one cube per choice: the ``choice``-th cube of the sorted frontier (modulo its size);
+    with ``smooth``, the first one from there on that keeps the set well-composed."""
+    cells = set(cells)
+    for choice in choices:
+        frontier = _frontier(cells, allowed)
+        if not frontier:
+            break
+        k = choice % len(frontier)
+        if not smooth:
+            cells.add(frontier[k])
+            continue
+        for c in frontier[k:] + frontier[:k]:
+            cells.add(c)
+            if not _critical(cells, c):
+                break
+            cells.discard(c)
+    return cells
+
+
+@st.composite
+def voxel_sets(draw, kinds=KINDS, max_size: int = 10) -> set[Cell]:
+    """A drawn set of cubes: a blob (any cubes), a smooth (well-composed) blob, or a frame with
+    one or two holes and cubes stacked on it, every cube a drawn choice."""
+    kind = draw(st.sampled_from(kinds))
+    choices = draw(st.lists(st.integers(0, 10**6), max_size=max_size))
+    if kind in ("blob", "smooth"):
+        return grow_by_choices({(0, 0, 0)}, choices, smooth=kind == "smooth")
+    holes = {"frame1": 1, "frame2": 2}[kind]
+    height = draw(st.integers(1, 2))
+    base = frame_cells(holes, draw(st.integers(1, 2)), draw(st.integers(1, 2)), height)
+    # Cubes stacked on top of the slab: a height field keeps the genus.
+    return grow_by_choices(base, choices, allowed=lambda c, cells: c[2] >= height
+                           and (c[0], c[1], c[2] - 1) in cells)
+
+
 @st.composite
 def polycubes(draw, kinds=KINDS, max_size: int = 10) -> Polycube:
-    kind = draw(st.sampled_from(kinds))
-    return random_polycube(draw(st.integers(0, 2**31)), kind, draw(st.integers(0, max_size)))
+    """The polycube bounding a drawn set of cubes (:func:`voxel_sets`); a set whose split
+    boundary is no polycube (a surface meeting itself badly) is rejected, not redrawn."""
+    cells = draw(voxel_sets(kinds, max_size))
+    try:
+        return polycube_from_voxels(cells)
+    except VoxelError:
+        assume(False)
+        raise
+
+
+@st.composite
+def grown_structures(draw, max_moves: int = 4, start: str = "cube") -> LoopStructure:
+    """A polycube loop structure reached from a bundled example by drawn loop additions: each
+    move a drawn axis and a drawn index among that axis' first valid additions.  Shrinks
+    towards fewer moves and earlier additions."""
+    from polyloops.core.examples import load_example
+    from polyloops.core.moves import add_loop, additions
+
+    ls = load_example(start).dualize()
+    for _ in range(draw(st.integers(0, max_moves))):
+        axis = draw(st.sampled_from(list(Axis)))
+        found = list(additions(ls, axis, limit=6))
+        if found:
+            ls = add_loop(ls, found[draw(st.integers(0, len(found) - 1))])
+    return ls
 
 
 def bridged_ring(width: int, depth: int, holes: int, bumps: list[int]) -> set[Cell]:

@@ -157,3 +157,28 @@ def test_info_reports_corner_histogram(capsys):
     data = json.loads(capsys.readouterr().out)
     assert sum(data["corner_categories"].values()) == data["corners"]
     assert set(data["corner_categories"]) == set(CATEGORIES)
+
+
+@pytest.mark.parametrize("mode", ["labelled", "rotation", "full"])
+def test_classes_by_burnside_and_by_sympy_orbits(mode):
+    """Three derivations of the number of corner classes agree: walking orbits
+    (corner_classes), the orbits sympy finds of the group acting on the 126 ids, and Burnside's
+    average number of fixed configurations."""
+    from polyloops.enumerate.corners import burnside_count, corner_action
+
+    G = corner_action(mode)
+    orbits = sorted(sorted(o) for o in G.orbits())
+    assert orbits == sorted(sorted(c.members) for c in corner_classes(mode))
+    assert burnside_count(mode) == len(orbits)
+    assert G.order() == len(SYMMETRY_MODES[mode])
+
+
+def test_the_symmetry_groups_are_the_hyperoctahedral_group_and_its_rotations():
+    from polyloops.core.symmetry import symmetry_group
+
+    full, rotation = symmetry_group("full"), symmetry_group("rotation")
+    assert (full.order(), rotation.order()) == (48, 24)
+    # The rotations: a normal subgroup of index 2; the centre of the full group is the
+    # central inversion and the identity.
+    assert rotation.is_normal(full) and full.order() // rotation.order() == 2
+    assert not full.is_abelian and full.center().order() == 2  # {identity, central inversion}

@@ -84,6 +84,30 @@ class Symmetry(StrEnum):
         return SYMMETRY_MODES[self]
 
 
+def direction_permutation(g: SignedPermutation) -> list[int]:
+    """``g`` as a permutation of the six directions (``Direction`` values 0..5).
+
+    >>> direction_permutation(IDENTITY)
+    [0, 1, 2, 3, 4, 5]
+    """
+    return [int(g(d)) for d in Direction]
+
+
+def symmetry_group(mode: Symmetry | str = Symmetry.FULL):
+    """The group of a symmetry mode as a sympy ``PermutationGroup`` on the six directions:
+    the hyperoctahedral group of order 48 for ``full``, its rotation subgroup of order 24,
+    the trivial group for ``labelled``.  (sympy loads on first use.)
+
+    >>> symmetry_group("full").order(), symmetry_group("rotation").order()
+    (48, 24)
+    >>> symmetry_group("rotation").is_subgroup(symmetry_group("full"))
+    True
+    """
+    from sympy.combinatorics import Permutation, PermutationGroup
+
+    return PermutationGroup([Permutation(direction_permutation(g)) for g in Symmetry.parse(mode).group])
+
+
 SYMMETRY_MODES: dict[Symmetry, tuple[SignedPermutation, ...]] = {
     Symmetry.LABELLED: (IDENTITY,), Symmetry.ROTATION: ROTATIONS, Symmetry.FULL: SIGNED_PERMUTATIONS}
 MODE_ALIASES = {"none": "labelled"}

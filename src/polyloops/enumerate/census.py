@@ -232,3 +232,56 @@ def identify(obj: Any, catalog: Path | Census | None = None) -> Identification:
     found = census.by_signature.get(sig)
     return Identification(found.name if found else None, sig, obj.map.num_corners, obj.map.genus,
                           census.max_corners, census.genus)
+
+
+@dataclass(frozen=True)
+class OrbitCounts:
+    """Classes with one number of corners, in the three modes, as the orbit-stabiliser theorem
+    derives them from the catalog's ``full`` records (see :func:`orbit_counts`)."""
+
+    corners: int
+    labelled: int
+    rotation: int
+    full: int
+
+
+def orbit_counts(census: Census) -> dict[int, OrbitCounts]:
+    """Per number of corners, the numbers of labelled and rotation classes derived from the
+    ``full`` classes alone, by the orbit-stabiliser theorem.
+
+    The group ``G`` of 48 signed permutations acts on labelled classes.  A structure's
+    automorphisms in a mode with group ``H`` are the pairs (``h`` in ``H``, map automorphism)
+    that preserve it, so ``|Aut_H| = |Stab_H| * |Aut_labelled|``.  A full class is one
+    ``G``-orbit of ``|G| / |Stab_G| = |G| * aut_labelled / aut_full`` labelled classes, and it
+    splits into ``[G : R] * |Stab_R| / |Stab_G| = 2 * aut_rotation / aut_full`` rotation
+    classes (two exactly when it is chiral).  Summed over a shipped catalog, these must equal
+    the counts ``summary.json`` states from three separate canonical forms, tying the columns
+    ``automorphisms``, ``chiral`` and the three counts together.  The group orders come from
+    :func:`~polyloops.core.symmetry.symmetry_group`.
+
+    >>> counts = orbit_counts(read_catalog())
+    >>> counts[16]
+    OrbitCounts(corners=16, labelled=15, rotation=2, full=2)
+    """
+    from polyloops.core.canonical import canonical_form
+    from polyloops.core.symmetry import symmetry_group
+
+    if census.symmetry != Symmetry.FULL:
+        raise CatalogError(f"{census.directory}: orbit counts start from a catalog of full classes")
+    order_g, order_r = symmetry_group(Symmetry.FULL).order(), symmetry_group(Symmetry.ROTATION).order()
+    totals: dict[int, list[int]] = {}
+    for entry in census.entries:
+        ls = entry.structure()
+        aut_l = canonical_form(ls, Symmetry.LABELLED).automorphisms
+        aut_r = canonical_form(ls, Symmetry.ROTATION).automorphisms
+        aut_f = entry.record.automorphisms
+        labelled, rem_l = divmod(order_g * aut_l, aut_f)
+        rotation, rem_r = divmod(order_g // order_r * aut_r, aut_f)
+        if rem_l or rem_r:
+            raise CatalogError(f"{entry.name}: automorphism counts {aut_l}, {aut_r}, {aut_f} break "
+                               "the orbit-stabiliser theorem")
+        row = totals.setdefault(entry.corners, [0, 0, 0])
+        row[0] += labelled
+        row[1] += rotation
+        row[2] += 1
+    return {n: OrbitCounts(n, *row) for n, row in sorted(totals.items())}

@@ -42,6 +42,9 @@ class CellComplex:
     vertices: tuple[Hashable, ...]
     edges: tuple[tuple[Hashable, Hashable], ...]
     faces: tuple[tuple[int, ...], ...]
+    # Each face's corners in order, for the oriented boundary maps over the integers (the
+    # GF(2) ranks do not need them).
+    rings: tuple[tuple[Hashable, ...], ...] = ()
 
     def betti1(self) -> int:
         """``dim ker d1 - rank d2`` (exact when every edge lies in at most two faces)."""
@@ -85,10 +88,54 @@ class CellComplex:
                 parts.union(u, v)
         return len({parts.find(x) for x in parts.parent})
 
-    def genus(self) -> int:
-        """The genus of a connected orientable surface given as this complex."""
+    def integral_homology(self) -> tuple[int, tuple[int, ...]]:
+        """``H_1`` over the integers as (free rank, torsion coefficients), from the Smith normal
+        forms (sympy) of the oriented boundary maps: ``rank H_1 = E - rank d1 - rank d2``,
+        torsion the invariant factors of ``d2`` above 1.  Exact but slow: the tests' twin of
+        :meth:`betti1` on small complexes.  Needs :attr:`rings`.
+
+        >>> annulus = CellComplex((0, 1, 2, 3), ((0, 1), (1, 2), (2, 3), (3, 0)), ((0, 1, 2, 3),),
+        ...                       ((0, 1, 2, 3),))
+        >>> annulus.integral_homology()  # a disk: no homology
+        (0, ())
+        """
+        from sympy import ZZ, Matrix
+        from sympy.matrices.normalforms import smith_normal_form
+
+        if len(self.rings) != len(self.faces):
+            raise ValueError("integral homology needs the faces' corner rings")
+        index = {v: i for i, v in enumerate(self.vertices)}
+        d1 = Matrix.zeros(len(self.vertices), len(self.edges))
+        for e, (u, v) in enumerate(self.edges):
+            if u != v:
+                d1[index[u], e], d1[index[v], e] = -1, 1
+        d2 = Matrix.zeros(len(self.edges), len(self.faces))
+        for f, (face, ring) in enumerate(zip(self.faces, self.rings, strict=True)):
+            for i, e in enumerate(face):
+                forward = (ring[i], ring[(i + 1) % len(ring)]) == self.edges[e]
+                d2[e, f] += 1 if forward else -1
+
+        def invariants(m: Matrix) -> list[int]:
+            if 0 in m.shape:
+                return []
+            snf = smith_normal_form(m, domain=ZZ)
+            return [abs(int(snf[i, i])) for i in range(min(snf.shape)) if snf[i, i] != 0]
+
+        if d2.shape[1] and d1.shape[0] and any(x != 0 for x in d1 * d2):
+            raise ValueError("the boundary of a boundary is not zero: the rings are inconsistent")
+        rank1, factors2 = len(invariants(d1)), invariants(d2)
+        return len(self.edges) - rank1 - len(factors2), tuple(x for x in factors2 if x > 1)
+
+    def genus(self, integral: bool = False) -> int:
+        """The genus of a connected orientable surface given as this complex (its first Betti
+        number over GF(2), or with ``integral`` over the integers, which also refuses torsion)."""
         b = self.boundary_circles()
-        b1 = self.betti1()
+        if integral:
+            b1, torsion = self.integral_homology()
+            if torsion:
+                raise ValueError(f"H_1 has torsion {torsion}: not an orientable surface")
+        else:
+            b1 = self.betti1()
         twice = b1 - b + 1 if b else b1
         if twice % 2 or twice < 0:
             raise ValueError(f"b1 = {b1} with {b} boundary circles is not an orientable surface")
@@ -117,6 +164,7 @@ def cut_zones(ls: LoopStructure, axis: Axis) -> dict[int, CellComplex]:
         return edge_id[key]
 
     faces: list[tuple[int, ...]] = []
+    rings: list[tuple[Hashable, ...]] = []
     for f in range(m.num_faces):
         darts = list(m.face_darts(f))
         # Walk the boundary of the face, inserting midpoints of cut edges.
@@ -141,6 +189,7 @@ def cut_zones(ls: LoopStructure, axis: Axis) -> dict[int, CellComplex]:
             if not piece:
                 continue
             faces.append(tuple(edge(piece[i], piece[(i + 1) % len(piece)]) for i in range(len(piece))))
+            rings.append(tuple(piece))
     vertices = sorted({v for uv in edges for v in uv}, key=repr)
     parts: DisjointSets[Hashable] = DisjointSets()
     for v in vertices:
@@ -162,12 +211,17 @@ def cut_zones(ls: LoopStructure, axis: Axis) -> dict[int, CellComplex]:
     for z, vs in grouped_v.items():
         local = {e: i for i, e in enumerate(grouped_e[z])}
         out[z] = CellComplex(tuple(vs), tuple(edges[e] for e in grouped_e[z]),
-                             tuple(tuple(local[e] for e in faces[f]) for f in grouped_f[z]))
+                             tuple(tuple(local[e] for e in faces[f]) for f in grouped_f[z]),
+                             tuple(rings[f] for f in grouped_f[z]))
     return out
 
 
-def zone_genera(ls: LoopStructure, axis: Axis) -> tuple[int, ...]:
-    """The genus of every ``axis``-zone, from the homology of the cut surface."""
+def zone_genera(ls: LoopStructure, axis: Axis, integral: bool = False) -> tuple[int, ...]:
+    """The genus of every ``axis``-zone, from the homology of the cut surface (over GF(2), or
+    with ``integral`` by Smith normal forms over the integers: slow, for the tests)."""
+    if integral:
+        pieces = cut_zones(ls, axis)
+        return tuple(pieces[z].genus(integral=True) for z in sorted(pieces))
     from polyloops.core.arrays import LARGE
 
     if ls.map.num_darts >= LARGE and all(len(face) == 4 for face in ls.map.faces):
