@@ -1,14 +1,19 @@
-"""The kernel imports nothing above it: no module of ``polyloops.core`` imports from
-``verify``, ``solvers``, ``enumerate``, ``segmentation``, ``render`` or ``cli``, at module level
-or inside a function (read from the source, so a lazy import counts too)."""
+"""The layering holds: each subpackage imports only from the layers below it, at module level
+or inside a function (read from the source, so a lazy import counts too), so there is no import
+cycle between subpackages; and no module imports one that imports it back.
+
+The layers, lowest first: ``core`` (the kernel), ``verify``, ``solvers``, ``enumerate``,
+``segmentation``, ``render``, ``cli``."""
 
 import ast
 import subprocess
 import sys
 from pathlib import Path
 
-CORE = Path(__file__).resolve().parent.parent / "src" / "polyloops" / "core"
+PACKAGE = Path(__file__).resolve().parent.parent / "src" / "polyloops"
+CORE = PACKAGE / "core"
 ABOVE = ("verify", "solvers", "enumerate", "segmentation", "render", "cli")
+LAYERS = ("core", *ABOVE)
 
 
 def imported_modules(path: Path) -> set[str]:
@@ -59,3 +64,76 @@ def test_every_error_polyloops_defines_derives_from_one_base():
                 found.append(cls)
     strays = [c.__qualname__ for c in found if not issubclass(c, PolyloopsError) and c.__name__ != "CliError"]
     assert len(found) > 10 and strays == []
+
+
+def module_name(path: Path) -> str:
+    parts = path.relative_to(PACKAGE.parent).with_suffix("").parts
+    return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+
+
+def resolved_imports(path: Path, lazy: bool = True) -> set[str]:
+    """Every polyloops module a file imports (with ``lazy``, inside functions too);
+    ``from pkg import name`` counts as ``pkg.name`` when that is a module, and relative imports
+    are resolved.  Imports for annotations only (``if TYPE_CHECKING``) do not count."""
+    me = module_name(path)
+    package = me if path.name == "__init__.py" else me.rpartition(".")[0]
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    typing_only = {id(n) for block in ast.walk(tree) if isinstance(block, ast.If)
+                   and ast.unparse(block.test) in ("TYPE_CHECKING", "typing.TYPE_CHECKING")
+                   for stmt in block.body for n in ast.walk(stmt)}
+    nested = {id(n) for fn in ast.walk(tree) if isinstance(fn, (ast.FunctionDef, ast.AsyncFunctionDef))
+              for n in ast.walk(fn)}
+    out = set()
+    for node in ast.walk(tree):
+        if not lazy and id(node) in nested:
+            continue
+        if id(node) in typing_only:  # annotations only: never imported at run time
+            continue
+        if isinstance(node, ast.Import):
+            out |= {a.name for a in node.names}
+        elif isinstance(node, ast.ImportFrom):
+            base = node.module or ""
+            if node.level:
+                anchor = package.split(".")[: len(package.split(".")) - node.level + 1]
+                base = ".".join([*anchor, *([node.module] if node.module else [])])
+            for alias in node.names:
+                sub = PACKAGE.parent / Path(*f"{base}.{alias.name}".split("."))
+                out.add(f"{base}.{alias.name}" if sub.with_suffix(".py").exists() or sub.is_dir() else base)
+    return {m for m in out if m.split(".")[0] == "polyloops"}
+
+
+def layer(module: str) -> int | None:
+    parts = module.split(".")
+    return LAYERS.index(parts[1]) if len(parts) > 1 and parts[1] in LAYERS else None
+
+
+def test_every_subpackage_imports_only_from_below():
+    upward = {}
+    for path in sorted(PACKAGE.rglob("*.py")):
+        me = module_name(path)
+        mine = layer(me)
+        if mine is None:
+            continue
+        bad = sorted(m for m in resolved_imports(path) if (other := layer(m)) is not None and other > mine)
+        if bad:
+            upward[me] = bad
+    assert upward == {}
+
+
+def test_no_import_cycle_between_modules():
+    """No module imports at load time a module that imports it back, directly or through
+    others.  (Lazy imports between subpackages only go down, by the test above; inside the
+    kernel, the model's convenience methods ``Polycube.dualize`` and
+    ``LoopStructure.primalize`` call the duality module lazily, as networkx's graph methods
+    call its algorithms.)"""
+    import networkx as nx
+
+    graph = nx.DiGraph()
+    for path in PACKAGE.rglob("*.py"):
+        me = module_name(path)
+        graph.add_edges_from((me, m) for m in resolved_imports(path, lazy=False) if m != me)
+    # A package's __init__ may re-export its own modules; that is not a cycle of meaning.
+    for u, v in list(graph.edges):
+        if v.startswith(u + "."):
+            graph.remove_edge(u, v)
+    assert list(nx.simple_cycles(graph)) == []

@@ -12,6 +12,7 @@ import sys
 
 from polyloops.core.examples import EXAMPLES, example_text
 from polyloops.core.exchange import apg_text, parse_apg, parse_obj
+from polyloops.core.files import write_atomic
 from polyloops.core.formats import (
     Document,
     FormatError,
@@ -19,7 +20,6 @@ from polyloops.core.formats import (
     dumps,
     parse_document,
     to_obj,
-    write_atomic,
 )
 from polyloops.core.halfedge import FaceListError, MapError
 from polyloops.core.loops import OddFaceError

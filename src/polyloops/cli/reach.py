@@ -43,7 +43,7 @@ def _output_dir(text: str) -> Path:
 def cmd_reach(args: argparse.Namespace) -> int:
     from tqdm import tqdm
 
-    from polyloops.core.formats import write_atomic
+    from polyloops.core.files import write_atomic
     from polyloops.enumerate.reach import ReachError, explore
 
     start = read_valid_structure(args.start)

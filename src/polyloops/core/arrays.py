@@ -14,11 +14,14 @@ from __future__ import annotations
 
 import functools
 import gc
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
+from functools import cached_property
 from typing import TYPE_CHECKING, TypeVar
 
 import numpy as np
+
+from polyloops.core.directions import Axis, Direction
 
 if TYPE_CHECKING:
     from polyloops.core.halfedge import HalfEdgeMap
@@ -128,3 +131,28 @@ class MapArrays:
         rank = np.cumsum(darts < twin) - 1
         return cls(origin, origin[nxt], as_array(m.face_of), nxt, as_array(m.prev), twin,
                    as_array(m.face_start), rank[lower], np.flatnonzero(darts < twin))
+
+
+class EdgeLabels(Mapping):
+    """``{(u, v): label}`` held as three arrays (ends and label codes: ``int(d)`` for a
+    Direction, ``6 + axis`` for an Axis), so that a large file is not turned into a dictionary
+    of hundreds of thousands of tuples unless someone asks for one; the array kernels read
+    the arrays."""
+
+    def __init__(self, us, vs, codes):
+        self.us, self.vs, self.codes = us, vs, codes
+
+    @cached_property
+    def _dict(self) -> dict[tuple[int, int], Direction | Axis]:
+        members: list[Direction | Axis] = [*Direction, *Axis]
+        return dict(zip(zip(self.us.tolist(), self.vs.tolist(), strict=True),
+                        (members[c] for c in self.codes.tolist()), strict=True))
+
+    def __getitem__(self, key: tuple[int, int]) -> Direction | Axis:
+        return self._dict[key]
+
+    def __iter__(self):
+        return iter(self._dict)
+
+    def __len__(self) -> int:
+        return len(self.us)

@@ -26,15 +26,12 @@ True
 from __future__ import annotations
 
 import json
-import os
-import tempfile
 from collections.abc import Mapping
 from dataclasses import dataclass
-from functools import cached_property
 from itertools import chain
-from pathlib import Path
 from typing import Any
 
+from polyloops.core.arrays import EdgeLabels
 from polyloops.core.directions import Axis, Direction
 from polyloops.core.errors import PolyloopsError
 from polyloops.core.polycube import Polycube
@@ -153,31 +150,6 @@ def _labels(raw: Any) -> Mapping[tuple[int, int], Direction | Axis]:
     return out
 
 
-class EdgeLabels(Mapping):
-    """``{(u, v): label}`` held as three arrays (ends and label codes: ``int(d)`` for a
-    Direction, ``6 + axis`` for an Axis), so that a large file is not turned into a dictionary
-    of hundreds of thousands of tuples unless someone asks for one; the array kernels read
-    the arrays."""
-
-    def __init__(self, us, vs, codes):
-        self.us, self.vs, self.codes = us, vs, codes
-
-    @cached_property
-    def _dict(self) -> dict[tuple[int, int], Direction | Axis]:
-        members: list[Direction | Axis] = [*Direction, *Axis]
-        return dict(zip(zip(self.us.tolist(), self.vs.tolist(), strict=True),
-                        (members[c] for c in self.codes.tolist()), strict=True))
-
-    def __getitem__(self, key: tuple[int, int]) -> Direction | Axis:
-        return self._dict[key]
-
-    def __iter__(self):
-        return iter(self._dict)
-
-    def __len__(self) -> int:
-        return len(self.us)
-
-
 _CODES = {**{str(d): int(d) for d in Direction}, **{a.name: 6 + int(a) for a in Axis}}
 
 
@@ -262,31 +234,3 @@ def to_obj(q: Polycube) -> str:
     out += [f"v {x} {y} {z}" for x, y, z in q.positions]
     out += ["f " + " ".join(str(c + 1) for c in face) for face in q.faces]
     return "\n".join(out) + "\n"
-
-
-def _default_mode() -> int:
-    """The permissions a plain ``open(path, "w")`` would give (0o666 less the umask)."""
-    mask = os.umask(0)
-    os.umask(mask)
-    return 0o666 & ~mask
-
-
-def replace_atomic(tmp: str, target: str | os.PathLike[str]) -> None:
-    """Give a finished temporary file ordinary permissions and move it into place."""
-    os.chmod(tmp, _default_mode())
-    os.replace(tmp, target)
-
-
-def write_atomic(path: str | os.PathLike[str], text: str | bytes) -> None:
-    """Write text (UTF-8) or bytes through a temporary file and rename, so no half-written
-    file is ever left."""
-    target = Path(path)
-    fd, tmp = tempfile.mkstemp(dir=target.parent or ".", prefix=f".{target.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(fd, "wb") as fh:
-            fh.write(text.encode("utf-8") if isinstance(text, str) else text)
-        replace_atomic(tmp, target)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise

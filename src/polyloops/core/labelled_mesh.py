@@ -173,7 +173,7 @@ def write_triangle_mesh(path: str | os.PathLike[str], mesh: LabelledMesh) -> Non
     file, so a failure leaves nothing half-written."""
     import tempfile
 
-    from polyloops.core.formats import replace_atomic, write_atomic
+    from polyloops.core.files import replace_atomic, write_atomic
 
     target = os.fspath(path)
     suffix = os.path.splitext(target)[1].lower()

@@ -96,7 +96,7 @@ class LoopStructure:
         n = m.num_corners
         if len(labels) != m.num_edges:
             return None
-        from polyloops.core.formats import EdgeLabels
+        from polyloops.core.arrays import EdgeLabels
 
         if isinstance(labels, EdgeLabels):  # as read from a file: arrays already
             us, vs, codes = labels.us, labels.vs, labels.codes

@@ -21,7 +21,7 @@ from typing import Any
 
 from polyloops.core.corners import CATEGORIES
 from polyloops.core.errors import PolyloopsError
-from polyloops.core.formats import replace_atomic, write_atomic
+from polyloops.core.files import replace_atomic, write_atomic
 from polyloops.core.symmetry import Symmetry
 from polyloops.enumerate.catalog import MODES, map_classes
 from polyloops.enumerate.parallel import run_jobs

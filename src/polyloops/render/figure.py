@@ -12,7 +12,7 @@ matplotlib.use("Agg")
 
 from matplotlib.figure import Figure
 
-from polyloops.core.formats import replace_atomic
+from polyloops.core.files import replace_atomic
 
 FORMATS = {".png": "png", ".svg": "svg"}
 

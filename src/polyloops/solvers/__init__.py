@@ -16,8 +16,9 @@ from collections.abc import Iterator
 from dataclasses import dataclass
 
 from polyloops.core.structure import LoopStructure
-from polyloops.solvers.base import Explanation, Signs, Solver, axis_flip_factor, count, explain, solve
+from polyloops.solvers.base import Signs, Solver, axis_flip_factor, count, solve
 from polyloops.solvers.brute import BruteForceSolver
+from polyloops.solvers.explain import Explanation, explain
 from polyloops.solvers.problem import OrientationProblem
 from polyloops.solvers.sat import SatSolver
 from polyloops.solvers.smt import SmtSolver

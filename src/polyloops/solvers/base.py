@@ -1,17 +1,14 @@
-"""One interface for the orientation solvers, and the reasons when no orientation exists.
+"""One interface for the orientation solvers.
 
 Every solver yields the valid sign vectors of a problem (one sign per loop, ``+1`` when the
 loop's ``+`` side is on the right of its stored walk).  ``solve`` takes the first,
-``count`` counts them.  When there is none, :func:`explain` says why: a condition no sides
-can mend, an odd cycle of sides (Condition 3), or a set of level-graph cycles one of which
-closes for every choice (Condition 5).
+``count`` counts them.  When there is none, :func:`polyloops.solvers.explain.explain` says why.
 """
 
 from __future__ import annotations
 
 from collections.abc import Iterator
-from dataclasses import dataclass, field
-from typing import Any, Protocol
+from typing import Protocol
 
 from polyloops.core.directions import Axis
 from polyloops.solvers.problem import OrientationProblem
@@ -67,40 +64,3 @@ def axis_flip_factor(problem: OrientationProblem) -> int:
     """Flipping every loop of one axis keeps validity: ``2^(axes that have loops)`` solutions
     per class of such flips."""
     return 2 ** sum(1 for a in Axis if problem.loops_of_axis[a])
-
-
-@dataclass(frozen=True)
-class Explanation:
-    """Why no orientation exists."""
-
-    condition: str
-    reason: str
-    witness: dict[str, Any] = field(default_factory=dict)
-
-
-def explain(problem: OrientationProblem) -> Explanation | None:
-    """The reason no orientation exists, or ``None`` if one does."""
-    if problem.odd_cycles:
-        odd = problem.odd_cycles[0]
-        return Explanation("3", odd.describe(),
-                           {"axis": str(odd.axis), "odd_cycle": [[loop, side] for loop, side in odd.sides]})
-    if problem.local_violations:
-        return Explanation("local", problem.local_violations[0],
-                           {"violations": problem.local_violations})
-    from polyloops.solvers.sat import SatSolver
-
-    cycles = SatSolver().blocking_cycles(problem)
-    if cycles is None:
-        return None
-    parts = []
-    for axis, arcs in cycles:
-        zones = [a[0] for a in arcs]
-        parts.append({"axis": str(axis), "zones": zones, "loops": [a[2] for a in arcs]})
-    if len(parts) == 1:
-        p = parts[0]
-        reason = (f"the {p['axis']}-graph cycle through zones {p['zones']} along loops {p['loops']} "
-                  "closes for every choice of sides")
-    else:
-        reason = (f"every choice of sides closes one of {len(parts)} level-graph cycles: "
-                  + "; ".join(f"{p['axis']} zones {p['zones']}" for p in parts))
-    return Explanation("5", reason, {"cycles": parts})
