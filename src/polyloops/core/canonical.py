@@ -323,10 +323,34 @@ def _less(a: np.ndarray, b: np.ndarray) -> bool:
 
 
 def canonical_form(obj: LoopStructure | Polycube, mode: Symmetry | str = Symmetry.FULL) -> CanonicalForm:
-    """The canonical form of a structure (a polycube is dualized first).
+    """The canonical form of a structure: a code equal exactly for isomorphic structures in a
+    symmetry mode, with the size of its automorphism group (a polycube is dualized first).
 
-    ``mode`` is a :class:`~polyloops.core.symmetry.Symmetry` or its name; an unknown name
-    raises ``ValueError``.
+    Parameters
+    ----------
+    obj:
+        A polycube or a loop structure (oriented or labelled).
+    mode:
+        A :class:`~polyloops.core.symmetry.Symmetry` or its name: ``labelled`` (renumbering only,
+        order-equivalence), ``rotation`` (24 rotations) or ``full`` (48 signed permutations).
+
+    Returns
+    -------
+    CanonicalForm
+        Its ``signature`` names the class; ``automorphisms`` counts the symmetries; ``achiral``
+        (full mode) says whether a reflection maps the structure to itself up to rotation.
+
+    Raises
+    ------
+    ValueError
+        For an unknown mode.
+    DualityError
+        When a polycube's faces are not axis-aligned rectangles.
+
+    >>> from polyloops.core.examples import load_example
+    >>> form = canonical_form(load_example("cube"), "full")
+    >>> form.automorphisms, form.achiral
+    (48, True)
     """
     mode = Symmetry.parse(mode)
     ls = obj.dualize() if isinstance(obj, Polycube) else obj
@@ -388,7 +412,31 @@ def canonical_form(obj: LoopStructure | Polycube, mode: Symmetry | str = Symmetr
 
 
 def signature(obj: LoopStructure | Polycube, mode: Symmetry | str = Symmetry.FULL) -> str:
-    """A short printable name: equal exactly for isomorphic structures (in that mode)."""
+    """A short printable name of a structure's class: equal exactly for isomorphic structures in
+    that mode.  ``sig:NAME`` reads it back anywhere the command line takes a FILE.
+
+    Parameters
+    ----------
+    obj:
+        A polycube or a loop structure.
+    mode:
+        ``labelled``, ``rotation`` or ``full`` (the default), as in :func:`canonical_form`.
+
+    Returns
+    -------
+    str
+        Versioned: a leading ``1`` names the encoding.
+
+    Raises
+    ------
+    ValueError
+        For an unknown mode.
+
+    >>> from polyloops.core.examples import load_example
+    >>> q = load_example("l-shape")
+    >>> signature(q) == signature(q.inverse()), signature(q).startswith("1o")
+    (True, True)
+    """
     return canonical_form(obj, mode).signature
 
 
@@ -396,6 +444,22 @@ def is_isomorphic(a: LoopStructure | Polycube, b: LoopStructure | Polycube,
                   mode: Symmetry | str = Symmetry.FULL) -> bool:
     """Whether two structures are isomorphic in a symmetry mode; the default is
     :func:`signature`'s, so that ``is_isomorphic(a, b)`` says ``signature(a) == signature(b)``.
+
+    Parameters
+    ----------
+    a, b:
+        Polycubes or loop structures.
+    mode:
+        ``labelled``, ``rotation`` or ``full`` (the default).
+
+    Returns
+    -------
+    bool
+
+    Raises
+    ------
+    ValueError
+        For an unknown mode.
 
     >>> from polyloops.core.examples import load_example
     >>> l_shape = load_example("l-shape")
@@ -560,7 +624,29 @@ def _decode(sig: str) -> tuple[list[int], list[int], list[int], bool]:
 
 
 def from_signature(sig: str) -> LoopStructure:
-    """The structure a signature names (its canonical representative)."""
+    """The structure a signature names: its class's canonical representative.
+
+    Parameters
+    ----------
+    sig:
+        A signature from :func:`signature` (surrounding white space is ignored).
+
+    Returns
+    -------
+    LoopStructure
+        Oriented or labelled, as the signature says.
+
+    Raises
+    ------
+    SignatureError
+        When the text is not a signature of a version this polyloops reads (older or unknown
+        versions are refused by name, not mis-read).
+
+    >>> from polyloops.core.examples import load_example
+    >>> sig = signature(load_example("ring"))
+    >>> signature(from_signature(sig)) == sig
+    True
+    """
     nxt, twin, lab, oriented = _decode(sig.strip())
     n = len(nxt)
     if sorted(nxt) != list(range(n)) or any(twin[twin[d]] != d or twin[d] == d for d in range(n)):

@@ -113,7 +113,22 @@ def _generate() -> list[tuple[Direction, ...]]:
 
 @cache
 def corner_configurations() -> tuple[CornerConfig, ...]:
-    """All configurations, numbered by degree, category, then directions."""
+    """The 126 polycube corner configurations, numbered by degree, category, then directions.
+
+    Returns
+    -------
+    tuple[CornerConfig, ...]
+        Each with its ``id`` (its index), degree, category and directions counter-clockwise.
+
+    Raises
+    ------
+    RuntimeError
+        Never; the table is derived, not read (and cached).
+
+    >>> configs = corner_configurations()
+    >>> len(configs), configs[0].degree, str(configs[-1].category)
+    (126, 3, 'asymmetric-complex')
+    """
     return tuple(CornerConfig(i, len(s), category_of(s), s) for i, s in enumerate(_generate()))
 
 
@@ -123,7 +138,28 @@ def _by_directions() -> dict[tuple[Direction, ...], CornerConfig]:
 
 
 def classify(directions: Iterable[Direction | None]) -> CornerConfig | None:
-    """The configuration of a corner's cyclic directions, or ``None`` if it is no polycube corner."""
+    """The configuration of a corner, from its edges' directions in counter-clockwise order.
+
+    Parameters
+    ----------
+    directions:
+        The corner's edge directions (any rotation of the cycle); a ``None`` (an edge that is
+        not axis-aligned) makes it no polycube corner.
+
+    Returns
+    -------
+    CornerConfig or None
+        ``None`` when the sequence is no polycube corner.
+
+    Raises
+    ------
+    TypeError
+        When an item is neither a Direction nor ``None``.
+
+    >>> from polyloops.core.directions import Direction as D
+    >>> str(classify([D.PX, D.PY, D.PZ]).category), classify([D.PX, D.NX, D.PY])
+    ('simple', None)
+    """
     given = tuple(directions)
     seq = tuple(d for d in given if d is not None)
     if len(seq) != len(given):

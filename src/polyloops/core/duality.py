@@ -30,11 +30,29 @@ class DualityError(PolyloopsError, ValueError):
 def dualize(q: Polycube) -> LoopStructure:
     """The oriented loop structure of a polycube (Theorem 1).
 
-    Each loop is labelled with the axis of the edges it crosses, and its ``+``
-    side holds their ends with the higher coordinate.  Raises
-    :class:`DualityError` when the edges of one loop are not parallel or not
-    consistently signed, which happens exactly when some face is not an
-    axis-aligned rectangle.
+    Each loop is labelled with the axis of the edges it crosses, and its ``+`` side holds their
+    ends with the higher coordinate.
+
+    Parameters
+    ----------
+    q:
+        A polycube; Definition 1 is not checked here (use :func:`polyloops.verify.verify`).
+
+    Returns
+    -------
+    LoopStructure
+        Oriented, on the same quad map (corner and face ids kept).
+
+    Raises
+    ------
+    DualityError
+        When the edges of one loop are not parallel or not consistently signed, which happens
+        exactly when some face is not an axis-aligned rectangle.
+
+    >>> from polyloops.core.examples import load_example
+    >>> ls = dualize(load_example("l-shape"))
+    >>> ls.oriented, [ls.axes.count(a) for a in Axis]
+    (True, [2, 2, 1])
     """
     m = q.map
     if m.num_darts >= LARGE:
@@ -106,11 +124,30 @@ def zone_levels(ls: LoopStructure, axis: Axis) -> list[int]:
 def primalize(ls: LoopStructure) -> Polycube:
     """The polycube of Theorem 2, compact: each zone at its longest-path level.
 
-    Corner ``c`` gets position ``(x, y, z)`` from the levels of its X-, Y- and
-    Z-zones, so coordinates start at 0 without gaps.  It needs an oriented
-    structure with quad faces and acyclic level graphs; it does not check the
-    other conditions of Definition 4, so an invalid structure can give a
-    mesh that is not a polycube (the Definition-1 checker will say so).
+    Corner ``c`` gets position ``(x, y, z)`` from the levels of its X-, Y- and Z-zones, so
+    coordinates start at 0 without gaps.
+
+    Parameters
+    ----------
+    ls:
+        An oriented loop structure with quad faces and acyclic level graphs.  The other
+        conditions of Definition 4 are not checked, so an invalid structure can give a mesh that
+        is not a polycube (the Definition-1 checker will say so).
+
+    Returns
+    -------
+    Polycube
+        On the same quad map as ``ls``.
+
+    Raises
+    ------
+    DualityError
+        When ``ls`` has no sides, or a level graph has a cycle (named in the message).
+
+    >>> from polyloops.core.examples import load_example
+    >>> q = load_example("l-shape")
+    >>> is_order_equivalent(primalize(dualize(q)), q) is not None
+    True
     """
     if not ls.oriented:
         raise DualityError("a labelled loop structure has no polycube; orient it first")
@@ -180,10 +217,29 @@ def _extend(p: Polycube, q: Polycube, dp: list[Relation], dq: list[Relation],
 def is_order_equivalent(p: Polycube, q: Polycube) -> list[int] | None:
     """Definition 2: a mesh isomorphism preserving the order of every edge's ends on each axis.
 
-    Returns the corner map ``f`` as a list (``f[v]`` is the corner of ``q``
-    matched with corner ``v`` of ``p``), or ``None``.  The isomorphism may
-    reverse orientation, so a polycube is order-equivalent to its inverse.
+    The isomorphism may reverse orientation, so a polycube is order-equivalent to its inverse.
     The cost is ``O(E)`` per candidate image of one dart, ``O(E^2)`` at worst.
+
+    Parameters
+    ----------
+    p, q:
+        Two polycubes.
+
+    Returns
+    -------
+    list[int] or None
+        The corner map ``f`` (``f[v]`` is the corner of ``q`` matched with corner ``v`` of
+        ``p``), or ``None`` when they are not order-equivalent.
+
+    Raises
+    ------
+    AttributeError
+        When ``p`` or ``q`` is a loop structure (it has no positions to order).
+
+    >>> from polyloops.core.examples import load_example
+    >>> q = load_example("box-2x1x1")
+    >>> is_order_equivalent(q, q.inverse()) is not None, is_order_equivalent(q, load_example("cube"))
+    (True, None)
     """
     mp, mq = p.map, q.map
     if (mp.num_corners, mp.num_edges, mp.num_faces) != (mq.num_corners, mq.num_edges, mq.num_faces):

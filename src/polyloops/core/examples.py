@@ -123,6 +123,26 @@ def example_text(name: str) -> str:
 
 
 def load_example(name: str) -> Structure:
+    """A bundled example, built (``polyloops examples`` lists them, :data:`EXAMPLES` holds them).
+
+    Parameters
+    ----------
+    name:
+        The example's name, such as ``"l-shape"`` or ``"torus-cycle"``.
+
+    Returns
+    -------
+    Polycube or LoopStructure
+        As the example's file describes it (some examples are invalid on purpose).
+
+    Raises
+    ------
+    KeyError
+        For an unknown name.
+
+    >>> load_example("ring").genus, type(load_example("torus-cycle")).__name__
+    (1, 'LoopStructure')
+    """
     return loads(example_text(name))
 
 

@@ -202,7 +202,29 @@ def parse_document(text: str) -> Document:
 
 
 def loads(text: str) -> Structure:
-    """Parse and build; raises ``FormatError``, ``MapError`` or ``LabelError``."""
+    """Parse polyloops JSON text and build the polycube or loop structure it describes.
+
+    Parameters
+    ----------
+    text:
+        A polyloops JSON document (see ``docs/formats.md``).
+
+    Returns
+    -------
+    Polycube or LoopStructure
+
+    Raises
+    ------
+    FormatError
+        When the text is not a polyloops document (the message names the place).
+    MapError, LabelError, FaceListError
+        When the faces are not a closed oriented surface, or the labels do not fit it.
+
+    >>> from polyloops.core.examples import load_example
+    >>> q = load_example("l-shape")
+    >>> loads(dumps(q)).positions == q.positions
+    True
+    """
     return parse_document(text).build()
 
 
@@ -217,7 +239,27 @@ def to_data(obj: Structure) -> dict[str, Any]:
 
 
 def dumps(obj: Structure) -> str:
-    """Compact JSON with one face, position or edge per line."""
+    """Polyloops JSON text: compact, with one face, position or edge per line.
+
+    Parameters
+    ----------
+    obj:
+        A polycube or a loop structure.
+
+    Returns
+    -------
+    str
+        Text that :func:`loads` reads back to an equal structure.
+
+    Raises
+    ------
+    ValueError
+        Never for a built structure (every structure has a JSON form).
+
+    >>> from polyloops.core.examples import load_example
+    >>> dumps(load_example("cube")).splitlines()[2].strip()
+    '"kind": "polycube",'
+    """
     data = to_data(obj)
     lines = ["{", f'  "polyloops": {FORMAT_VERSION},', f'  "kind": "{data["kind"]}",']
     keys = [k for k in ("faces", "positions", "edges") if k in data]
@@ -229,7 +271,27 @@ def dumps(obj: Structure) -> str:
 
 
 def to_obj(q: Polycube) -> str:
-    """Wavefront OBJ: ``v`` lines in corner order, ``f`` lines 1-based, counter-clockwise."""
+    """Wavefront OBJ text: ``v`` lines in corner order, ``f`` lines 1-based, counter-clockwise.
+
+    Parameters
+    ----------
+    q:
+        A polycube.
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    AttributeError
+        When ``q`` is a loop structure (it has no positions; primalize it first).
+
+    >>> from polyloops.core.examples import load_example
+    >>> lines = to_obj(load_example("cube")).splitlines()
+    >>> sum(line.startswith("v ") for line in lines), sum(line.startswith("f ") for line in lines)
+    (8, 6)
+    """
     out = ["# polyloops polycube"]
     out += [f"v {x} {y} {z}" for x, y, z in q.positions]
     out += ["f " + " ".join(str(c + 1) for c in face) for face in q.faces]

@@ -262,13 +262,40 @@ def separates_zone(ls: LoopStructure, move: Addition) -> bool:
 def additions(ls: LoopStructure, axis: Axis | None = None, limit: int | None = None,
               max_length: int | None = None, stop: Callable[[], bool] | None = None
               ) -> Iterator[Addition]:
-    """Every valid loop addition (one per combinatorial class), lazily; ``axis=None`` for all.
-    ``max_length`` keeps the loops past at most that many corners (each adds that many).
-    ``stop()`` is asked now and then during the search; when it says so, :class:`SearchStopped`
-    is raised (the additions yielded so far stand).
+    """Every valid loop addition (one per combinatorial class), lazily.
 
-    A simple cycle of ``G_V^Delta`` is valid when its loop also separates its zone
-    (:func:`separates_zone`); that is the only level-graph cycle an addition can close.
+    A simple cycle of the paper's graph ``G_V^Delta`` is valid when its loop also separates its
+    zone (:func:`separates_zone`); that is the only level-graph cycle an addition can close.
+
+    Parameters
+    ----------
+    ls:
+        A polycube loop structure.
+    axis:
+        The label of the new loops, or ``None`` for all three (X, then Y, then Z).
+    limit:
+        Stop after this many.
+    max_length:
+        Keep loops past at most this many corners (each adds that many corners).
+    stop:
+        Asked now and then during the search; when it returns true, :class:`SearchStopped` is
+        raised (the additions yielded so far stand).
+
+    Returns
+    -------
+    Iterator[Addition]
+
+    Raises
+    ------
+    SearchStopped
+        When ``stop()`` said so.
+    ValueError
+        When ``ls`` has no sides.
+
+    >>> from polyloops.core.examples import load_example
+    >>> box = load_example("box-2x1x1").dualize()
+    >>> [len(list(additions(box, a))) for a in Axis]
+    [3, 6, 6]
     """
     n = 0
     for a in (Axis if axis is None else [axis]):
@@ -459,7 +486,33 @@ def is_valid_addition(ls: LoopStructure, move: Addition) -> bool:
 
 
 def add_loop(ls: LoopStructure, move: Addition) -> LoopStructure:
-    """Insert the loop (see the module docstring for the numbering).  Does not check validity."""
+    """Insert the loop of an addition (see the module docstring for the numbering of the result).
+    It does not check validity: use :func:`is_valid_addition` or take moves from
+    :func:`additions`.
+
+    Parameters
+    ----------
+    ls:
+        An oriented loop structure.
+    move:
+        The addition: its axis and the cycle of corners the new loop walks past.
+
+    Returns
+    -------
+    LoopStructure
+        With ``len(move.cycle)`` more corners and one more loop.
+
+    Raises
+    ------
+    MapError, LabelError
+        When the cycle does not describe a loop that can be inserted.
+
+    >>> from polyloops.core.examples import load_example
+    >>> cube = load_example("cube").dualize()
+    >>> bigger = add_loop(cube, next(additions(cube, Axis.X)))
+    >>> bigger.map.num_corners, len(bigger.loops)
+    (12, 4)
+    """
     m = ls.map
     cyc = move.cycle
     k = len(cyc)
@@ -661,16 +714,58 @@ def removable(ls: LoopStructure, loop: int) -> bool:
 
 
 def removals(ls: LoopStructure) -> list[int]:
-    """The loops whose removal leaves a polycube loop structure."""
+    """The loops whose removal leaves a polycube loop structure (decided locally, see
+    :func:`check_removal`).
+
+    Parameters
+    ----------
+    ls:
+        A polycube loop structure.
+
+    Returns
+    -------
+    list[int]
+        Loop ids; empty when the structure is irreducible.
+
+    Raises
+    ------
+    ValueError
+        When ``ls`` has no sides.
+
+    >>> from polyloops.core.examples import load_example
+    >>> removals(load_example("cube").dualize()), removals(load_example("non-incremental").dualize())
+    ([], [])
+    >>> removals(load_example("box-2x1x1").dualize())
+    [2, 3]
+    """
     arcs = _level_arcs_of(ls)
     return [lp.id for lp in ls.loops if check_removal(ls, lp.id, arcs).valid]
 
 
 def remove_loop(ls: LoopStructure, loop: int) -> LoopStructure:
-    """Remove the loop (see the module docstring for the numbering).
+    """Remove a loop (see the module docstring for the numbering of the result).  It does not
+    check Definition 4: use :func:`check_removal` or :func:`removals` first.
 
-    Raises ``MapError``, ``FaceListError`` or ``LabelError`` when the result is not a loop
-    structure at all; it does not check Definition 4 otherwise.
+    Parameters
+    ----------
+    ls:
+        An oriented loop structure.
+    loop:
+        The id of the loop to remove.
+
+    Returns
+    -------
+    LoopStructure
+
+    Raises
+    ------
+    MapError, FaceListError, LabelError
+        When the result is not a loop structure at all.
+
+    >>> from polyloops.core.examples import load_example
+    >>> box = load_example("box-2x1x1").dualize()
+    >>> remove_loop(box, removals(box)[0]).map.num_corners
+    8
     """
     m = ls.map
     groups, _, strip = _removal_groups(ls, loop)

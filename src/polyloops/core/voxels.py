@@ -47,7 +47,28 @@ def _face_corners(cell: Cell, normal: Direction) -> list[tuple[int, int, int]]:
 
 
 def polycube_from_voxels(cells: Iterable[Cell]) -> Polycube:
-    """The boundary polycube of a set of unit cubes (cell ``(i, j, k)`` spans ``[i, i+1]`` etc.)."""
+    """The boundary polycube of a set of unit cubes (cell ``(i, j, k)`` spans ``[i, i+1]`` and so
+    on).  Where cubes touch only along an edge or at a corner, the surface is split there.
+
+    Parameters
+    ----------
+    cells:
+        Integer triples; duplicates are ignored.
+
+    Returns
+    -------
+    Polycube
+        Outward oriented.
+
+    Raises
+    ------
+    VoxelError
+        When there are no cubes, or the split surface is still not a polycube.
+
+    >>> q = polycube_from_voxels([(0, 0, 0), (1, 0, 0), (0, 1, 0)])
+    >>> q.map.num_corners, q.map.num_faces, q.genus
+    (16, 14, 0)
+    """
     occupied = {(int(c[0]), int(c[1]), int(c[2])) for c in cells}
     if not occupied:
         raise VoxelError("no cubes")

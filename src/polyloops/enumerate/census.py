@@ -130,7 +130,27 @@ def read_entries(directory: Path) -> list[CatalogEntry]:
 
 
 def read_catalog(directory: Path | None = None) -> Census:
-    """A catalog directory (default: the shipped ``catalogs/genus0``) as a :class:`Census`."""
+    """A catalog directory as a :class:`Census`: its entries in catalog order and its summary.
+
+    Parameters
+    ----------
+    directory:
+        A directory written by :func:`~polyloops.enumerate.catalog_run.build_catalog` (default:
+        the shipped ``catalogs/genus0``).
+
+    Returns
+    -------
+    Census
+
+    Raises
+    ------
+    CatalogError
+        When a file is missing or a line is not a record (the message names file and line).
+
+    >>> census = read_catalog()
+    >>> census.symmetry, census.max_corners >= 26, census.by_name["P8.1"].record.automorphisms
+    (<Symmetry.FULL: 'full'>, True, 48)
+    """
     directory = Path(directory) if directory is not None else default_catalog()
     entries = read_entries(directory)
     path = directory / "summary.json"

@@ -287,12 +287,48 @@ def explore(start: LoopStructure, max_corners: int, max_depth: int | None = None
             kinds: Sequence[MoveKind] = BOTH, mode: Symmetry | str = Symmetry.LABELLED,
             directory: Path | None = None, workers: int = 1, dask: str | None = None,
             progress: Callable[[dict[str, Any]], None] | None = None) -> ReachResult:
-    """Breadth-first search of the move graph from ``start`` (see the module docstring).
+    """Breadth-first search of the move graph from ``start``: every state within ``max_corners``
+    reachable by loop additions and removals (see the module docstring).
 
-    Levels are expanded in parallel with ``workers`` processes or on a Dask cluster; parents
-    are then chosen in signature order, so the result does not depend on how the work was
-    split.  With ``directory``, states go to ``directory/reach.sqlite`` level by level and a
-    rerun resumes after the last complete level.
+    Levels are expanded in parallel with ``workers`` processes or on a Dask cluster; parents are
+    then chosen in signature order, so the result does not depend on how the work was split.
+
+    Parameters
+    ----------
+    start:
+        A polycube loop structure.
+    max_corners:
+        No state has more corners.
+    max_depth:
+        Stop after this many moves (the result then says it is incomplete).
+    kinds:
+        Which moves: additions, removals, or both (the default).
+    mode:
+        States up to renumbering (``labelled``, the default), rotation or all 48 symmetries.
+    directory:
+        Store states in ``directory/reach.sqlite`` level by level; a rerun resumes after the
+        last complete level.
+    workers, dask:
+        Local worker processes, or a Dask scheduler address (``local`` for a local cluster).
+    progress:
+        Called after each level with its counts.
+
+    Returns
+    -------
+    ReachResult
+        States by corners and by distance, and whether the search was complete.
+
+    Raises
+    ------
+    ValueError
+        When ``start`` has no sides or the mode is unknown.
+    ReachError
+        When ``directory`` holds another search.
+
+    >>> from polyloops.core.examples import load_example
+    >>> result = explore(load_example("cube").dualize(), max_corners=16)
+    >>> result.by_corners
+    {8: 1, 12: 3, 16: 15}
     """
     mode = Symmetry.parse(mode)
     if not start.oriented:
@@ -351,8 +387,33 @@ def shortest_path(source: LoopStructure, target: LoopStructure, max_corners: int
                   kinds: Sequence[MoveKind] = BOTH) -> list[LoopStructure] | None:
     """A shortest sequence of structures from ``source`` to one isomorphic to ``target``
     (labelled mode), each one move from the one before up to renumbering, all within
-    ``max_corners``; ``None`` when there is none.  Bidirectional: the move graph is
-    undirected, so the target side expands with the same moves."""
+    ``max_corners``.  Bidirectional: the move graph is undirected, so the target side expands
+    with the same moves.
+
+    Parameters
+    ----------
+    source, target:
+        Polycube loop structures.
+    max_corners:
+        No structure on the path has more corners.
+    kinds:
+        Which moves: additions, removals, or both (the default).
+
+    Returns
+    -------
+    list[LoopStructure] or None
+        From ``source`` to a structure isomorphic to ``target``; ``None`` when there is none.
+
+    Raises
+    ------
+    ValueError
+        When a structure has no sides.
+
+    >>> from polyloops.core.examples import load_example
+    >>> path = shortest_path(load_example("cube").dualize(), load_example("l-shape").dualize(), 16)
+    >>> [ls.map.num_corners for ls in path]
+    [8, 12, 16]
+    """
     def sig(ls: LoopStructure) -> str:
         return canonical_form(ls, "labelled").signature
 

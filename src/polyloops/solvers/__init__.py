@@ -27,6 +27,26 @@ SOLVERS: dict[str, type] = {"brute": BruteForceSolver, "sat": SatSolver, "smt": 
 
 
 def make_solver(name: str) -> Solver:
+    """An orientation solver by name.
+
+    Parameters
+    ----------
+    name:
+        ``brute`` (exhaustive), ``sat`` (SAT with lazy cycle cuts) or ``smt`` (z3 with zone
+        potentials).
+
+    Returns
+    -------
+    Solver
+
+    Raises
+    ------
+    ValueError
+        For an unknown name.
+
+    >>> make_solver("sat").name
+    'sat'
+    """
     try:
         return SOLVERS[name]()
     except KeyError:
@@ -35,6 +55,8 @@ def make_solver(name: str) -> Solver:
 
 @dataclass(frozen=True)
 class OrientResult:
+    """What :func:`orient` found: the oriented structure, or why there is none."""
+
     problem: OrientationProblem
     structure: LoopStructure | None
     explanation: Explanation | None
@@ -45,7 +67,32 @@ class OrientResult:
 
 
 def orient(ls: LoopStructure, solver: str = "sat") -> OrientResult:
-    """One orientation of a labelled structure (its sides are ignored if it has them)."""
+    """One orientation of a labelled loop structure that makes it a polycube loop structure (its
+    sides are ignored if it has them), or the reason there is none.
+
+    Parameters
+    ----------
+    ls:
+        A loop structure.
+    solver:
+        ``sat`` (default), ``smt`` or ``brute``; all give a valid answer when there is one.
+
+    Returns
+    -------
+    OrientResult
+        ``structure`` is the oriented structure, or ``None`` with an ``explanation``.
+
+    Raises
+    ------
+    ValueError
+        For an unknown solver.
+
+    >>> from polyloops.core.examples import load_example
+    >>> orient(load_example("ring").dualize().forget_orientation()).found
+    True
+    >>> orient(load_example("torus-cycle")).explanation.condition
+    '5'
+    """
     problem = OrientationProblem(ls)
     signs = solve(make_solver(solver), problem)
     if signs is None:
@@ -54,13 +101,57 @@ def orient(ls: LoopStructure, solver: str = "sat") -> OrientResult:
 
 
 def all_orientations(ls: LoopStructure, solver: str = "sat") -> Iterator[LoopStructure]:
-    """Every orientation that makes ``ls`` a polycube loop structure, each once."""
+    """Every orientation that makes ``ls`` a polycube loop structure, each once.
+
+    Parameters
+    ----------
+    ls:
+        A loop structure (sides ignored).
+    solver:
+        ``sat`` (default), ``smt`` or ``brute``.
+
+    Returns
+    -------
+    Iterator[LoopStructure]
+
+    Raises
+    ------
+    ValueError
+        For an unknown solver.
+
+    >>> from polyloops.core.examples import load_example
+    >>> len(list(all_orientations(load_example("cube").dualize())))
+    8
+    """
     problem = OrientationProblem(ls)
     for signs in make_solver(solver).solutions(problem):
         yield problem.structure.with_signs(signs)
 
 
 def count_orientations(ls: LoopStructure, solver: str = "sat") -> int:
+    """The number of orientations that make ``ls`` a polycube loop structure, counted without
+    listing them all (a product over the axes; bridge components double the count).
+
+    Parameters
+    ----------
+    ls:
+        A loop structure (sides ignored).
+    solver:
+        ``sat`` (default), ``smt`` or ``brute``.
+
+    Returns
+    -------
+    int
+
+    Raises
+    ------
+    ValueError
+        For an unknown solver.
+
+    >>> from polyloops.core.examples import load_example
+    >>> count_orientations(load_example("l-shape").dualize())
+    8
+    """
     return count(make_solver(solver), OrientationProblem(ls))
 
 

@@ -61,6 +61,25 @@ def feasible_locally(problem: OrientationProblem) -> bool:
 
 
 def axis_flip_factor(problem: OrientationProblem) -> int:
-    """Flipping every loop of one axis keeps validity: ``2^(axes that have loops)`` solutions
-    per class of such flips."""
+    """How many orientations each class of axis flips holds: flipping every loop of one axis
+    keeps validity, so ``2^(axes that have loops)``.
+
+    Parameters
+    ----------
+    problem:
+        An orientation problem.
+
+    Returns
+    -------
+    int
+
+    Raises
+    ------
+    AttributeError
+        When ``problem`` is not an :class:`OrientationProblem`.
+
+    >>> from polyloops.core.examples import load_example
+    >>> axis_flip_factor(OrientationProblem(load_example("cube").dualize()))
+    8
+    """
     return 2 ** sum(1 for a in Axis if problem.loops_of_axis[a])

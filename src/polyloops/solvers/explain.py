@@ -28,7 +28,30 @@ class Explanation:
 
 
 def explain(problem: OrientationProblem) -> Explanation | None:
-    """The reason no orientation exists, or ``None`` if one does."""
+    """The reason no orientation exists, or ``None`` if one does.
+
+    Parameters
+    ----------
+    problem:
+        An orientation problem.
+
+    Returns
+    -------
+    Explanation or None
+        Its ``condition`` is ``"3"`` (an odd cycle of sides), ``"local"`` (a condition no sides
+        can mend) or ``"5"`` (level-graph cycles, one of which closes for every choice), with
+        a ``witness``.
+
+    Raises
+    ------
+    ValueError
+        Never for a built problem.
+
+    >>> from polyloops.core.examples import load_example
+    >>> [explain(OrientationProblem(load_example(n))).condition
+    ...  for n in ("self-crossing", "degree-two", "torus-cycle")]
+    ['3', 'local', '5']
+    """
     if problem.odd_cycles:
         odd = problem.odd_cycles[0]
         return Explanation("3", odd.describe(),

@@ -24,6 +24,11 @@ Arc = tuple[int, int, int]
 
 
 class SatSolver:
+    """One boolean per side-graph component (Condition 3 holds by construction); solutions
+    come from a SAT solver (pysat, Glucose by default), and each level-graph cycle found in a
+    model is cut by a clause, until the model has none (Condition 5).  Every solution is then
+    blocked to list the next."""
+
     name = "sat"
 
     def __init__(self, backend: str = "glucose4"):

@@ -16,6 +16,10 @@ from polyloops.solvers.problem import OrientationProblem
 
 
 class SmtSolver:
+    """Condition 5 as integer zone potentials in z3: one boolean per side-graph component and
+    one integer level per zone, each loop's ``+`` zone above its ``-`` zone; a model is a
+    valid orientation, and each is blocked to list the next."""
+
     name = "smt"
 
     def solutions(self, problem: OrientationProblem) -> Iterator[Signs]:

@@ -35,8 +35,32 @@ __all__ = [
 
 
 def verify(obj: Structure) -> Report:
-    """Definition 1 for a polycube; Definitions 3 and 4 for a loop structure, and
-    Theorem 3 when Definition 4 holds."""
+    """Check a structure against the paper: Definition 1 for a polycube; Definitions 3 and 4 for a
+    loop structure, and Theorem 3 when Definition 4 holds.
+
+    Parameters
+    ----------
+    obj:
+        A polycube or a loop structure (a labelled one is checked as far as labels allow:
+        Conditions 3 and 5 need sides).
+
+    Returns
+    -------
+    Report
+        Every condition with its status, every violation with a witness; ``valid`` when there
+        is none.
+
+    Raises
+    ------
+    DualityError
+        Never; a polycube whose faces are not axis-aligned rectangles is reported, not raised.
+
+    >>> from polyloops.core.examples import load_example
+    >>> verify(load_example("ring")).valid
+    True
+    >>> [str(v.condition) for v in verify(load_example("torus-cycle")).violations]
+    ['5', '5']
+    """
     if isinstance(obj, Polycube):
         return check_polycube(obj)
     report = check_quad_loop_structure(obj) + check_polycube_loop_structure(obj)
@@ -46,8 +70,30 @@ def verify(obj: Structure) -> Report:
 
 
 def verify_document(doc: Document) -> Report:
-    """Like :func:`verify`, but a face list that is not a closed oriented surface gives a
-    report of its surface violations instead of an exception.  Label errors still raise."""
+    """Like :func:`verify`, for a parsed file: a face list that is not a closed oriented surface
+    gives a report of its surface violations instead of an exception.
+
+    Parameters
+    ----------
+    doc:
+        A parsed document (:func:`polyloops.core.formats.parse_document`).
+
+    Returns
+    -------
+    Report
+
+    Raises
+    ------
+    LabelError
+        When the edge labels do not fit the faces (a file error, not a finding).
+
+    >>> from polyloops.core.formats import parse_document
+    >>> doc = parse_document('{"polyloops": 1, "kind": "loop-structure", '
+    ...                      '"faces": [[0, 1, 2, 3]], "edges": []}')
+    >>> report = verify_document(doc)
+    >>> report.valid, sorted({str(v.condition) for v in report.violations})
+    (False, ['closed'])
+    """
     if doc.kind == "polycube":
         assert doc.positions is not None
         return check_polycube_faces(doc.faces, doc.positions)

@@ -33,8 +33,31 @@ def _is_int(x: object) -> bool:
 
 def check_polycube_faces(faces: Sequence[Sequence[int]], positions: Sequence[Sequence[int]],
                          built: HalfEdgeMap | None = None) -> Report:
-    """Check raw faces and positions against Definition 1, collecting every violation
-    (``built``: the map of these faces, when it exists already)."""
+    """Check raw faces and positions against Definition 1, collecting every violation, even when
+    the faces do not make a surface at all.
+
+    Parameters
+    ----------
+    faces:
+        Corner lists, counter-clockwise seen from outside.
+    positions:
+        Integer coordinates of the corners.
+    built:
+        The map of these faces, when it exists already (saves building it again).
+
+    Returns
+    -------
+    Report
+
+    Raises
+    ------
+    IndexError
+        Never for faces over corners ``0..len(positions)-1``; other ids are reported.
+
+    >>> report = check_polycube_faces([[0, 1, 2, 3]], [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)])
+    >>> report.valid, "closed" in {str(v.condition) for v in report.violations}
+    (False, True)
+    """
     rb = ReportBuilder("polycube", DEF1)
     rb.condition("quad", "every face is a quadrilateral", [] if set(map(len, faces)) == {4} else [
         rb.violation("quad", f"face {f} has {len(face)} corners", face=f)
@@ -146,5 +169,25 @@ def _check_outward(faces: Sequence[Sequence[int]], positions: Sequence[Sequence[
 
 
 def check_polycube(q: Polycube) -> Report:
-    """Check a :class:`Polycube` against Definition 1 (on the map it already has)."""
+    """Check a :class:`~polyloops.core.polycube.Polycube` against Definition 1 (on the map it
+    already has).
+
+    Parameters
+    ----------
+    q:
+        A polycube.
+
+    Returns
+    -------
+    Report
+
+    Raises
+    ------
+    AttributeError
+        When ``q`` is a loop structure (use :func:`polyloops.verify.verify`, which dispatches).
+
+    >>> from polyloops.core.examples import load_example
+    >>> check_polycube(load_example("self-intersecting")).valid
+    True
+    """
     return check_polycube_faces(q.faces, q.positions, q.map)

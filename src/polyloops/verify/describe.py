@@ -45,9 +45,9 @@ def _loop_part(ls: LoopStructure) -> dict[str, Any]:
 
 
 def describe(obj: Structure) -> dict[str, Any]:
-    """A JSON-ready summary of a polycube or loop structure: sizes, corner degrees and
-    categories, genus, and for a loop structure (a polycube is dualized first when it can
-    be) its loops, zones, level graphs, Theorem 3 and hole orientation.
+    """A JSON-ready summary of a polycube or loop structure: sizes, corner degrees and categories,
+    genus, and for a loop structure (a polycube is dualized first when it can be) its loops,
+    zones, level graphs, Theorem 3 and hole orientation.
 
     Parameters
     ----------
@@ -59,6 +59,16 @@ def describe(obj: Structure) -> dict[str, Any]:
     -------
     dict
         Plain JSON types; ``polyloops info --json`` prints it.
+
+    Raises
+    ------
+    ValueError
+        Never for a built structure; what cannot be computed is reported in the summary.
+
+    >>> from polyloops.core.examples import load_example
+    >>> s = describe(load_example("ring"))
+    >>> s["corners"], s["faces"], s["loops"], s["genus"]
+    (32, 32, {'X': 4, 'Y': 4, 'Z': 2}, 1)
     """
     m = obj.map
     out: dict[str, Any] = {

@@ -39,7 +39,28 @@ def _many_loops(rb: ReportBuilder, ls: LoopStructure, condition: str) -> list[Vi
 
 
 def check_quad_loop_structure(ls: LoopStructure) -> Report:
-    """Definition 3 (Campen et al.): the loop structure of some quad mesh."""
+    """Definition 3 (after Campen et al.): whether a labelled map is the loop structure of some
+    quad mesh.
+
+    Parameters
+    ----------
+    ls:
+        A loop structure, oriented or labelled.
+
+    Returns
+    -------
+    Report
+
+    Raises
+    ------
+    ValueError
+        Never for a built structure.
+
+    >>> from polyloops.core.examples import load_example
+    >>> r = check_quad_loop_structure(load_example("self-crossing"))  # allowed in a quad mesh
+    >>> r.valid, [str(c.condition) for c in r.checks]
+    (True, ['1', '2', '3', '4'])
+    """
     rb = ReportBuilder("loop-structure", DEF3)
     rb.given("1", "all loop intersections are transversal", _TRANSVERSAL)
     rb.condition("2", "no three loops intersect at a single point", _many_loops(rb, ls, "2"))
@@ -52,8 +73,9 @@ def check_quad_loop_structure(ls: LoopStructure) -> Report:
 def crossing_violations(rb: ReportBuilder, ls: LoopStructure, condition: str = "3") -> list[Violation]:
     """Loops that cross themselves, and crossings of two loops with the same axis.
 
-    Both break Condition 3 for every choice of sides (Theorem 1 of the paper
-    and the remark after it), so they are reported for labelled structures too.
+    Both break Condition 3 for every choice of sides (the paper's non-intersection theorem,
+    ``thm:nonintersecting``, and the remark after it), so they are reported for labelled
+    structures too.
     """
     m = ls.map
     if m.num_darts >= LARGE and _no_crossing_problem(ls):
@@ -134,9 +156,30 @@ def cycle_violations(rb: ReportBuilder, ls: LoopStructure) -> list[Violation]:
 
 
 def check_polycube_loop_structure(ls: LoopStructure) -> Report:
-    """Definition 4.  For a labelled structure, Conditions 3 and 5 need sides:
-    only the side-independent part of Condition 3 (no loop crosses itself or a
-    loop of its own axis) is checked, and Condition 5 is reported as not applicable."""
+    """Definition 4.  For a labelled structure, Conditions 3 and 5 need sides: only the
+    side-independent part of Condition 3 (no loop crosses itself or a loop of its own axis) is
+    checked, and Condition 5 is reported as not applicable.
+
+    Parameters
+    ----------
+    ls:
+        A loop structure.
+
+    Returns
+    -------
+    Report
+        With a witness for every violation (corners, loops, a cycle of zones).
+
+    Raises
+    ------
+    ValueError
+        Never for a built structure.
+
+    >>> from polyloops.core.examples import load_example
+    >>> r = check_polycube_loop_structure(load_example("double-plus-x"))
+    >>> r.valid, sorted({str(v.condition) for v in r.violations})
+    (False, ['3'])
+    """
     m = ls.map
     rb = ReportBuilder("loop-structure", DEF4)
     rb.condition("1", "no three loops intersect at a single point", _many_loops(rb, ls, "1"))
@@ -195,10 +238,29 @@ def genus_balance(ls: LoopStructure, independent: bool = True,
                   genera: dict[Axis, tuple[int, ...]] | None = None) -> list[GenusBalance]:
     """Theorem 3's two sides for the X-, Y- and Z-graphs (labels suffice: no sides needed).
 
-    With ``independent`` (the default), Gamma comes from the homology of the cut surface
-    (:mod:`polyloops.verify.homology`) rather than from the Euler characteristics that
-    :class:`~polyloops.core.zones.Zones` keeps, which balance by construction; a map with a
-    face other than a quad falls back to the latter.
+    Parameters
+    ----------
+    ls:
+        A loop structure whose loops of each axis are disjoint simple closed curves.
+    independent:
+        Take Gamma (the sum of the zone genera) from the homology of the cut surface (the
+        default), not from the zones' own Euler-characteristic bookkeeping.
+    genera:
+        Zone genera to use instead, per axis (the tests pass integral ones).
+
+    Returns
+    -------
+    list[GenusBalance]
+        One per axis; ``holds`` says whether ``|E| = g + |V| - 1 - Gamma``.
+
+    Raises
+    ------
+    ValueError
+        When the homology of a zone is not that of an orientable surface.
+
+    >>> from polyloops.core.examples import load_example
+    >>> [(b.axis.name, b.edges, b.rhs) for b in genus_balance(load_example("bridged-ring").dualize())]
+    [('X', 4, 4), ('Y', 4, 4), ('Z', 2, 2)]
     """
     from polyloops.verify.homology import zone_genera
 
@@ -221,8 +283,27 @@ THEOREM3_NOTE = ("Gamma from the first homology of each zone cut out of the surf
 
 
 def check_theorem3(ls: LoopStructure) -> Report:
-    """Theorem 3 for each axis, with zone genera computed independently (see the note), and
-    the zone genera of the level-graph bookkeeping compared with them."""
+    """Theorem 3 for each axis, with zone genera computed independently from the homology of the
+    cut surface, and the zones' own genera compared with them.
+
+    Parameters
+    ----------
+    ls:
+        A loop structure (faces other than quads: reported as not checked).
+
+    Returns
+    -------
+    Report
+
+    Raises
+    ------
+    ValueError
+        When the homology of a zone is not that of an orientable surface.
+
+    >>> from polyloops.core.examples import load_example
+    >>> check_theorem3(load_example("torus-cycle")).valid
+    True
+    """
     from polyloops.verify.homology import zone_genera
 
     rb = ReportBuilder("loop-structure", THM3)
