@@ -105,3 +105,32 @@ def test_mkdocs_config_lists_every_page():
     unlisted = sorted(p for p in pages if p not in config)
     assert unlisted == []
 
+
+
+def test_every_public_name_has_a_docstring():
+    """Every public function, class, method and property of the library (the command line
+    aside) says what it is: the API reference is generated from these."""
+    import pkgutil
+
+    import polyloops
+
+    missing = []
+    for info in pkgutil.walk_packages(polyloops.__path__, "polyloops."):
+        if info.name.endswith("__main__") or ".cli" in info.name:
+            continue
+        module = importlib.import_module(info.name)
+        for name, obj in vars(module).items():
+            if name.startswith("_") or getattr(obj, "__module__", None) != info.name:
+                continue
+            if not (inspect.isfunction(obj) or inspect.isclass(obj)):
+                continue
+            doc = (obj.__doc__ or "").strip()
+            if not doc or (inspect.isclass(obj) and doc.startswith(name + "(")):  # a dataclass's default
+                missing.append(f"{info.name}.{name}")
+            if inspect.isclass(obj):
+                for member, value in vars(obj).items():
+                    func = value.fget if isinstance(value, property) else getattr(value, "func", value)
+                    undocumented = inspect.isfunction(func) and not (func.__doc__ or "").strip()
+                    if undocumented and not member.startswith("_"):
+                        missing.append(f"{info.name}.{name}.{member}")
+    assert missing == []

@@ -49,6 +49,9 @@ class SignatureError(PolyloopsError, ValueError):
 
 @dataclass(frozen=True)
 class CanonicalForm:
+    """A structure's canonical code in one symmetry mode, with the size of its automorphism group and,
+    in full mode, whether it is achiral."""
+
     code: tuple[int, ...]
     oriented: bool
     automorphisms: int
@@ -59,10 +62,12 @@ class CanonicalForm:
 
     @cached_property
     def signature(self) -> str:
+        """The code as a short printable, versioned name (see :func:`signature`)."""
         return _encode(self.code, self.oriented)
 
     @property
     def structure(self) -> LoopStructure:
+        """The class's canonical representative, the structure the code describes."""
         return from_signature(self.signature)
 
 

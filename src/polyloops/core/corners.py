@@ -63,9 +63,11 @@ class CornerConfig:
 
     @property
     def label(self) -> str:
+        """The directions as text, counter-clockwise: ``+X +Y +Z``."""
         return " ".join(str(d) for d in self.directions)
 
     def to_json(self) -> dict[str, object]:
+        """A JSON-ready dict: id, degree, category and directions."""
         return {"id": self.id, "degree": self.degree, "category": str(self.category),
                 "directions": [str(d) for d in self.directions]}
 

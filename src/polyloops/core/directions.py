@@ -49,6 +49,7 @@ class Direction(IntEnum):
 
     @property
     def axis(self) -> Axis:
+        """The axis this direction runs along."""
         return Axis(self >> 1)
 
     @property

@@ -22,6 +22,8 @@ from polyloops.core.voxels import polycube_from_voxels
 
 @dataclass(frozen=True)
 class Example:
+    """A bundled example: its name, whether it is valid, what it shows, and its file."""
+
     name: str
     description: str
     valid: bool
@@ -73,6 +75,8 @@ EXAMPLES: dict[str, Example] = {e.name: e for e in _ALL}
 
 @dataclass(frozen=True)
 class LabelledExample:
+    """A bundled labelled triangle mesh: its name, expected verdict and description."""
+
     name: str
     description: str
     valid: bool

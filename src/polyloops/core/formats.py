@@ -229,6 +229,7 @@ def loads(text: str) -> Structure:
 
 
 def to_data(obj: Structure) -> dict[str, Any]:
+    """The polyloops JSON document of a structure as Python data (what :func:`dumps` writes)."""
     if isinstance(obj, Polycube):
         return {"polyloops": FORMAT_VERSION, "kind": "polycube",
                 "faces": [list(f) for f in obj.faces],

@@ -135,26 +135,32 @@ class HalfEdgeMap:
 
     @cached_property
     def origin_of(self) -> tuple[int, ...]:
+        """Per dart, the corner it leaves."""
         return self._dart_tuple(0, "origin")
 
     @cached_property
     def face_of(self) -> tuple[int, ...]:
+        """Per dart, the face on its left (the face it runs around, counter-clockwise)."""
         return self._dart_tuple(1, "face_of")
 
     @cached_property
     def next(self) -> tuple[int, ...]:
+        """Per dart, the next dart around its face."""
         return self._dart_tuple(2, "next")
 
     @cached_property
     def prev(self) -> tuple[int, ...]:
+        """Per dart, the previous dart around its face."""
         return self._dart_tuple(3, "prev")
 
     @cached_property
     def twin(self) -> tuple[int, ...]:
+        """Per dart, the dart along the same edge in the other direction."""
         return self._dart_tuple(4, "twin")
 
     @cached_property
     def face_start(self) -> tuple[int, ...]:
+        """Per face, its first dart (a face's darts are consecutive)."""
         return self._dart_tuple(5, "face_start")
 
     # -- construction -----------------------------------------------------------------
@@ -323,29 +329,36 @@ class HalfEdgeMap:
     # -- sizes ------------------------------------------------------------------------
     @cached_property
     def num_darts(self) -> int:
+        """The number of darts (twice the number of edges)."""
         return len(self._given_arrays.origin) if self._tuples is None else len(self._tuples[0])  # type: ignore[union-attr]
 
     @property
     def num_edges(self) -> int:
+        """The number of edges."""
         return self.num_darts // 2
 
     @property
     def num_faces(self) -> int:
+        """The number of faces."""
         return len(self.faces)
 
     @property
     def euler_characteristic(self) -> int:
+        """``V - E + F``."""
         return self.num_corners - self.num_edges + self.num_faces
 
     @property
     def genus(self) -> int:
+        """The genus of the closed orientable surface: ``(2 - chi) / 2``."""
         return (2 - self.euler_characteristic) // 2
 
     # -- darts ------------------------------------------------------------------------
     def origin(self, d: int) -> int:
+        """The corner dart ``d`` leaves."""
         return self.origin_of[d]
 
     def target(self, d: int) -> int:
+        """The corner dart ``d`` reaches."""
         return self.origin_of[self.next[d]]
 
     def rotate(self, d: int) -> int:
@@ -378,9 +391,11 @@ class HalfEdgeMap:
         return out
 
     def degree(self, corner: int) -> int:
+        """The number of edges at a corner."""
         return len(self.outgoing(corner))
 
     def face_darts(self, f: int) -> range:
+        """The darts of face ``f``, in order around it."""
         return range(self.face_start[f], self.face_start[f] + len(self.faces[f]))
 
     # -- edges ------------------------------------------------------------------------
@@ -416,6 +431,7 @@ class HalfEdgeMap:
         return tuple(out)
 
     def edge_corners(self, e: int) -> tuple[int, int]:
+        """The two corners of edge ``e``, from its stored dart's origin."""
         d = self.edge_darts[e]
         return self.origin_of[d], self.target(d)
 

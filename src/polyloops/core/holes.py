@@ -31,6 +31,7 @@ PAIRS = tuple(combinations(Axis, 2))
 
 
 def pair_name(a: Axis, b: Axis) -> str:
+    """The name of a pair of axes, such as ``XY``."""
     return f"{a.name}{b.name}"
 
 
@@ -103,6 +104,7 @@ class HoleOrientation:
 
     @property
     def ranks(self) -> dict[str, int]:
+        """Per pair of axes, the rank of the intersection matrix."""
         return {k: len(v) for k, v in self.factors.items()}
 
     def permuted(self, perm: tuple[int, int, int]) -> HoleOrientation:
@@ -116,6 +118,7 @@ class HoleOrientation:
         return HoleOrientation(out)
 
     def to_json(self) -> dict[str, list[int]]:
+        """A JSON-ready dict: per pair of axes, the invariant factors."""
         return {k: list(v) for k, v in self.factors.items()}
 
     def __str__(self) -> str:

@@ -65,6 +65,7 @@ class Addition:
         return [m.edge_id(m.dart(self.cycle[i], self.cycle[(i + 1) % k])) for i in range(k)]
 
     def to_json(self, ls: LoopStructure) -> dict[str, object]:
+        """A JSON-ready dict: the axis, the cycle of corners and the segments the new loop crosses."""
         return {"axis": str(self.axis), "corners": list(self.cycle), "segments": self.segments(ls)}
 
 
@@ -553,6 +554,8 @@ def _one_per_edge(labels: dict[tuple[int, int], Direction]) -> dict[tuple[int, i
 
 @dataclass(frozen=True)
 class RemovalCheck:
+    """Whether removing a loop leaves a polycube loop structure, and if not, why."""
+
     loop: int
     valid: bool
     reason: str = ""
@@ -710,6 +713,7 @@ def check_removal(ls: LoopStructure, loop: int, arcs: _LevelArcs | None = None) 
 
 
 def removable(ls: LoopStructure, loop: int) -> bool:
+    """Whether removing ``loop`` leaves a polycube loop structure (:func:`check_removal`)."""
     return check_removal(ls, loop).valid
 
 

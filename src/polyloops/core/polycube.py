@@ -92,10 +92,12 @@ class Polycube:
 
     @property
     def faces(self) -> tuple[tuple[int, ...], ...]:
+        """The faces as corner lists, counter-clockwise seen from outside."""
         return self.map.faces
 
     @property
     def genus(self) -> int:
+        """The genus of its surface."""
         return self.map.genus
 
     def direction(self, d: int) -> Direction | None:
@@ -125,6 +127,7 @@ class Polycube:
         return Direction.of(nz[0], 1 if n[nz[0]] > 0 else -1)
 
     def bounding_box(self) -> tuple[Position, Position]:
+        """The lowest and highest corner coordinates, per axis."""
         lo = tuple(min(p[i] for p in self.positions) for i in range(3))
         hi = tuple(max(p[i] for p in self.positions) for i in range(3))
         return (lo[0], lo[1], lo[2]), (hi[0], hi[1], hi[2])

@@ -186,14 +186,17 @@ class LoopStructure:
     # -- the paper's vocabulary ---------------------------------------------------------
     @property
     def oriented(self) -> bool:
+        """Whether the loops have sides (an oriented structure) or labels only."""
         return self.signs is not None
 
     @property
     def loop_system(self) -> LoopSystem:
+        """The loops of the map, with the loop and side of every dart."""
         return self.map.loop_system
 
     @property
     def loops(self) -> tuple[Loop, ...]:
+        """The loops, by id."""
         return self.map.loop_system.loops
 
     @property
@@ -213,9 +216,11 @@ class LoopStructure:
 
     @property
     def genus(self) -> int:
+        """The genus of its surface."""
         return self.map.genus
 
     def loop_of_segment(self, e: int) -> int:
+        """The loop that crosses segment (edge) ``e``."""
         return self.map.loop_system.loop_of_dart[self.map.edge_darts[e]]
 
     def region_segments(self, corner: int) -> list[int]:
@@ -223,6 +228,7 @@ class LoopStructure:
         return [self.map.edge_id(d) for d in self.map.outgoing(corner)]
 
     def loops_by_axis(self) -> dict[Axis, list[int]]:
+        """The loop ids of each axis."""
         out: dict[Axis, list[int]] = {a: [] for a in Axis}
         for i, a in enumerate(self.axes):
             out[a].append(i)
@@ -230,6 +236,7 @@ class LoopStructure:
 
     # -- labels of darts ----------------------------------------------------------------
     def axis_of_dart(self, d: int) -> Axis:
+        """The axis label of the loop that crosses dart ``d``'s edge."""
         return self.axes[self.map.loop_system.loop_of_dart[d]]
 
     def direction(self, d: int) -> Direction:
@@ -293,9 +300,11 @@ class LoopStructure:
 
     # -- derived structures -------------------------------------------------------------
     def with_signs(self, signs: Sequence[int] | None) -> LoopStructure:
+        """The same loops with these sides (one sign per loop)."""
         return LoopStructure(self.map, self.axes, None if signs is None else tuple(signs))
 
     def forget_orientation(self) -> LoopStructure:
+        """The labelled structure: the same loops and labels, without sides."""
         return self.with_signs(None)
 
     def flipped(self, loop: int) -> LoopStructure:
@@ -307,6 +316,7 @@ class LoopStructure:
         return self.with_signs(signs)
 
     def relabelled(self, loop: int, axis: Axis) -> LoopStructure:
+        """The same structure with one loop's axis label changed."""
         axes = list(self.axes)
         axes[loop] = axis
         return LoopStructure(self.map, tuple(axes), self.signs)

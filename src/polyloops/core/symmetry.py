@@ -23,6 +23,8 @@ from polyloops.core.directions import Axis, Direction
 
 @dataclass(frozen=True)
 class SignedPermutation:
+    """A signed permutation of the axes: ``e_a`` goes to ``signs[a] * e_perm[a]``."""
+
     perm: tuple[int, int, int]
     signs: tuple[int, int, int]
 
@@ -31,15 +33,18 @@ class SignedPermutation:
         return Direction.of(self.perm[a], d.sign * self.signs[a])
 
     def axis(self, a: Axis | int) -> Axis:
+        """The image of an axis (signs aside)."""
         return Axis(self.perm[int(a)])
 
     @property
     def det(self) -> int:
+        """The determinant: ``+1`` for a rotation, ``-1`` for a reflection."""
         inversions = sum(1 for i in range(3) for j in range(i + 1, 3) if self.perm[i] > self.perm[j])
         return (-1) ** inversions * self.signs[0] * self.signs[1] * self.signs[2]
 
     @property
     def is_rotation(self) -> bool:
+        """Whether it is one of the 24 rotations."""
         return self.det == 1
 
     def __str__(self) -> str:

@@ -38,6 +38,7 @@ class Zones:
     genera: tuple[int, ...]
 
     def members(self) -> list[list[int]]:
+        """The corners of each zone."""
         out: list[list[int]] = [[] for _ in range(self.count)]
         for c, z in enumerate(self.zone_of):
             out[z].append(c)
@@ -50,6 +51,8 @@ class Zones:
 
 
 def compute_zones(ls: LoopStructure, axis: Axis) -> Zones:
+    """The ``axis``-zones of a structure (array kernels from :data:`~polyloops.core.arrays.LARGE` darts
+    on)."""
     from polyloops.core.arrays import LARGE
 
     if ls.map.num_darts >= LARGE:

@@ -146,6 +146,7 @@ class CatalogRecord:
         return self.removable_loops == 0
 
     def to_json(self) -> dict[str, Any]:
+        """A JSON-ready dict: the record's fields and whether it is irreducible."""
         return {"signature": self.signature, "corners": self.corners, "faces": self.faces,
                 "loops": self.loops, "corner_categories": self.categories,
                 "automorphisms": self.automorphisms, "chiral": self.chiral,

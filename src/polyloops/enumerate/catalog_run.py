@@ -40,12 +40,15 @@ class CatalogRunError(PolyloopsError, ValueError):
 
 @dataclass(frozen=True)
 class Job:
+    """One slice of a catalog run: the maps plantri writes for ``-qc2 n res/mod``."""
+
     n: int
     res: int = 0
     mod: int = 1
 
     @property
     def name(self) -> str:
+        """The job's file name stem, such as ``n024-0of1``."""
         return f"n{self.n:03d}-{self.res}of{self.mod}"
 
 
@@ -99,10 +102,12 @@ def plan_jobs(min_n: int, max_n: int, res: int | None, mod: int | None, workers:
 
 
 def part_path(out: Path, job: Job) -> Path:
+    """Where a finished job's result is kept, so that a rerun skips it."""
     return out / "parts" / f"{job.name}.json"
 
 
 def load_part(out: Path, job: Job) -> dict[str, Any] | None:
+    """A finished job's result, or ``None`` when it is missing, damaged or of another schema version."""
     path = part_path(out, job)
     try:
         data = json.loads(path.read_text())
@@ -145,6 +150,7 @@ def _run_job_star(args: tuple[Job, str, str]) -> dict[str, Any]:
 # -- merging and storage ---------------------------------------------------------------------
 
 def summarize(results: list[dict[str, Any]], min_n: int, max_n: int, partial: bool) -> dict[str, Any]:
+    """The counts of a run by corners, in all three modes, with the numbers of maps seen."""
     counts = {str(n): dict.fromkeys(MODES, 0) for n in range(min_n, max_n + 1)}
     # Odd counts are not generated (no polycube has them): their number of maps is unknown.
     quads: dict[str, int | None] = {str(n): None if n % 2 else 0 for n in range(min_n, max_n + 1)}
@@ -193,6 +199,8 @@ def _row(rec: dict[str, Any]) -> list[Any]:
 
 def write_catalog(out: Path, results: list[dict[str, Any]], symmetry: Symmetry | str,
                   summary: dict[str, Any]) -> int:
+    """Write ``catalog.jsonl``, ``catalog.sqlite`` and ``summary.json`` atomically; returns the number
+    of records."""
     records = sorted((rec for r in results for rec in r["records"][symmetry]),
                      key=lambda rec: (rec["corners"], rec["signature"]))
     symmetry = Symmetry.parse(symmetry)

@@ -41,10 +41,12 @@ class CatalogEntry:
 
     @property
     def signature(self) -> str:
+        """The class's signature."""
         return self.record.signature
 
     @property
     def corners(self) -> int:
+        """The class's number of corners."""
         return self.record.corners
 
     @classmethod
@@ -63,6 +65,7 @@ class CatalogEntry:
         return cls(str(data.get("name", "")), Symmetry.parse(data.get("symmetry", "full")), record)
 
     def to_json(self) -> dict[str, Any]:
+        """The entry as a ``catalog.jsonl`` line holds it."""
         return {"name": self.name, **self.record.to_json(), "symmetry": str(self.symmetry)}
 
     def structure(self):
@@ -82,6 +85,7 @@ class Census:
 
     @property
     def symmetry(self) -> Symmetry:
+        """The mode the catalog lists classes in."""
         return self.entries[0].symmetry if self.entries else Symmetry.FULL
 
     @property
@@ -91,14 +95,17 @@ class Census:
 
     @property
     def genus(self) -> int:
+        """The genus of the catalog's polycubes."""
         return int(self.summary.get("genus", 0))
 
     @cached_property
     def by_name(self) -> dict[str, CatalogEntry]:
+        """Entries by their short name (``P16.2``)."""
         return {e.name: e for e in self.entries}
 
     @cached_property
     def by_signature(self) -> dict[str, CatalogEntry]:
+        """Entries by signature."""
         return {e.signature: e for e in self.entries}
 
 
@@ -200,6 +207,9 @@ def export_csv(out: Path) -> str:
 
 @dataclass(frozen=True)
 class Identification:
+    """What :func:`identify` found: the class name (or ``None``), the signature, and how far the
+    catalog goes."""
+
     name: str | None  # None: not in the catalog
     signature: str
     corners: int
@@ -213,6 +223,7 @@ class Identification:
         return self.name is None and (self.genus != self.catalog_genus or self.corners > self.max_corners)
 
     def to_json(self) -> dict[str, Any]:
+        """A JSON-ready dict of the identification."""
         return {"name": self.name, "signature": self.signature, "corners": self.corners,
                 "genus": self.genus, "catalog_max_corners": self.max_corners,
                 "catalog_genus": self.catalog_genus, "in_catalog": self.name is not None}

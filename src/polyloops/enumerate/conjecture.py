@@ -75,6 +75,7 @@ class ClassRecord:
 
     @property
     def settled(self) -> bool:
+        """Whether the class is the cube, has a removable loop, or has a detour to fewer corners."""
         return self.base or self.removable is not None or self.detour is not None
 
     @property
@@ -93,6 +94,7 @@ class ClassRecord:
         return peak
 
     def to_json(self) -> dict[str, Any]:
+        """A JSON-ready dict, one line of the certificate."""
         out: dict[str, Any] = {"signature": self.signature, "corners": self.corners}
         if self.base:
             out["base"] = True
@@ -129,6 +131,8 @@ def _settle_job(task: tuple[str, int]) -> ClassRecord:
 
 @dataclass
 class CornerRow:
+    """The conjecture's table row for one number of corners."""
+
     corners: int
     classes: int = 0
     irreducible: int = 0
@@ -137,20 +141,25 @@ class CornerRow:
     largest_detour_moves: int = 0
 
     def to_json(self) -> dict[str, int]:
+        """A JSON-ready dict of the row."""
         return dict(self.__dict__)
 
 
 @dataclass
 class ConjectureResult:
+    """Every class of the catalog with how it is settled."""
+
     max_corners: int
     slack: int
     records: list[ClassRecord] = field(default_factory=list)
 
     @property
     def unsettled(self) -> list[ClassRecord]:
+        """The classes neither removable nor with a detour within the slack."""
         return [r for r in self.records if not r.settled]
 
     def table(self) -> list[CornerRow]:
+        """The results by number of corners."""
         rows: dict[int, CornerRow] = {}
         for r in self.records:
             row = rows.setdefault(r.corners, CornerRow(r.corners))
@@ -165,6 +174,7 @@ class ConjectureResult:
         return [rows[n] for n in sorted(rows)]
 
     def to_json(self) -> dict[str, Any]:
+        """A JSON-ready summary: counts, unsettled classes, the table."""
         return {"max_corners": self.max_corners, "slack": self.slack,
                 "classes": len(self.records), "settled": len(self.records) - len(self.unsettled),
                 "unsettled": [r.signature for r in self.unsettled],
@@ -193,6 +203,7 @@ def settle_catalog(directory: Path, max_corners: int, slack: int, workers: int =
 
 
 def certificate_lines(result: ConjectureResult) -> Iterator[str]:
+    """The certificate as JSON lines: a header, then one line per class."""
     yield json.dumps({"polyloops": 1, "kind": CERTIFICATE_KIND, "max_corners": result.max_corners,
                       "slack": result.slack, "classes": len(result.records)})
     for r in result.records:
@@ -203,6 +214,8 @@ def certificate_lines(result: ConjectureResult) -> Iterator[str]:
 
 @dataclass(frozen=True)
 class CertificateProblem:
+    """A line of a certificate that does not check, and why."""
+
     line: int
     signature: str
     message: str

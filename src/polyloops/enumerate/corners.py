@@ -37,9 +37,11 @@ class CornerClass:
 
     @property
     def representative(self) -> CornerConfig:
+        """The member with the lowest id."""
         return corner_configurations()[self.members[0]]
 
     def to_json(self) -> dict[str, object]:
+        """A JSON-ready dict: class id, category, size, representative and members."""
         return {"class": self.id, "category": str(self.category), "size": len(self.members),
                 "representative": [str(d) for d in self.representative.directions],
                 "members": list(self.members)}

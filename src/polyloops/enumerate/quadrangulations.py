@@ -55,6 +55,7 @@ def find_plantri(explicit: str | None = None) -> str:
 
 
 def record_size(n: int) -> int:
+    """The bytes of one map with ``n`` vertices in plantri's planar code (two-byte form when needed)."""
     return 5 * n - 7
 
 
@@ -143,6 +144,7 @@ class Batch:
         return faces_from_next(self.nxt[i], self.origin[i])
 
     def map(self, i: int) -> HalfEdgeMap:
+        """Map ``i`` of the batch as a half-edge map."""
         return HalfEdgeMap.from_faces(self.faces(i))
 
 

@@ -50,6 +50,8 @@ MODES = tuple(Symmetry)
 
 
 class MoveKind(StrEnum):
+    """A kind of loop move: an addition or a removal."""
+
     ADD = "add"
     REMOVE = "remove"
 
@@ -80,6 +82,7 @@ class Move:
         return remove_loop(ls, self.loop)
 
     def to_json(self) -> dict[str, Any]:
+        """A JSON-ready dict of the move."""
         if self.kind is MoveKind.ADD:
             return {"add": str(self.axis), "corners": list(self.cycle)}
         return {"remove": self.loop}
@@ -138,6 +141,8 @@ def parse_kinds(text: str) -> tuple[MoveKind, ...]:
 
 @dataclass(frozen=True)
 class Child:
+    """A state found one move from another, named by its signature."""
+
     signature: str
     corners: int
     move: Move
@@ -175,6 +180,8 @@ class ReachError(PolyloopsError, ValueError):
 
 @dataclass(frozen=True)
 class State:
+    """A state of the search: its signature, corners, distance from the start, and how it was reached."""
+
     signature: str
     corners: int
     distance: int
@@ -210,6 +217,7 @@ class ReachStore:
         return int(self.con.execute("SELECT value FROM meta WHERE key = 'level'").fetchone()[0])
 
     def write_level(self, level: int, states: list[State]) -> None:
+        """Store one finished level of states, in one transaction."""
         with self.con:
             self.con.executemany("INSERT INTO states VALUES (?, ?, ?, ?, ?)", [
                 (s.signature, s.corners, s.distance, s.parent,
@@ -221,11 +229,13 @@ class ReachStore:
         return {s: (d, c) for s, d, c in self.con.execute("SELECT signature, distance, corners FROM states")}
 
     def state(self, signature: str) -> State | None:
+        """The stored state with this signature, or ``None``."""
         row = self.con.execute("SELECT signature, corners, distance, parent, move FROM states "
                                "WHERE signature = ?", (signature,)).fetchone()
         return None if row is None else _state(row)
 
     def close(self) -> None:
+        """Close the database."""
         self.con.close()
 
 
@@ -257,6 +267,8 @@ def path_to(store_dir: Path, signature: str) -> list[State]:
 
 @dataclass
 class ReachResult:
+    """What :func:`explore` found: states by corners and by distance."""
+
     start: str
     mode: Symmetry
     max_corners: int
@@ -268,13 +280,16 @@ class ReachResult:
 
     @property
     def states(self) -> int:
+        """The number of states found."""
         return sum(self.by_corners.values())
 
     @property
     def max_distance(self) -> int:
+        """The largest distance from the start."""
         return max(self.by_distance, default=0)
 
     def to_json(self) -> dict[str, Any]:
+        """A JSON-ready dict of the result (the reach command's summary.json)."""
         return {"start": self.start, "symmetry": self.mode, "max_corners": self.max_corners,
                 "moves": ",".join(k.value for k in self.kinds), "states": self.states,
                 "by_corners": {str(k): v for k, v in sorted(self.by_corners.items())},
@@ -456,6 +471,8 @@ def shortest_path(source: LoopStructure, target: LoopStructure, max_corners: int
 
 @dataclass(frozen=True)
 class PathCheck:
+    """Whether a path checks: every step valid, every pair one move apart; else the first bad step."""
+
     valid: bool
     steps: int
     bad_step: int | None = None

@@ -32,5 +32,6 @@ def _structure_png(self: LoopStructure) -> bytes | None:
 
 
 def register() -> None:
+    """Give polycubes and loop structures a ``_repr_png_``, so Jupyter draws them."""
     Polycube._repr_png_ = _polycube_png  # type: ignore[attr-defined]
     LoopStructure._repr_png_ = _structure_png  # type: ignore[attr-defined]

@@ -34,6 +34,7 @@ def _positions(ls: LoopStructure, axis: Axis, g: nx.MultiDiGraph) -> dict[int, t
 
 
 def draw_level_graph(ax, ls: LoopStructure, axis: Axis) -> None:
+    """Draw one level graph on matplotlib axes: zones by level, arcs by loop id."""
     g = ls.level_graph(axis)
     pos = _positions(ls, axis, g)
     seen: dict[tuple[int, int], int] = defaultdict(int)

@@ -19,6 +19,7 @@ class View:
         self.up = (-math.sin(el) * math.cos(az), -math.sin(el) * math.sin(az), math.cos(el))
 
     def project(self, p: Vec) -> tuple[float, float]:
+        """The 2D picture coordinates of a 3D point seen from this view."""
         return (sum(a * b for a, b in zip(p, self.right, strict=True)),
                 sum(a * b for a, b in zip(p, self.up, strict=True)))
 

@@ -38,6 +38,9 @@ __all__ = ["Boundary", "Chart", "Corner", "GlobalResult", "LocalResult", "LocalV
 
 @dataclass(frozen=True)
 class SegmentationReport:
+    """The verdict on a labelled mesh: its segmentation, the local and global results, and a realising
+    polycube."""
+
     segmentation: Segmentation
     local: LocalResult
     global_: GlobalResult
@@ -45,10 +48,12 @@ class SegmentationReport:
 
     @property
     def polycube(self) -> Polycube | None:
+        """The polycube that realises the labels, when one was built."""
         return None if self.realisation is None else self.realisation.polycube
 
     @property
     def valid(self) -> bool | None:
+        """``True`` valid, ``False`` invalid (with a witness), ``None`` undecided."""
         if not self.local.valid or self.global_.valid is False:
             return False
         if self.polycube is not None:
@@ -66,6 +71,7 @@ class SegmentationReport:
         return self.realisation.reason
 
     def to_json(self) -> dict[str, object]:
+        """A JSON-ready dict of the verdict (the segmentation command's --json)."""
         seg = self.segmentation
         out: dict[str, object] = {
             "valid": self.valid, "local": self.local.to_json(), "global": self.global_.to_json(seg),

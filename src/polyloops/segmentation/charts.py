@@ -28,6 +28,8 @@ from polyloops.core.labelled_mesh import LabelledMesh
 
 @dataclass(frozen=True)
 class Chart:
+    """A chart: a maximal connected set of triangles with one label, with its boundary cycles."""
+
     id: int
     label: Direction
     triangles: tuple[int, ...]
@@ -36,6 +38,7 @@ class Chart:
 
     @property
     def holes(self) -> int:
+        """The number of boundary cycles beyond the first."""
         return len(self.cycles)
 
     @property
@@ -46,6 +49,8 @@ class Chart:
 
 @dataclass(frozen=True)
 class Boundary:
+    """A boundary: a maximal curve between two charts, from corner to corner (or closed)."""
+
     id: int
     left: int
     right: int
@@ -55,11 +60,14 @@ class Boundary:
 
     @property
     def closed(self) -> bool:
+        """Whether the boundary is a closed curve without corners."""
         return self.start is None
 
 
 @dataclass(frozen=True)
 class Corner:
+    """A corner of a segmentation: a point where three or more charts meet."""
+
     id: int
     vertex: int
     sides: tuple[tuple[int, bool, int], ...]  # (boundary, leaves from the boundary's start, next chart)
@@ -67,6 +75,8 @@ class Corner:
 
 @dataclass(frozen=True)
 class Segmentation:
+    """The charts, boundaries and corners of a labelled mesh."""
+
     mesh: LabelledMesh
     map: HalfEdgeMap
     chart_of_triangle: tuple[int, ...]

@@ -48,6 +48,8 @@ from polyloops.segmentation.charts import Segmentation
 
 @dataclass(frozen=True)
 class Cycle:
+    """A cycle of one level graph, as the boundaries along it."""
+
     axis: Axis
     boundaries: tuple[int, ...]
 
@@ -63,6 +65,7 @@ class Witness:
     turning: tuple[int, ...] = ()  # charts whose turning-number constraint takes part
 
     def charts(self, seg: Segmentation) -> tuple[int, ...]:
+        """The charts whose turning numbers the witness uses."""
         found = set()
         for b in self.all_boundaries():
             found |= {seg.boundaries[b].left, seg.boundaries[b].right}
@@ -71,9 +74,11 @@ class Witness:
         return tuple(sorted(found | set(self.turning)))
 
     def all_boundaries(self) -> tuple[int, ...]:
+        """Every boundary the witness names."""
         return tuple(sorted({*self.boundaries, *(b for cyc in self.cycles for b in cyc.boundaries)}))
 
     def describe(self, seg: Segmentation) -> str:
+        """The witness in one sentence."""
         if self.kind == "arc-inside-zone":
             b = seg.boundaries[self.boundaries[0]]
             axis = seg.boundary_axis(b.id)
@@ -89,6 +94,7 @@ class Witness:
         return "no directions of the boundaries avoid " + " and ".join(parts)
 
     def to_json(self, seg: Segmentation) -> dict[str, object]:
+        """A JSON-ready dict of the witness."""
         return {"kind": self.kind, "message": self.describe(seg), "corners": list(self.corners),
                 "boundaries": list(self.all_boundaries()), "charts": list(self.charts(seg)),
                 "turning": list(self.turning),
@@ -97,6 +103,8 @@ class Witness:
 
 @dataclass(frozen=True)
 class GlobalResult:
+    """The global test's verdict, its reason, and a witness when invalid."""
+
     valid: bool | None
     reason: str = ""
     witness: Witness | None = None
@@ -104,6 +112,7 @@ class GlobalResult:
     zones: tuple[tuple[int, ...], ...] = ()  # per axis: the zone of each corner
 
     def to_json(self, seg: Segmentation) -> dict[str, object]:
+        """A JSON-ready dict of the verdict."""
         return {"valid": self.valid, "reason": self.reason,
                 "witness": None if self.witness is None else self.witness.to_json(seg)}
 

@@ -23,6 +23,8 @@ from polyloops.segmentation.charts import Segmentation
 
 @dataclass(frozen=True)
 class LocalViolation:
+    """One local criterion a labelled mesh breaks, where."""
+
     rule: str
     message: str
     charts: tuple[int, ...] = ()
@@ -30,27 +32,35 @@ class LocalViolation:
     corners: tuple[int, ...] = ()
 
     def to_json(self) -> dict[str, object]:
+        """A JSON-ready dict of the violation."""
         return {"rule": self.rule, "message": self.message, "charts": list(self.charts),
                 "boundaries": list(self.boundaries), "corners": list(self.corners)}
 
 
 @dataclass(frozen=True)
 class LocalResult:
+    """Every local criterion's violations."""
+
     violations: tuple[LocalViolation, ...] = field(default_factory=tuple)
 
     @property
     def valid(self) -> bool:
+        """Whether no local criterion is broken."""
         return not self.violations
 
     def to_json(self) -> dict[str, object]:
+        """A JSON-ready dict of the result."""
         return {"valid": self.valid, "violations": [v.to_json() for v in self.violations]}
 
 
 def labels_around(seg: Segmentation, corner: int) -> tuple[Direction, ...]:
+    """The chart labels around a corner, counter-clockwise."""
     return tuple(seg.charts[chart].label for _, _, chart in seg.corners[corner].sides)
 
 
 def check_local(seg: Segmentation) -> LocalResult:
+    """The local criteria of labelling methods: opposite labels, few boundaries per chart, closed
+    boundaries, handles, corner label sequences no polycube corner has."""
     out: list[LocalViolation] = []
     for b in seg.boundaries:
         left, right = seg.charts[b.left].label, seg.charts[b.right].label

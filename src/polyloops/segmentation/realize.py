@@ -34,6 +34,8 @@ from polyloops.segmentation.levels import GlobalResult, mesh_steps
 
 @dataclass(frozen=True)
 class Realisation:
+    """A polycube that realises a labelling, or the reason the construction failed."""
+
     polycube: Polycube | None
     reason: str = ""  # why there is none
     chart_of_face: tuple[int, ...] = ()

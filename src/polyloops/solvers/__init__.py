@@ -63,6 +63,7 @@ class OrientResult:
 
     @property
     def found(self) -> bool:
+        """Whether an orientation was found."""
         return self.structure is not None
 
 

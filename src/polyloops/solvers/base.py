@@ -17,6 +17,8 @@ Signs = tuple[int, ...]
 
 
 class Solver(Protocol):
+    """What every orientation solver offers: its name and the valid sign vectors of a problem."""
+
     name: str
 
     def solutions(self, problem: OrientationProblem) -> Iterator[Signs]:
@@ -25,6 +27,7 @@ class Solver(Protocol):
 
 
 def solve(solver: Solver, problem: OrientationProblem) -> Signs | None:
+    """The first valid sign vector, or ``None`` when there is none."""
     if not feasible_locally(problem):
         return None
     return next(solver.solutions(problem), None)

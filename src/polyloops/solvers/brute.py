@@ -21,6 +21,7 @@ class BruteForceSolver:
     name = "brute"
 
     def solutions(self, problem: OrientationProblem) -> Iterator[Signs]:
+        """Every valid sign vector, each once."""
         if not feasible_locally(problem):
             return
         per_axis: list[list[tuple[int, ...]]] = []

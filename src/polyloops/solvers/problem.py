@@ -54,6 +54,7 @@ class OddCycle:
     sides: tuple[Side, ...]
 
     def describe(self) -> str:
+        """The odd cycle in one sentence."""
         path = " - ".join(f"{loop}{side}" for loop, side in self.sides)
         return f"the {self.axis}-side graph has an odd cycle {path} (loop id + L/R side)"
 
@@ -161,10 +162,12 @@ class OrientationProblem:
         return len(self.components)
 
     def components_of(self, axis: Axis) -> list[Component]:
+        """The side-graph components of one axis."""
         return [c for c in self.components if c.axis == axis]
 
     @property
     def colourable(self) -> bool:
+        """Whether Condition 3 can be met: the side graph is bipartite."""
         return not self.odd_cycles
 
     @cached_property
@@ -199,6 +202,7 @@ class OrientationProblem:
         return None
 
     def is_solution(self, signs: tuple[int, ...] | list[int]) -> bool:
+        """Whether these signs leave every level graph acyclic."""
         return self.find_cycle(signs) is None
 
     # -- decomposition --------------------------------------------------------------------------

@@ -62,6 +62,7 @@ class SatSolver:
         return problem.signs_from_choices([choice.get(v, 1) for v in range(1, problem.k + 1)])
 
     def solutions(self, problem: OrientationProblem) -> Iterator[Signs]:
+        """Every valid sign vector, each once."""
         if not feasible_locally(problem):
             return
         where = self._component_of(problem)

@@ -23,6 +23,7 @@ class SmtSolver:
     name = "smt"
 
     def solutions(self, problem: OrientationProblem) -> Iterator[Signs]:
+        """Every valid sign vector, each once."""
         if not feasible_locally(problem):
             return
         s = z3.Solver()

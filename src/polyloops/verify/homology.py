@@ -58,6 +58,7 @@ class CellComplex:
         return kernel_d1 - (len(self.faces) - self.closed_face_groups())
 
     def faces_of_edge(self) -> dict[int, list[int]]:
+        """The faces each edge lies in (at most two on a surface)."""
         out: dict[int, list[int]] = defaultdict(list)
         for f, face in enumerate(self.faces):
             for e in face:

@@ -115,6 +115,7 @@ def _no_crossing_problem(ls: LoopStructure) -> bool:
 
 
 def repeated_direction_violations(rb: ReportBuilder, ls: LoopStructure) -> list[Violation]:
+    """Condition 3: corners with two edges in the same direction."""
     m = ls.map
     if m.num_darts >= LARGE:
         from polyloops.core.arrays import all_distinct
@@ -223,13 +224,16 @@ class GenusBalance:
 
     @property
     def rhs(self) -> int:
+        """``g + |V| - 1 - Gamma``."""
         return self.genus + self.vertices - 1 - self.gamma
 
     @property
     def holds(self) -> bool:
+        """Whether ``|E|`` equals the right-hand side."""
         return self.edges == self.rhs
 
     def to_json(self) -> dict[str, object]:
+        """A JSON-ready dict of both sides."""
         return {"axis": str(self.axis), "E": self.edges, "V": self.vertices, "g": self.genus,
                 "Gamma": self.gamma, "rhs": self.rhs, "holds": self.holds}
 

@@ -72,6 +72,7 @@ class Violation:
     witness: dict[str, Any] = field(default_factory=dict)
 
     def to_json(self) -> dict[str, Any]:
+        """A JSON-ready dict of the violation."""
         return {"definition": str(self.definition), "condition": str(self.condition),
                 "message": self.message, "witness": self.witness}
 
@@ -87,6 +88,7 @@ class Check:
     note: str = ""
 
     def to_json(self) -> dict[str, Any]:
+        """A JSON-ready dict of the check."""
         out = {"definition": str(self.definition), "condition": str(self.condition),
                "statement": self.statement, "status": str(self.status)}
         if self.note:
@@ -104,6 +106,7 @@ class Report:
 
     @property
     def valid(self) -> bool:
+        """Whether nothing is violated."""
         return not self.violations
 
     def first_violation(self) -> str:
@@ -115,9 +118,11 @@ class Report:
         return f"{v.definition} condition {v.condition}: {v.message}{more}"
 
     def violated(self, definition: Source | str, condition: Condition | str) -> list[Violation]:
+        """The violations of one condition."""
         return [v for v in self.violations if v.definition == definition and v.condition == condition]
 
     def to_json(self) -> dict[str, Any]:
+        """A JSON-ready dict: validity, every check and every violation."""
         return {"valid": self.valid, "kind": str(self.kind),
                 "checks": [c.to_json() for c in self.checks],
                 "violations": [v.to_json() for v in self.violations]}
@@ -137,15 +142,18 @@ class ReportBuilder:
 
     def condition(self, condition: Condition | str, statement: str, found: list[Violation],
                   note: str = "") -> None:
+        """Record a condition that was checked, with what violates it."""
         self.violations.extend(found)
         self.checks.append(Check(self.definition, Condition(condition), statement,
                                  VIOLATED if found else HOLDS, note))
 
     def given(self, condition: Condition | str, statement: str, note: str,
               status: Status | str = BY_CONSTRUCTION) -> None:
+        """Record a condition that holds by construction (or does not apply), with why."""
         self.checks.append(Check(self.definition, Condition(condition), statement, Status(status), note))
 
     def violation(self, condition: Condition | str, message: str, **witness: Any) -> Violation:
+        """A violation of a condition of this builder's source, with its witness."""
         return Violation(self.definition, Condition(condition), message, witness)
 
     def build(self) -> Report:
