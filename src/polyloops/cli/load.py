@@ -66,22 +66,19 @@ def read_document(arg: str, given: str | None = None) -> Document:
 
 
 def _planar_document(arg: str) -> Document:
-    """A planar-code file of one map: planar code has no axis labels, so the map must carry
-    exactly one polycube loop structure up to symmetry, which is then the one read."""
+    """A planar-code file of one map, read as the map's only polycube loop structure."""
     from polyloops.core.planar_code import read_planar_code
-    from polyloops.enumerate.catalog import polycube_classes_on
+    from polyloops.enumerate.catalog import MapStructureError, only_structure_on
 
     maps = read_planar_code(read_bytes_file(arg))
     if len(maps) != 1:
         raise CliError(f"{arg}: holds {len(maps)} maps; polyloops reads one map per file")
-    classes = polycube_classes_on(maps[0])
-    if not classes:
-        raise CliError(f"{arg}: the map carries no polycube loop structure", EXIT_INVALID)
-    if len(classes) > 1:
-        raise CliError(f"{arg}: planar code has no axis labels, and the map carries {len(classes)} "
-                       "different polycube loop structures; give the one you mean as JSON or .graph")
-    return Document.of(classes[0], notes=("planar code has no axis labels; read the map's only polycube "
-                                           "loop structure (up to symmetry)",))
+    try:
+        ls = only_structure_on(maps[0])
+    except MapStructureError as err:
+        raise CliError(f"{arg}: {err}", EXIT_INVALID if err.count == 0 else EXIT_USAGE) from None
+    return Document.of(ls, notes=("planar code has no axis labels; read the map's only polycube "
+                                  "loop structure (up to symmetry)",))
 
 
 # File formats by name and by extension; anything else is read as polyloops JSON.  Planar

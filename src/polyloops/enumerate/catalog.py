@@ -29,6 +29,7 @@ from typing import Any
 from polyloops.core.canonical import CanonicalForm, canonical_form
 from polyloops.core.corners import CATEGORIES, corner_histogram
 from polyloops.core.directions import Axis
+from polyloops.core.errors import PolyloopsError
 from polyloops.core.halfedge import HalfEdgeMap
 from polyloops.core.loops import same_axis_meetings
 from polyloops.core.moves import removals
@@ -125,6 +126,35 @@ def polycube_classes_on(m: HalfEdgeMap, mode: Symmetry | str = Symmetry.FULL) ->
     for ls in polycube_structures(m):
         found.setdefault(canonical_form(ls, mode).signature, ls)
     return list(found.values())
+
+
+class MapStructureError(PolyloopsError, ValueError):
+    """A map that carries no polycube loop structure, or several (``count`` says how many
+    classes, up to all 48 symmetries)."""
+
+    def __init__(self, message: str, count: int):
+        super().__init__(message)
+        self.count = count
+
+
+def only_structure_on(m: HalfEdgeMap) -> LoopStructure:
+    """The polycube loop structure a map carries, when it carries exactly one up to symmetry
+    (how a file without axis labels, such as plantri's planar code, is read).
+
+    Raises :class:`MapStructureError` when it carries none or several.
+
+    >>> from polyloops.core.examples import load_example
+    >>> only_structure_on(load_example("cube").map).map.num_corners
+    8
+    """
+    classes = polycube_classes_on(m)
+    if len(classes) == 1:
+        return classes[0]
+    if not classes:
+        raise MapStructureError("the map carries no polycube loop structure", 0)
+    raise MapStructureError(f"planar code has no axis labels, and the map carries {len(classes)} "
+                            "different polycube loop structures; give the one you mean as JSON or .graph",
+                            len(classes))
 
 
 @dataclass(frozen=True)
