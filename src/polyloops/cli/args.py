@@ -8,9 +8,15 @@ from collections.abc import Callable
 from typing import Any
 
 from polyloops.cli.load import EXIT_USAGE
+from polyloops.core.symmetry import MODE_ALIASES, Symmetry
 
 FILE_HELP = ("a polyloops JSON file, a DualCube .graph/.apg file or an OBJ quad mesh, "
              "example:NAME for a bundled example ('polyloops examples' lists them), or sig:SIGNATURE")
+
+# The symmetry modes' names, as every --symmetry option offers them.
+SYMMETRIES = tuple(mode.value for mode in Symmetry)
+# The corners command also accepts 'none', an older name for 'labelled'.
+SYMMETRIES_WITH_ALIASES = (SYMMETRIES[0], *MODE_ALIASES, *SYMMETRIES[1:])
 
 Command = Callable[[argparse.Namespace], int]
 # command(name, func, help, file_arg=True, json_flag=True) -> the command's parser

@@ -8,7 +8,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from polyloops.cli.args import AddCommand, Parser, count_arg, emit
+from polyloops.cli.args import SYMMETRIES, AddCommand, Parser, count_arg, emit
 from polyloops.cli.load import EXIT_OK, CliError, write_text
 
 
@@ -109,7 +109,7 @@ def add_commands(command: AddCommand, hidden: AddCommand) -> None:
                 "searches one, 'catalog export DIR --csv' writes its table", file_arg=False)
     p.add_argument("--max-corners", type=count_arg(0), metavar="N", help="required to build")
     p.add_argument("--min-corners", type=count_arg(8), default=8, metavar="M")
-    p.add_argument("--symmetry", choices=("labelled", "rotation", "full"), default="full",
+    p.add_argument("--symmetry", choices=SYMMETRIES, default="full",
                    help="which classes the records list (summary.json counts all three); default full")
     p.add_argument("--workers", type=count_arg(1), default=1, metavar="K", help="local worker processes")
     p.add_argument("--res", type=count_arg(0), metavar="R", help="only plantri's slice R of M (with --mod)")

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from polyloops.cli.args import AddCommand, emit
+from polyloops.cli.args import SYMMETRIES_WITH_ALIASES, AddCommand, emit
 from polyloops.cli.load import EXIT_OK, CliError
 
 
@@ -43,7 +43,7 @@ def cmd_corners(args: argparse.Namespace) -> int:
 def add_commands(command: AddCommand) -> None:
     p = command("corners", cmd_corners, "the 126 polycube corner configurations, by category, "
                 "or their classes under rotations or all signed permutations", file_arg=False)
-    p.add_argument("--symmetry", choices=("labelled", "none", "rotation", "full"), default="labelled",
+    p.add_argument("--symmetry", choices=SYMMETRIES_WITH_ALIASES, default="labelled",
                    help="labelled: one row per configuration (default; 'none' is an older name for "
                    "it); rotation: classes under the 24 rotations; full: under all 48 signed "
                    "permutations, the same modes as 'polyloops signature'")

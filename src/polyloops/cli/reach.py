@@ -9,7 +9,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from polyloops.cli.args import FILE_HELP, AddCommand, Parser, count_arg, emit
+from polyloops.cli.args import FILE_HELP, SYMMETRIES, AddCommand, Parser, count_arg, emit
 from polyloops.cli.load import (
     EXIT_INVALID,
     EXIT_OK,
@@ -196,7 +196,7 @@ def cmd_conjecture_check(args: argparse.Namespace) -> int:
 
 
 def add_commands(command: AddCommand) -> None:
-    modes = ("labelled", "rotation", "full")
+    modes = SYMMETRIES
     moves_help = "add, remove, or add,remove (default)"
     p = command("reach", cmd_reach, "breadth-first search over loop additions and removals from "
                 "START (default: the cube), every state within --max-corners", file_arg=False)

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import argparse
 
-from polyloops.cli.args import AddCommand, emit
+from polyloops.cli.args import SYMMETRIES, AddCommand, emit
 from polyloops.cli.info import format_summary
 from polyloops.cli.load import (
     EXIT_INVALID,
@@ -186,7 +186,7 @@ def add_commands(command: AddCommand) -> None:
                    "default: JSON on standard output")
     p = command("signature", cmd_signature, "a canonical name: equal exactly for isomorphic "
                 "structures (mirror images of the surface identified); use it as sig:NAME anywhere")
-    p.add_argument("--symmetry", choices=("labelled", "rotation", "full"), default="labelled",
+    p.add_argument("--symmetry", choices=SYMMETRIES, default="labelled",
                    help="labelled: axes fixed (order-equivalence); rotation: up to the 24 rotations; "
                    "full: up to all 48 signed permutations")
     p = command("identify", cmd_identify, "the catalog name of a polycube or loop structure (any "
