@@ -81,9 +81,9 @@ def brute_isomorphic(a: LoopStructure, b: LoopStructure, mode: str = "labelled")
     return any(m.is_isomorphic() for m in matchers(a, b, mode))
 
 
-@given(perturbed_structures(), st.integers(0, 2**31))
+@given(perturbed_structures(), st.randoms(use_true_random=False))
 def test_signature_ignores_numbering_and_mirror(ls, seed):
-    rng = random.Random(seed)
+    rng = seed  # a Random that hypothesis drives, so a failure replays and shrinks
     sig = signature(ls, "labelled")
     assert signature(renumber(ls, rng), "labelled") == sig
     assert signature(mirror(ls), "labelled") == sig

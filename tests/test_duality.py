@@ -1,6 +1,5 @@
 """Theorems 1 and 2: dualize, primalize and order-equivalence, on random polycubes of genus 0-2."""
 
-import random
 
 import networkx as nx
 from hypothesis import given
@@ -54,9 +53,9 @@ def test_round_trips(q):
         assert sorted({pos[k] for pos in p.positions}) == list(range(max(pos[k] for pos in p.positions) + 1))
 
 
-@given(polycubes(max_size=6), st.integers(0, 2**31), st.booleans())
+@given(polycubes(max_size=6), st.randoms(use_true_random=False), st.booleans())
 def test_order_equivalence_finds_renumbered_copies(q, seed, invert):
-    r = renumbered(q.inverse() if invert else q, random.Random(seed))
+    r = renumbered(q.inverse() if invert else q, seed)
     f = is_order_equivalent(q, r)
     assert f is not None
     assert sorted(f) == list(range(q.map.num_corners))

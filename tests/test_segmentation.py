@@ -361,14 +361,13 @@ def test_cli_needs_labels(tmp_path, capsys):
 
 @settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(polycubes(kinds=("blob", "frame1"), max_size=6), st.lists(st.sampled_from(Direction), min_size=1),
-       st.integers(0, 2**16))
+       st.randoms(use_true_random=False))
 def test_any_labelling_gets_a_verdict_and_a_valid_verdict_is_backed(q, palette, seed):
     """Random labels (drawn from a random palette, so that some charts merge) never crash the
     check; a valid verdict always comes with a polycube that realises the same charts, and a
     global failure always with a witness."""
-    import random
 
-    rng = random.Random(seed)
+    rng = seed  # a Random that hypothesis drives, so a failure replays and shrinks
     labels = [rng.choice(palette) if rng.random() < 0.3 else q.face_normal(f) for f in range(q.map.num_faces)]
     report = check_segmentation(labelled_mesh_from_polycube(q, labels))
     assert report.valid in (True, False, None)
