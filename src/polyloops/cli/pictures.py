@@ -9,6 +9,7 @@ from typing import Any
 
 from polyloops.cli.args import FILE_HELP, AddCommand, count_arg
 from polyloops.cli.load import EXIT_INVALID, EXIT_OK, CliError, read_structure
+from polyloops.core.directions import Axis
 from polyloops.core.duality import DualityError
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LoopStructure
@@ -27,20 +28,23 @@ def cmd_render(args: argparse.Namespace) -> int:
     from polyloops.verify import verify
 
     out = _picture_path(args.output)
+    args.level_graphs_beside = bool(args.zones and args.level_graphs)
     obj = read_structure(args.file)
     report = verify(obj)
     ls = dualize(obj) if isinstance(obj, Polycube) and report.valid else obj
     if isinstance(ls, LoopStructure) and not ls.oriented:
         raise CliError(f"{args.file}: is a labelled loop structure without sides; orient it first")
     try:
-        if args.level_graphs:
+        if args.level_graphs and not args.zones:
             if not isinstance(ls, LoopStructure):
                 raise CliError(f"{args.file}: not a polycube, so it has no loop structure", EXIT_INVALID)
             render_level_graphs(ls, out)
         else:
             title = None if report.valid else f"not valid: {report.first_violation()}"[:110]
+            zones = Axis.parse(args.zones) if args.zones else None
             try:
-                render_polycube(obj, out, views=args.views, loops=args.loops, title=title)
+                render_polycube(obj, out, views=args.views, loops=args.loops, title=title, zones=zones,
+                                level_graph=args.level_graphs_beside, grid=args.grid)
             except DualityError as err:
                 render_level_graphs(obj, out)  # type: ignore[arg-type]
                 print(f"polyloops render: {args.file}: no polycube ({err}); drew the level graphs instead",
@@ -124,7 +128,11 @@ def add_commands(command: AddCommand) -> None:
                    help="N views from different octants (1 to 8)")
     p.add_argument("--loops", action=argparse.BooleanOptionalAction, default=True,
                    help="draw the loops on the surface (default) or not")
-    p.add_argument("--level-graphs", action="store_true", help="draw the X-, Y- and Z-graphs instead")
+    p.add_argument("--level-graphs", action="store_true", help="draw the X-, Y- and Z-graphs instead "
+                   "(with --zones: that axis' level graph beside the polycube, in the same shades)")
+    p.add_argument("--zones", choices=("X", "Y", "Z"), help="shade the zones of this axis in alternating "
+                   "greys, as in the paper's figure of zones and level graphs")
+    p.add_argument("--grid", action="store_true", help="draw the unit grid on the faces too")
     p = command("sheet", cmd_sheet, "a grid of small renders with captions, from files or a catalog "
                 "directory", file_arg=False, json_flag=False)
     p.add_argument("sources", metavar="DIR|FILE", nargs="+", help="catalog directories or " + FILE_HELP)

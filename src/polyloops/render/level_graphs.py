@@ -33,8 +33,9 @@ def _positions(ls: LoopStructure, axis: Axis, g: nx.MultiDiGraph) -> dict[int, t
     return pos
 
 
-def draw_level_graph(ax, ls: LoopStructure, axis: Axis) -> None:
-    """Draw one level graph on matplotlib axes: zones by level, arcs by loop id."""
+def draw_level_graph(ax, ls: LoopStructure, axis: Axis, shades: list[str] | None = None) -> None:
+    """Draw one level graph on matplotlib axes: zones by level, arcs by loop id; with
+    ``shades``, each zone's node filled with its shade in the picture of the zones."""
     g = ls.level_graph(axis)
     pos = _positions(ls, axis, g)
     seen: dict[tuple[int, int], int] = defaultdict(int)
@@ -57,7 +58,8 @@ def draw_level_graph(ax, ls: LoopStructure, axis: Axis) -> None:
         mx, my = (pos[u][0] + pos[v][0]) / 2, (pos[u][1] + pos[v][1]) / 2
         ax.text(mx + 0.12 + rad * 0.4, my, str(loop), fontsize=7, color=AXIS_COLOR[axis])
     for z, (x, y) in pos.items():
-        ax.plot([x], [y], "o", ms=16, color=LIGHT_COLOR[axis], markeredgecolor=AXIS_COLOR[axis])
+        fill = LIGHT_COLOR[axis] if shades is None else shades[z]
+        ax.plot([x], [y], "o", ms=16, color=fill, markeredgecolor=AXIS_COLOR[axis])
         ax.text(x, y, str(z), ha="center", va="center", fontsize=8)
     xs = [p[0] for p in pos.values()] or [0.0]
     ys = [p[1] for p in pos.values()] or [0.0]

@@ -1,10 +1,12 @@
-"""Pictures of polycubes with their loops, and of level graphs.
+"""Pictures of polycubes with their loops.
 
-Faces are drawn with the painter's algorithm after cutting them into unit cells, so that
-depth sorting stays right for concave and self-intersecting polycubes.  Each loop is drawn
-on the surface through the face centres it visits, as two thin strokes on either side of
-its path: the stroke on the ``+`` side (towards higher coordinates of the loop's axis) dark,
-the one on the ``-`` side light, in the paper's colours.
+Hidden surfaces are resolved per pixel by a depth buffer (:mod:`polyloops.render.raster`), so
+that concave, self-intersecting and high-genus polycubes are drawn right: the face drawn at
+each point is the nearest one.  The polycube's own quads are drawn with their edges (the unit
+grid on request); each loop is drawn on the surface as two thin strokes on either side of its
+path, the stroke on the ``+`` side (towards higher coordinates of the loop's axis) dark, the
+one on the ``-`` side light, in the paper's colours.  With ``zones``, the zones of one axis are
+shaded in alternating greys, as in the paper's figure of zones and level graphs.
 """
 
 from __future__ import annotations
@@ -13,9 +15,8 @@ import io
 import math
 import os
 from collections.abc import Iterable
-from itertools import product
 
-from matplotlib.patches import Polygon
+import numpy as np
 
 from polyloops.core.directions import Axis, Direction
 from polyloops.core.duality import DualityError, dualize, primalize
@@ -25,6 +26,7 @@ from polyloops.core.structure import LoopStructure
 from polyloops.render.colors import AXIS_COLOR, LIGHT_COLOR
 from polyloops.render.figure import new_figure, save_figure
 from polyloops.render.projection import View
+from polyloops.render.raster import DepthBuffer, rasterize
 
 FACE_SHADE = {Axis.X: "#cfcfcf", Axis.Y: "#e8e8e8", Axis.Z: "#b4b4b4"}
 
@@ -89,125 +91,103 @@ def _face_frame(q: Polycube, f: int) -> tuple[int, int, list[int], list[int]] | 
     return a, b, lo, hi
 
 
-def _cells(q: Polycube, f: int) -> list[tuple[tuple[int, int], list[Vec]]]:
-    """The face cut into unit cells, each with its grid position (faces are axis-aligned
-    rectangles with integer corners; any other face stays whole, at position (0, 0))."""
-    p = [q.positions[c] for c in q.faces[f]]
-    frame = _face_frame(q, f)
-    if frame is None:
-        return [((0, 0), [_vec(map(float, x)) for x in p])]
-    a, b, lo, hi = frame
-    out = []
-    for u, v in product(range(lo[a], hi[a]), range(lo[b], hi[b])):
-        cell = []
-        for corner in p:  # keep the face's orientation
-            x = list(map(float, corner))
-            x[a] = u + (1.0 if corner[a] == hi[a] else 0.0)
-            x[b] = v + (1.0 if corner[b] == hi[b] else 0.0)
-            cell.append((x[0], x[1], x[2]))
-        out.append(((u, v), cell))
-    return out
-
-
-def _pieces(a: Vec, b: Vec, longest: float = 0.5) -> list[tuple[Vec, Vec]]:
-    """A segment cut into pieces no longer than ``longest``."""
-    length = math.dist(a, b)
-    k = max(1, math.ceil(length / longest))
-    pts = [_vec(a[i] + (b[i] - a[i]) * j / k for i in range(3)) for j in range(k + 1)]
-    return [(pts[j], pts[j + 1]) for j in range(k)]
-
-
-def _loop_strokes(q: Polycube, ls: LoopStructure, lift: float,
-                  faces: set[int]) -> list[tuple[int, tuple[Vec, Vec], str, float]]:
-    """Pieces of every loop on the given faces: (face, segment, colour, width), one stroke on
-    each side of the loop's path."""
-    m = q.map
-    out = []
-    for lp in ls.loops:
-        axis = ls.axes[lp.id]
-        e = [0.0, 0.0, 0.0]
-        e[axis] = 1.0
-        for i, d in enumerate(lp.darts):
-            f = lp.faces[i]
-            n = face_normal(q, f)
-            if n is None or f not in faces:
-                continue
-            ends = []
-            for dart in (d, m.next[m.next[d]]):  # entry and exit edges of this face
-                a, b = q.positions[m.origin(dart)], q.positions[m.target(dart)]
-                ends.append(tuple((a[k] + b[k]) / 2 for k in range(3)))
-            centre = tuple(sum(q.positions[c][k] for c in q.faces[f]) / 4 for k in range(3))
-            for side, colour in ((1.0, AXIS_COLOR[axis]), (-1.0, LIGHT_COLOR[axis])):
-                path = (ends[0], centre, ends[1])
-                pts = [_add(_add(p, n.vector, lift), tuple(e), side * 0.08) for p in path]
-                for j in range(2):
-                    for piece in _pieces(pts[j], pts[j + 1]):
-                        out.append((f, piece, colour, 2.2))
-    return out
-
-
 EDGE_COLOUR = "#4d4d4d"
+BACK_COLOUR = "#ff8080"  # the inside of the surface, seen where it passes through itself
+ZONE_SHADES = ("#e6e6e6", "#a8a8a8", "#c8c8c8")  # alternating zones (a third if two do not do)
+LIGHT = {Axis.X: 0.93, Axis.Y: 1.0, Axis.Z: 0.84}  # zones keep some sense of shape
+SUPERSAMPLE = 3
+STROKE = 0.035  # half the width of a loop stroke, in unit cells
+OFFSET = 0.08   # the two strokes of a loop lie this far on either side of its path
+GRID = 0.015
 
 
-def draw_polycube(ax, q: Polycube, view: View, loops: LoopStructure | None) -> None:
-    """Faces turned away from the camera are left out (the surface is closed, so they are hidden
-    unless it meets itself).  The rest are cut into unit cells sorted by depth; each cell is
-    drawn with the pieces of face edges and loops that lie on it, so they are hidden with it."""
-    cells: dict[tuple[int, int, int], list] = {}
-    frames: dict[int, tuple[int, int, list[int], list[int]] | None] = {}
-    for f in range(q.map.num_faces):
+def _rgb(colour: str) -> np.ndarray:
+    return np.array([int(colour[k:k + 2], 16) / 255 for k in (1, 3, 5)])
+
+
+def zone_shades(ls: LoopStructure, axis: Axis) -> list[str]:
+    """A grey per ``axis``-zone such that zones joined by a loop differ: two alternating
+    hues when the level graph (as an undirected graph) is bipartite, as at genus 0, else a
+    greedy colouring."""
+    import networkx as nx
+
+    g = nx.Graph()
+    g.add_nodes_from(range(ls.zones(axis).count))
+    g.add_edges_from((u, v) for u, v, _ in ls.level_graph(axis).edges(keys=True) if u != v)
+    bipartite = nx.is_bipartite(g)
+    colour = nx.bipartite.color(g) if bipartite else nx.greedy_color(g, strategy="largest_first")
+    return [ZONE_SHADES[colour[z] % len(ZONE_SHADES)] for z in range(g.number_of_nodes())]
+
+
+def shade(q: Polycube, buf: DepthBuffer, view: View, loops: LoopStructure | None,
+          zones: Axis | None = None, grid: bool = False) -> np.ndarray:
+    """The colours of a depth buffer's pixels (``(H, W, 3)`` in 0..1): each visible face in
+    its shade (by its normal, or by its zone along ``zones``), the quads' edges, the unit grid
+    on request, and each loop as two strokes, dark on its ``+`` side and light on its ``-``
+    side, all decided from what each pixel actually sees."""
+    nf = q.map.num_faces
+    face_rgb = np.ones((nf + 1, 3))  # the last row: background
+    light = np.ones(nf + 1)
+    frames = [_face_frame(q, f) for f in range(nf)]
+    mid = np.zeros((nf + 1, 3))
+    in_plane = np.zeros((nf + 1, 3), dtype=bool)
+    for f in range(nf):
         n = face_normal(q, f)
-        if n is not None and view.facing(n.vector) <= 0:
-            continue
-        frames[f] = _face_frame(q, f)
-        colour = FACE_SHADE[n.axis] if n is not None else "#ff8080"
-        for (u, v), cell in _cells(q, f):
-            centre = tuple(sum(p[k] for p in cell) / 4 for k in range(3))
-            cells[(f, u, v)] = [view.depth(centre), cell, colour, [], []]
-
-    def cell_of(f: int, point: Vec) -> list:
+        facing = n is not None and view.facing(n.vector) > 0
+        face_rgb[f] = _rgb(FACE_SHADE[n.axis] if n is not None and facing else BACK_COLOUR)
+        light[f] = LIGHT[n.axis] if n is not None else 1.0
         frame = frames[f]
-        if frame is None:
-            return cells[(f, 0, 0)]
-        a, b, lo, hi = frame
-        u = min(max(math.floor(point[a]), lo[a]), hi[a] - 1)
-        v = min(max(math.floor(point[b]), lo[b]), hi[b] - 1)
-        return cells[(f, u, v)]
-
-    for f in frames:
-        corners = [_vec(map(float, q.positions[c])) for c in q.faces[f]]
-        inward = _vec(sum(c[k] for c in corners) / 4 for k in range(3))
-        for i in range(4):
-            for piece in _pieces(corners[i], corners[(i + 1) % 4], 1.0):
-                mid = _vec((piece[0][k] + piece[1][k]) / 2 for k in range(3))
-                # Nudge towards the face centre to find the cell the piece borders.
-                probe = _vec(mid[k] + 0.25 * math.copysign(1, inward[k] - mid[k]) * (inward[k] != mid[k])
-                              for k in range(3))
-                cell_of(f, probe)[3].append(piece)
+        if frame is not None:
+            a, b, lo, hi = frame
+            for k in (a, b):
+                in_plane[f, k] = True
+                mid[f, k] = (lo[k] + hi[k]) / 2
+    fid = np.where(buf.face >= 0, buf.face, nf)
+    rgb = face_rgb[fid]
+    seen = buf.face >= 0
+    if zones is not None and loops is not None:
+        shades = np.array([_rgb(c) for c in zone_shades(loops, zones)])
+        zone_of = loops.zones(zones).zone_of
+        low_zone, high_zone = np.zeros(nf + 1, dtype=np.int64), np.zeros(nf + 1, dtype=np.int64)
+        for f, face in enumerate(q.faces):
+            coords = [q.positions[c][zones] for c in face]
+            low_zone[f] = zone_of[face[coords.index(min(coords))]]
+            high_zone[f] = zone_of[face[coords.index(max(coords))]]
+        # A face crossed by a loop of this axis is split at its midline between two zones.
+        above = buf.point[..., zones] > mid[fid, zones]
+        zone = np.where(in_plane[fid, zones] & above, high_zone[fid], low_zone[fid])
+        back = (face_rgb[fid] == _rgb(BACK_COLOUR)).all(axis=-1)
+        rgb = np.where((seen & ~back)[..., None], shades[zone] * light[fid][..., None], rgb)
+    if grid:
+        for k in range(3):
+            frac = np.abs(buf.point[..., k] - np.round(buf.point[..., k]))
+            rgb = np.where((seen & in_plane[fid, k] & (frac < GRID))[..., None], _rgb("#8c8c8c"), rgb)
     if loops is not None:
-        for f, piece, colour, width in _loop_strokes(q, loops, 0.02, set(frames)):
-            mid = _vec((piece[0][k] + piece[1][k]) / 2 for k in range(3))
-            cell_of(f, mid)[4].append((piece, colour, width))
-    xs, ys = [], []
-    for _, poly, colour, edges, strokes in sorted(cells.values(), key=lambda c: c[0]):
-        flat = [view.project(p) for p in poly]
-        xs += [x for x, _ in flat]
-        ys += [y for _, y in flat]
-        ax.add_patch(Polygon(flat, closed=True, facecolor=colour, edgecolor=colour, lw=0.3))
-        for a, b in edges:
-            (x0, y0), (x1, y1) = view.project(a), view.project(b)
-            ax.plot([x0, x1], [y0, y1], color=EDGE_COLOUR, lw=0.7, solid_capstyle="round")
-        for (a, b), c, width in strokes:
-            (x0, y0), (x1, y1) = view.project(a), view.project(b)
-            ax.plot([x0, x1], [y0, y1], color=c, lw=width, solid_capstyle="round")
-    if xs:
-        pad = 0.3
-        cx, cy = (max(xs) + min(xs)) / 2, (max(ys) + min(ys)) / 2
-        r = max(max(xs) - min(xs), max(ys) - min(ys)) / 2 + pad
-        ax.set_xlim(cx - r, cx + r)
-        ax.set_ylim(cy - r, cy + r)
+        for k in Axis:
+            d = buf.point[..., k] - mid[fid, k]
+            on = seen & in_plane[fid, k]
+            rgb = np.where((on & (np.abs(d + OFFSET) < STROKE))[..., None], _rgb(LIGHT_COLOR[k]), rgb)
+            rgb = np.where((on & (np.abs(d - OFFSET) < STROKE))[..., None], _rgb(AXIS_COLOR[k]), rgb)
+    # The quads' edges: where the visible face changes between neighbouring pixels.
+    edge = np.zeros_like(seen)
+    edge[:, :-1] |= fid[:, :-1] != fid[:, 1:]
+    edge[:, 1:] |= fid[:, :-1] != fid[:, 1:]
+    edge[:-1, :] |= fid[:-1, :] != fid[1:, :]
+    edge[1:, :] |= fid[:-1, :] != fid[1:, :]
+    return np.where(edge[..., None], _rgb(EDGE_COLOUR), rgb)
+
+
+def draw_polycube(ax, q: Polycube, view: View, loops: LoopStructure | None, pixels: int = 400,
+                  zones: Axis | None = None, grid: bool = False) -> DepthBuffer:
+    """Draw ``q`` from ``view`` on matplotlib axes, hidden surfaces by a depth buffer
+    (:mod:`polyloops.render.raster`) supersampled for smooth edges; returns the buffer."""
+    buf = rasterize(q, view, pixels * SUPERSAMPLE)
+    rgb = shade(q, buf, view, loops, zones, grid)
+    small = rgb.reshape(pixels, SUPERSAMPLE, pixels, SUPERSAMPLE, 3).mean(axis=(1, 3))
+    ax.imshow(small, extent=buf.extent, interpolation="antialiased", origin="upper")
     ax.set_aspect("equal")
     ax.axis("off")
+    return buf
 
 
 MAX_EXTENT = 256  # unit cells per axis that a picture draws; beyond, the compact form is drawn
@@ -255,18 +235,64 @@ def as_polycube(obj: Polycube | LoopStructure) -> tuple[Polycube, LoopStructure 
 
 
 def render_polycube(obj: Polycube | LoopStructure, path: str | os.PathLike[str] | None = None,
-                    views: int = 1, loops: bool = True, title: str | None = None, size: float = 4.0):
+                    views: int = 1, loops: bool = True, title: str | None = None, size: float = 4.0,
+                    zones: Axis | None = None, level_graph: bool = False, grid: bool = False):
     """Draw a polycube (a loop structure is primalized first) from ``views`` directions.
 
-    Writes PNG or SVG to ``path``; with ``path=None`` returns the figure."""
+    Parameters
+    ----------
+    obj:
+        A polycube or an oriented loop structure.
+    path:
+        Write PNG or SVG here (by its ending); ``None`` returns the matplotlib figure.
+    views:
+        How many views, each from another octant, chosen to show the most faces.
+    loops:
+        Draw the loops on the surface.
+    title:
+        A line above the picture.
+    size:
+        Inches per view.
+    zones:
+        Shade the zones of this axis in alternating greys (the paper's figure of zones).
+    level_graph:
+        With ``zones``, draw that axis' level graph beside, its nodes in the same shades.
+    grid:
+        Draw the unit grid on the faces too.
+
+    Returns
+    -------
+    matplotlib.figure.Figure or None
+
+    Raises
+    ------
+    DualityError
+        When a loop structure has no polycube (a level graph has a cycle).
+    PictureError
+        When the polycube is too large to draw, or zones are asked of a shape without loops.
+
+    >>> from polyloops.core.examples import load_example
+    >>> fig = render_polycube(load_example("l-shape"), zones=Axis.X, level_graph=True)
+    >>> len(fig.axes)
+    2
+    """
     q, ls = as_polycube(obj)
+    if zones is not None and ls is None:
+        raise PictureError("no loop structure, so no zones to shade")
     chosen = choose_views(q, max(1, views))
-    cols = min(len(chosen), 2 if len(chosen) == 4 else len(chosen))
-    rows = math.ceil(len(chosen) / cols)
+    beside = 1 if zones is not None and level_graph else 0
+    panels = len(chosen) + beside
+    cols = min(panels, 2 if panels == 4 else panels)
+    rows = math.ceil(panels / cols)
     fig = new_figure(size * cols, size * rows + (0.4 if title else 0))
     for i, view in enumerate(chosen):
         ax = fig.add_subplot(rows, cols, i + 1)
-        draw_polycube(ax, q, view, ls if loops else None)
+        draw_polycube(ax, q, view, ls if loops else None, pixels=int(size * 100), zones=zones, grid=grid)
+    if beside:
+        from polyloops.render.level_graphs import draw_level_graph
+
+        assert ls is not None and zones is not None
+        draw_level_graph(fig.add_subplot(rows, cols, panels), ls, zones, zone_shades(ls, zones))
     if title:
         fig.suptitle(title, fontsize=10)
     fig.subplots_adjust(left=0.01, right=0.99, bottom=0.01, top=0.93 if title else 0.99,

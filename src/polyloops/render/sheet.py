@@ -22,7 +22,7 @@ def render_sheet(items: Sequence[tuple[str, Structure]], path: str | os.PathLike
     for i, (caption, obj) in enumerate(items):
         ax = fig.add_subplot(rows, columns, i + 1)
         q, ls = as_polycube(obj)
-        draw_polycube(ax, q, choose_views(q, 1)[0], ls)
+        draw_polycube(ax, q, choose_views(q, 1)[0], ls, pixels=int(cell * 100))
         ax.set_title(caption, fontsize=7, family="monospace")
     fig.subplots_adjust(left=0.01, right=0.99, bottom=0.01, top=1 - 0.35 / (rows * (cell + 0.35)) * 1.2,
                         wspace=0.05, hspace=0.25)
