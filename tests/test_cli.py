@@ -12,7 +12,7 @@ from polyloops.core.formats import dumps, loads
 
 COMMANDS = ["examples", "verify", "primalize", "dualize", "info", "corners", "orient", "moves", "add",
             "remove", "signature", "catalog", "catalog-query", "render", "sheet", "convert", "reach", "path",
-            "conjecture", "identify", "catalog-export", "from-voxels", "segmentation"]
+            "conjecture", "identify", "catalog-export", "from-voxels", "segmentation", "view", "gallery"]
 
 
 def run(capsys, *argv):

@@ -56,6 +56,56 @@ def cmd_render(args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
+def cmd_view(args: argparse.Namespace) -> int:
+    from polyloops.render.polycube import PictureError
+    from polyloops.render.viewer import write_viewer
+
+    if Path(args.output).suffix.lower() not in (".html", ".htm"):
+        raise CliError(f"{args.output}: the viewer is written as NAME.html")
+    obj = read_structure(args.file)
+    if isinstance(obj, LoopStructure) and not obj.oriented:
+        raise CliError(f"{args.file}: is a labelled loop structure without sides; orient it first")
+    try:
+        write_viewer(obj, args.output, title=_caption(args.file, obj))
+    except DualityError as err:
+        raise CliError(f"{args.file}: no polycube to show: {err}", EXIT_INVALID) from None
+    except PictureError as err:
+        raise CliError(f"{args.file}: {err}") from None
+    except OSError as err:
+        raise CliError(f"{args.output}: cannot write: {err.strerror or err}") from None
+    print(f"wrote {args.output}: open it in a browser (no network needed)")
+    return EXIT_OK
+
+
+def cmd_gallery(args: argparse.Namespace) -> int:
+    from tqdm import tqdm
+
+    from polyloops.enumerate.census import CatalogError, read_catalog
+    from polyloops.render.gallery import build_gallery
+
+    out = Path(args.output)
+    if out.exists() and not out.is_dir():
+        raise CliError(f"{out}: exists and is not a directory")
+    if not out.absolute().parent.is_dir():
+        raise CliError(f"{out}: the directory {out.absolute().parent} does not exist")
+    try:
+        census = read_catalog(Path(args.dir) if args.dir else None)
+    except CatalogError as err:
+        raise CliError(str(err)) from None
+    total = len(census.entries) if args.limit is None else min(args.limit, len(census.entries))
+    bar = tqdm(total=total, desc="gallery", unit="class", disable=None, file=sys.stderr)
+    try:
+        built = build_gallery(census, out, args.limit, progress=lambda _: bar.update(1))
+    except ValueError as err:  # a record whose signature does not decode
+        raise CliError(f"{census.directory}: {err}") from None
+    except OSError as err:
+        raise CliError(f"{out}: cannot write: {err.strerror or err}") from None
+    finally:
+        bar.close()
+    print(f"wrote {built.classes} classes to {out / 'index.html'} (open it in a browser; no network needed)")
+    return EXIT_OK
+
+
 def _is_dir(path: Path) -> bool:
     try:
         return path.is_dir()
@@ -133,6 +183,18 @@ def add_commands(command: AddCommand) -> None:
     p.add_argument("--zones", choices=("X", "Y", "Z"), help="shade the zones of this axis in alternating "
                    "greys, as in the paper's figure of zones and level graphs")
     p.add_argument("--grid", action="store_true", help="draw the unit grid on the faces too")
+    p = command("view", cmd_view, "an interactive 3D viewer in one self-contained HTML page: turn and "
+                "zoom the polycube, show or hide each axis' loops and the corners, hover to name "
+                "faces, zones, loops and corners", json_flag=False)
+    p.add_argument("-o", "--output", metavar="OUT", required=True, help="OUT.html")
+    p = command("gallery", cmd_gallery, "a catalog as a static site: every class with its picture, name, "
+                "corners, loops per axis, corner categories, chirality and irreducibility, filters by "
+                "these columns, a button that copies the signature, and a viewer page per class "
+                "(resumable)", file_arg=False, json_flag=False)
+    p.add_argument("dir", metavar="DIR", nargs="?", help="a catalog directory (default: the shipped "
+                   "catalogs/genus0)")
+    p.add_argument("-o", "--output", metavar="SITE", required=True, help="the site's directory")
+    p.add_argument("--limit", type=count_arg(1), metavar="N", help="only the first N classes")
     p = command("sheet", cmd_sheet, "a grid of small renders with captions, from files or a catalog "
                 "directory", file_arg=False, json_flag=False)
     p.add_argument("sources", metavar="DIR|FILE", nargs="+", help="catalog directories or " + FILE_HELP)

@@ -2,8 +2,10 @@
 
 :mod:`polyloops.core` imports nothing above it, so it cannot draw; importing :mod:`polyloops`
 calls :func:`register`, which gives :class:`~polyloops.core.polycube.Polycube` and
-:class:`~polyloops.core.structure.LoopStructure` a ``_repr_png_`` that imports matplotlib only
-when Jupyter asks for a picture (so ``import polyloops`` stays light).
+:class:`~polyloops.core.structure.LoopStructure` a ``_repr_html_`` (the interactive viewer of
+:mod:`polyloops.render.viewer`) and a ``_repr_png_`` (the static picture, which front ends
+without HTML show instead).  Each imports plotly or matplotlib only when Jupyter asks (so
+``import polyloops`` stays light).
 """
 
 from __future__ import annotations
@@ -31,7 +33,26 @@ def _structure_png(self: LoopStructure) -> bytes | None:
         return None
 
 
+def _viewer_html(self: Polycube | LoopStructure) -> str | None:
+    """Jupyter shows the interactive viewer; ``None`` (the picture instead) when there is no
+    polycube to show or plotly is missing."""
+    from polyloops.core.duality import DualityError
+    from polyloops.render.polycube import PictureError
+
+    try:
+        from polyloops.render.viewer import viewer_html
+    except ImportError:
+        return None
+    try:
+        return viewer_html(self, full_html=False)
+    except (DualityError, PictureError):
+        return None
+
+
 def register() -> None:
-    """Give polycubes and loop structures a ``_repr_png_``, so Jupyter draws them."""
+    """Give polycubes and loop structures a ``_repr_html_`` and a ``_repr_png_``, so Jupyter
+    shows them."""
     Polycube._repr_png_ = _polycube_png  # type: ignore[attr-defined]
     LoopStructure._repr_png_ = _structure_png  # type: ignore[attr-defined]
+    Polycube._repr_html_ = _viewer_html  # type: ignore[attr-defined]
+    LoopStructure._repr_html_ = _viewer_html  # type: ignore[attr-defined]

@@ -1,0 +1,109 @@
+"""A catalog as a static web site: every class with its picture, name and columns, filters by
+those columns, a button that copies the signature, and a viewer page per class.
+
+The site is a directory: ``index.html`` (the list, with the data inside it), ``img/NAME.png``
+(one picture per class, drawn by :func:`polyloops.render.polycube.render_polycube`) and
+``view/NAME.html`` (one interactive viewer per class, sharing ``view/plotly.min.js``).  It
+needs no server and no network: open ``index.html``.  Pictures and viewer pages already there
+are kept, so an interrupted run resumes; every file is written through a temporary file.
+
+>>> import tempfile, pathlib
+>>> from polyloops.enumerate.census import read_catalog
+>>> census = read_catalog()
+>>> with tempfile.TemporaryDirectory() as tmp:
+...     built = build_gallery(census, pathlib.Path(tmp) / "site", limit=2)
+...     names = sorted(p.name for p in (pathlib.Path(tmp) / "site" / "img").iterdir())
+>>> built.classes, names
+(2, ['P12.1.png', 'P8.1.png'])
+"""
+
+from __future__ import annotations
+
+import html
+import json
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+
+from polyloops.core.corners import CATEGORIES
+from polyloops.core.files import write_atomic
+from polyloops.enumerate.census import CatalogEntry, Census
+
+
+@dataclass(frozen=True)
+class GalleryBuild:
+    """What :func:`build_gallery` wrote: the site's directory and how many classes it lists."""
+
+    directory: Path
+    classes: int
+
+
+def _row(entry: CatalogEntry) -> dict[str, object]:
+    r = entry.record
+    return {"name": entry.name, "signature": r.signature, "corners": r.corners, "faces": r.faces,
+            "loops": r.loops, "categories": {str(c): r.categories[c] for c in CATEGORIES},
+            "chiral": r.chiral, "irreducible": r.irreducible, "automorphisms": r.automorphisms}
+
+
+def build_gallery(census: Census, out: str | Path, limit: int | None = None,
+                  progress: Callable[[str], None] | None = None) -> GalleryBuild:
+    """Write the gallery of a catalog into directory ``out``.
+
+    Parameters
+    ----------
+    census:
+        A catalog, as :func:`polyloops.enumerate.census.read_catalog` reads it.
+    out:
+        The site's directory (made if missing; its parent must exist).
+    limit:
+        List only the first ``limit`` classes.
+    progress:
+        Called with each class's name once its picture and viewer page exist.
+
+    Returns
+    -------
+    GalleryBuild
+
+    Raises
+    ------
+    OSError
+        When a file cannot be written.
+    ValueError
+        When a record's signature does not decode.
+    """
+    from polyloops.render.polycube import render_polycube
+    from polyloops.render.viewer import write_plotly_js, write_viewer
+
+    out = Path(out)
+    entries = list(census.entries[:limit] if limit is not None else census.entries)
+    (out / "img").mkdir(parents=True, exist_ok=True)
+    (out / "view").mkdir(exist_ok=True)
+    if not (out / "view" / "plotly.min.js").exists():
+        write_plotly_js(out / "view")
+    for entry in entries:
+        picture, page = out / "img" / f"{entry.name}.png", out / "view" / f"{entry.name}.html"
+        if not picture.exists() or not page.exists():
+            ls = entry.structure()
+            if not picture.exists():
+                render_polycube(ls, picture, size=2.4)
+            if not page.exists():
+                write_viewer(ls, page, title=f"{entry.name}: {entry.corners} corners", plotly_js="directory")
+        if progress is not None:
+            progress(entry.name)
+    up_to = {"full": "rotations and reflections", "rotation": "rotations", "labelled": "renumbering"}
+    title = (f"Genus-{census.genus} polycubes through {census.max_corners} corners, "
+             f"up to {up_to[str(census.symmetry)]}")
+    write_atomic(out / "index.html", gallery_html([_row(e) for e in entries], title))
+    return GalleryBuild(out, len(entries))
+
+
+def gallery_html(rows: list[dict[str, object]], title: str) -> str:
+    """The gallery's index page: the rows as data inside it, filters and cards drawn by a
+    small script (no library, nothing loaded from elsewhere)."""
+    from importlib.resources import files
+
+    page = files("polyloops.render").joinpath("gallery.html").read_text(encoding="utf-8")
+    data = json.dumps(rows, separators=(",", ":")).replace("</", "<\\/")
+    return (page.replace("@TITLE@", html.escape(title))
+            .replace("@CATEGORIES@", json.dumps([str(c) for c in CATEGORIES]))
+            .replace("@DATA@", data))
