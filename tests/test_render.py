@@ -225,3 +225,15 @@ def test_zones_and_grid(tmp_path):
 
     assert has_colour(img, ZONE_SHADES[0], 0.03) and has_colour(img, ZONE_SHADES[1], 0.03)
     assert main(["render", "example:l-shape", "--grid", "-o", str(tmp_path / "grid.png")]) == 0
+
+
+def test_view_writes_one_self_contained_page(tmp_path, capsys):
+    out = tmp_path / "ring.html"
+    assert main(["view", "example:ring", "-o", str(out)]) == 0
+    page = out.read_text(encoding="utf-8")
+    assert "<script" in page and '<script src="http' not in page  # plotly.js is inside, not fetched
+    for group in ("X-loops", "Y-loops", "Z-loops", "corners"):
+        assert group in page
+    assert main(["view", "example:ring", "-o", str(tmp_path / "ring.png")]) == 2
+    assert main(["view", "example:torus-cycle", "-o", str(tmp_path / "t.html")]) == 1
+    assert not (tmp_path / "t.html").exists()
