@@ -21,8 +21,9 @@ def polyloops(*args: str) -> None:
 
 
 def screenshots(site: Path, viewer: Path) -> None:
-    from browser import FLAGS, find_chromium
     from playwright.sync_api import sync_playwright
+
+    from browser import FLAGS, find_chromium
 
     path, why = find_chromium()
     if path is None:
