@@ -79,7 +79,8 @@ def test_gallery_filters_copy_and_links(chromium, tmp_path, capsys):
     first = cards.first
     assert first.get_attribute("title").startswith("1o")  # the full signature on hover
     first.locator("button").click()
-    assert first.locator("button").inner_text() == "copied"
+    # The copy answers asynchronously (the clipboard's promise, or the fallback).
+    first.locator("button", has_text="copied").wait_for(timeout=5000)
     assert ink(page.screenshot()) > 0.05
     first.locator(".name a").click()
     page.wait_for_selector(".js-plotly-plot canvas")
