@@ -165,7 +165,9 @@ def oracle(boxes, view, u, v):
     return hits[0][1]
 
 
-def check_against_oracle(q, pixels=28, views=4):
+def check_against_oracle(q, pixels=28, views=4, sure=0.9):
+    """The buffer agrees with the oracle at every pixel the oracle is sure of, and that is
+    at least a ``sure`` fraction of them (ties and borders aside)."""
     from polyloops.render.projection import View
     from polyloops.render.raster import rasterize
 
@@ -182,14 +184,26 @@ def check_against_oracle(q, pixels=28, views=4):
                 got = int(buf.face[i, j])
                 assert got == (-1 if want is None else want), (view.toward, i, j)
                 checked += 1
-    assert checked > 0.9 * len(chosen) * pixels * pixels
+    assert checked > sure * len(chosen) * pixels * pixels
 
 
-@pytest.mark.parametrize("name", ["l-shape", "ring", "non-incremental", "bridged-ring",
-                                  "two-axis-holes", "self-intersecting"])
+def drawable(name):
+    from polyloops.core.duality import DualityError
+
+    try:
+        return as_polycube(load_example(name))[0]
+    except DualityError:  # a loop structure with a cyclic level graph: no polycube to draw
+        return None
+
+
+@pytest.mark.parametrize("name", sorted(EXAMPLES))
 def test_every_pixel_shows_the_nearest_face_on_the_examples(name):
-    q, _ = as_polycube(load_example(name))
-    check_against_oracle(q)
+    """Every bundled example that has a polycube (the invalid ones too, drawn as they are)."""
+    q = drawable(name)
+    if q is None:
+        pytest.skip(f"{name} has no polycube to draw")
+    # An invalid structure's polycube may fold onto itself: many ties, each left out.
+    check_against_oracle(q, sure=0.9 if EXAMPLES[name].valid else 0.5)
 
 
 @settings(max_examples=8, deadline=None)
