@@ -251,3 +251,13 @@ def test_view_writes_one_self_contained_page(tmp_path, capsys):
     assert main(["view", "example:ring", "-o", str(tmp_path / "ring.png")]) == 2
     assert main(["view", "example:torus-cycle", "-o", str(tmp_path / "t.html")]) == 1
     assert not (tmp_path / "t.html").exists()
+
+
+def test_jupyter_shows_the_viewer_with_the_picture_as_fallback():
+    import polyloops  # noqa: F401  (registers the representations)
+
+    cube = load_example("cube")
+    html = cube._repr_html_()
+    assert "plotly" in html.lower() and "X-loops" in html and not html.lstrip().startswith("<html")
+    assert cube._repr_png_().startswith(b"\x89PNG")
+    assert load_example("torus-cycle")._repr_html_() is None  # no polycube: text instead
