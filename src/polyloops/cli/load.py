@@ -9,6 +9,7 @@ from __future__ import annotations
 import os
 import stat
 import sys
+from pathlib import Path
 
 from polyloops.core.examples import EXAMPLES, example_text
 from polyloops.core.exchange import apg_text, parse_apg, parse_obj
@@ -215,3 +216,13 @@ def write_text(path: str, text: str | bytes) -> None:
         write_atomic(path, text)
     except OSError as err:
         raise CliError(f"{path}: cannot write: {err.strerror or err}") from None
+
+
+def output_dir(text: str) -> Path:
+    """An output directory argument: a directory, or a name whose parent directory exists."""
+    out = Path(text)
+    if out.exists() and not out.is_dir():
+        raise CliError(f"{out}: exists and is not a directory")
+    if not out.absolute().parent.is_dir():
+        raise CliError(f"{out}: the directory {out.absolute().parent} does not exist")
+    return out

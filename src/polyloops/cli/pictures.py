@@ -8,7 +8,7 @@ from pathlib import Path
 from typing import Any
 
 from polyloops.cli.args import FILE_HELP, AddCommand, count_arg
-from polyloops.cli.load import EXIT_INVALID, EXIT_OK, CliError, read_structure
+from polyloops.cli.load import EXIT_INVALID, EXIT_OK, CliError, output_dir, read_structure
 from polyloops.core.directions import Axis
 from polyloops.core.duality import DualityError
 from polyloops.core.polycube import Polycube
@@ -83,11 +83,7 @@ def cmd_gallery(args: argparse.Namespace) -> int:
     from polyloops.enumerate.census import CatalogError, read_catalog
     from polyloops.render.gallery import build_gallery
 
-    out = Path(args.output)
-    if out.exists() and not out.is_dir():
-        raise CliError(f"{out}: exists and is not a directory")
-    if not out.absolute().parent.is_dir():
-        raise CliError(f"{out}: the directory {out.absolute().parent} does not exist")
+    out = output_dir(args.output)
     try:
         census = read_catalog(Path(args.dir) if args.dir else None)
     except CatalogError as err:

@@ -15,6 +15,7 @@ from polyloops.cli.load import (
     EXIT_OK,
     CliError,
     format_of,
+    output_dir,
     read_text_file,
     read_valid_structure,
     write_text,
@@ -31,15 +32,6 @@ def _kinds(text: str):
         raise CliError(f"--moves: {err}") from None
 
 
-def _output_dir(text: str) -> Path:
-    out = Path(text)
-    if out.exists() and not out.is_dir():
-        raise CliError(f"{out}: exists and is not a directory")
-    if not out.absolute().parent.is_dir():
-        raise CliError(f"{out}: the directory {out.absolute().parent} does not exist")
-    return out
-
-
 def cmd_reach(args: argparse.Namespace) -> int:
     from tqdm import tqdm
 
@@ -48,7 +40,7 @@ def cmd_reach(args: argparse.Namespace) -> int:
 
     start = read_valid_structure(args.start)
     kinds = _kinds(args.moves)
-    out = _output_dir(args.output) if args.output else None
+    out = output_dir(args.output) if args.output else None
     bar = tqdm(desc="reach", unit="level", disable=None, file=sys.stderr)
 
     def progress(p: dict[str, Any]) -> None:
