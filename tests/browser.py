@@ -28,12 +28,20 @@ def find_chromium() -> tuple[str | None, str]:
         return None, "headless Chromium is not installed (apt-get install chromium; CI installs it)"
     if not hasattr(os, "geteuid") or os.geteuid() != 0 or shutil.which("apt-get") is None:
         return None, "headless Chromium is missing and cannot be installed here (needs root and apt-get)"
+    import fcntl
+    import tempfile
+
     env = {**os.environ, "DEBIAN_FRONTEND": "noninteractive"}
-    try:
-        subprocess.run(["apt-get", "update", "-qq"], check=True, capture_output=True, timeout=300, env=env)
-        subprocess.run(["apt-get", "install", "-y", "-qq", "chromium"], check=True, capture_output=True,
-                       timeout=900, env=env)
-    except (subprocess.SubprocessError, OSError) as err:
-        return None, f"installing Debian's chromium failed: {err}"
+    # Test workers run in parallel: one installs, the others wait for it, then find it.
+    with open(os.path.join(tempfile.gettempdir(), "polyloops-chromium.lock"), "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        if shutil.which("chromium") is None:
+            try:
+                subprocess.run(["apt-get", "update", "-qq"], check=True, capture_output=True, timeout=300,
+                               env=env)
+                subprocess.run(["apt-get", "install", "-y", "-qq", "chromium"], check=True,
+                               capture_output=True, timeout=900, env=env)
+            except (subprocess.SubprocessError, OSError) as err:
+                return None, f"installing Debian's chromium failed: {err}"
     path = shutil.which("chromium")
     return (path, "") if path else (None, "Debian's chromium installed no chromium command")
