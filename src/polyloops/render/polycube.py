@@ -131,10 +131,11 @@ def shade(q: Polycube, buf: DepthBuffer, view: View, loops: LoopStructure | None
     frames = [_face_frame(q, f) for f in range(nf)]
     mid = np.zeros((nf + 1, 3))
     in_plane = np.zeros((nf + 1, 3), dtype=bool)
+    inside = np.zeros(nf + 1, dtype=bool)  # faces that show the viewer their inside
     for f in range(nf):
         n = face_normal(q, f)
-        facing = n is not None and view.facing(n.vector) > 0
-        face_rgb[f] = _rgb(FACE_SHADE[n.axis] if n is not None and facing else BACK_COLOUR)
+        inside[f] = n is None or view.facing(n.vector) <= 0
+        face_rgb[f] = _rgb(FACE_SHADE[n.axis] if n is not None and not inside[f] else BACK_COLOUR)
         light[f] = LIGHT[n.axis] if n is not None else 1.0
         frame = frames[f]
         if frame is not None:
@@ -156,8 +157,7 @@ def shade(q: Polycube, buf: DepthBuffer, view: View, loops: LoopStructure | None
         # A face crossed by a loop of this axis is split at its midline between two zones.
         above = buf.point[..., zones] > mid[fid, zones]
         zone = np.where(in_plane[fid, zones] & above, high_zone[fid], low_zone[fid])
-        back = (face_rgb[fid] == _rgb(BACK_COLOUR)).all(axis=-1)
-        rgb = np.where((seen & ~back)[..., None], shades[zone] * light[fid][..., None], rgb)
+        rgb = np.where((seen & ~inside[fid])[..., None], shades[zone] * light[fid][..., None], rgb)
     if grid:
         for k in range(3):
             frac = np.abs(buf.point[..., k] - np.round(buf.point[..., k]))
