@@ -27,7 +27,8 @@ class OptionalBuildExt(build_ext):
 
 
 setup(
-    ext_modules=[Extension("polyloops.enumerate._strips", ["src/polyloops/enumerate/_strips.c"],
-                           extra_compile_args=["-O2"], optional=True)],
+    ext_modules=[Extension(f"polyloops.enumerate.{name}", [f"src/polyloops/enumerate/{name}.c"],
+                           extra_compile_args=["-O2"], optional=True)
+                 for name in ("_strips", "_arrangements")],
     cmdclass={"build_ext": OptionalBuildExt},
 )

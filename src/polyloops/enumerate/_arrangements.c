@@ -1,0 +1,571 @@
+/* One step of the canonical construction of arrangements of simple closed curves
+ * (polyloops/enumerate/arrangements.py explains the method and proves the cuts).
+ *
+ * An arrangement is a connected 4-regular map on the sphere whose straight-ahead walks (its
+ * loops) are simple closed curves; its faces are the regions, its vertices the crossings.
+ * Darts carry `rot` (the next dart counter-clockwise around the origin) and `twin`; the face
+ * on the left of d continues with irot(twin(d)).  A canonical arrangement numbers its darts
+ * in blocks of four, one block a crossing, rot(4v + i) = 4v + (i + 1) % 4, so its `twin`
+ * array alone is the arrangement.
+ *
+ * children(rot, twin, limit) draws every simple closed curve that crosses the parent at most
+ * `limit` - (parent crossings) times, as a path that crosses one edge at a time and splits the
+ * faces it passes, and returns each child that
+ *   - can still grow into an arrangement with at most `limit` crossings whose regions have 3 to
+ *     6 sides (the counting bound `need`), and
+ *   - has the new curve as its canonical loop to delete: among loops whose deletion leaves
+ *     the arrangement connected, those with the most crossings, and of these the one met first
+ *     in the canonical numbering (McKay's canonical construction path),
+ * as its canonical twin array (uint16), with a flag telling whether the child is itself a
+ * candidate (regions of 3 to 6 sides, no two regions sharing two edges or one region on both
+ * sides of an edge).  A parent with two darts is the single loop, with one marker vertex.
+ */
+#define PY_SSIZE_T_CLEAN
+#include <Python.h>
+#include <stdint.h>
+#include <string.h>
+
+#define MAXD 1024          /* darts while drawing: parent + 4 per new crossing */
+#define MAXV (MAXD / 2)
+#define MAXL 64            /* loops (a bit mask each) */
+
+typedef struct {
+    int R[MAXD], IR[MAXD], T[MAXD], O[MAXD], S[MAXD];
+    unsigned char P[MAXD];
+    int mark[MAXD], fid[MAXD], fsz[MAXD];
+    int stamp;
+    int n, nv, nv0;
+    int pedge[MAXD];
+    unsigned char marker[MAXV];
+    int f0, limit, budget, e0min, ban0, ban1;
+    int ploop[MAXD], npl, pcross[MAXL], pdel[MAXL], ci[MAXL];
+    PyObject *out;
+    int failed;
+    long long nodes, closed, bounded, rejected;
+} Ctx;
+
+static inline int need(int s)
+{
+    if (s < 3) return 3 - s;
+    if (s > 6) return (s - 5) / 2;
+    return 0;
+}
+
+static inline int max3(int a, int b, int c) { return a > b ? (a > c ? a : c) : (b > c ? b : c); }
+
+/* Twice the least share of the later crossings that an open face needs (see dfs): one where
+ * the path ends at a corner (it leaves through a side), and the face holding both ends. */
+static inline int half2(int s) { return 2 * max3(0, s >= 9 ? (s - 8) / 2 : 0, 3 - s) + 1; }
+
+static inline int both2(int s)
+{
+    int direct = 2 * max3(0, s >= 10 ? (s - 9) / 2 : 0, 4 - s);
+    int around = 2 + 2 * max3(0, s >= 12 ? (s - 11) / 2 : 0, 3 - s);
+    return direct < around ? direct : around;
+}
+
+static inline int fnext(const Ctx *c, int e) { return c->IR[c->T[e]]; }
+
+static void subdivide(Ctx *c, int e, int *e1, int *e2)
+{
+    int q = c->nv++, a = c->n, b = c->n + 1, te = c->T[e];
+    c->n += 2;
+    c->R[a] = b; c->R[b] = a; c->IR[a] = b; c->IR[b] = a;
+    c->T[a] = e; c->T[b] = te; c->O[a] = q; c->O[b] = q;
+    c->P[a] = 0; c->P[b] = 0; c->S[a] = c->S[te]; c->S[b] = c->S[e];
+    c->T[e] = a; c->T[te] = b;
+    *e1 = a; *e2 = b;
+}
+
+static void unsubdivide(Ctx *c, int e, int e1)
+{
+    int te = c->T[e1 + 1];
+    (void)e1;
+    c->T[e] = te; c->T[te] = e;
+    c->n -= 2; c->nv--;
+}
+
+/* A chord from the origin of x (right after x, counter-clockwise) to the origin of y. */
+static void chord(Ctx *c, int x, int y)
+{
+    int a = c->n, b = c->n + 1, rx = c->R[x], ry = c->R[y];
+    c->n += 2;
+    c->R[a] = rx; c->R[b] = ry; c->IR[a] = x; c->IR[b] = y;
+    c->T[a] = b; c->T[b] = a; c->O[a] = c->O[x]; c->O[b] = c->O[y];
+    c->P[a] = 1; c->P[b] = 1; c->S[a] = -1; c->S[b] = -1;
+    c->R[x] = a; c->IR[rx] = a; c->R[y] = b; c->IR[ry] = b;
+}
+
+static void unchord(Ctx *c, int x, int y)
+{
+    int a = c->n - 2, b = c->n - 1, rx = c->R[a], ry = c->R[b];
+    c->R[x] = rx; c->IR[rx] = x; c->R[y] = ry; c->IR[ry] = y;
+    c->n -= 2;
+}
+
+static inline int is_marker(const Ctx *c, int d) { return c->O[d] < c->nv0 && c->marker[c->O[d]]; }
+
+/* The child: compact darts (markers removed), then loops, the bound, acceptance, the code. */
+typedef struct {
+    int D;
+    int R[MAXD], IR[MAXD], T[MAXD];
+    int face[MAXD], fdeg[MAXD], loop[MAXD], vert[MAXD];
+    int nf, nl;
+    int lcross[MAXL];
+    uint64_t adj[MAXL];
+    int best[MAXD], code[MAXD], num[MAXD], order[MAXD];
+} Child;
+
+static Child child;
+
+static int face_key(const Child *h, int o, int d)
+{
+    /* an isomorphism invariant of (orientation, dart): mirrored, left and right swap */
+    int f = o ? h->face[h->T[d]] : h->face[d];
+    return h->lcross[h->loop[d]] * 64 + h->fdeg[f];
+}
+
+/* The code from root r in orientation o (0: rot, 1: irot); returns -1 if it exceeds best at
+ * some position, 0 if equal, 1 if smaller (and then it is in h->code).  *first gets the loop
+ * of the first dart in the numbering that lies on a candidate loop. */
+static int code_from(Child *h, int o, int r, int have_best, uint64_t cand, int *first)
+{
+    const int *rot = o ? h->IR : h->R;
+    int cnt = 0, smaller = !have_best;
+    for (int d = 0; d < h->D; d++) h->num[d] = -1;
+    *first = -1;
+#define VISIT(t0) do { int t_ = (t0); for (int j_ = 0; j_ < 4; j_++) { h->num[t_] = cnt; \
+        h->order[cnt++] = t_; t_ = rot[t_]; } } while (0)
+    VISIT(r);
+    for (int i = 0; i < h->D; i++) {
+        int d = h->order[i], t = h->T[d];
+        if (*first < 0 && (cand >> h->loop[d] & 1)) *first = h->loop[d];
+        if (h->num[t] < 0) VISIT(t);
+        int v = h->num[t];
+        h->code[i] = v;
+        if (!smaller) {
+            if (v > h->best[i]) return -1;
+            if (v < h->best[i]) smaller = 1;
+        }
+    }
+#undef VISIT
+    return smaller ? 1 : 0;
+}
+
+static int connected_without(const Child *h, int skip)
+{
+    uint64_t all = 0, seen, frontier;
+    for (int l = 0; l < h->nl; l++) if (l != skip) all |= (uint64_t)1 << l;
+    if (!all) return 1;
+    int s = skip == 0 ? 1 : 0;
+    seen = frontier = (uint64_t)1 << s;
+    while (frontier) {
+        uint64_t next = 0;
+        for (int l = 0; l < h->nl; l++) if (frontier >> l & 1) next |= h->adj[l];
+        next &= all & ~seen;
+        seen |= next;
+        frontier = next;
+    }
+    return seen == all;
+}
+
+/* Faces and their sizes; returns the child's bound: crossings plus the needs of its regions. */
+static int child_faces(Child *h)
+{
+    int total = h->D / 4;
+    for (int d = 0; d < h->D; d++) h->IR[h->R[d]] = d;
+    for (int d = 0; d < h->D; d++) h->face[d] = -1;
+    h->nf = 0;
+    for (int d = 0; d < h->D; d++) {
+        if (h->face[d] >= 0) continue;
+        int k = 0, e = d;
+        do { h->face[e] = h->nf; k++; e = h->IR[h->T[e]]; } while (e != d);
+        h->fdeg[h->nf++] = k;
+        total += need(k);
+    }
+    return total;
+}
+
+/* Loops (the orbit of a dart under straight-ahead, with its reverse), their crossings and
+ * which loops cross; -1 when a loop crosses itself or there are too many loops. */
+static int child_loops(Child *h)
+{
+    for (int d = 0; d < h->D; d++) h->loop[d] = -1;
+    h->nl = 0;
+    for (int d = 0; d < h->D; d++) {
+        if (h->loop[d] >= 0) continue;
+        if (h->nl >= MAXL) return -1;
+        int e = d;
+        do { h->loop[e] = h->nl; h->loop[h->T[e]] = h->nl; e = h->R[h->R[h->T[e]]]; } while (e != d);
+        h->lcross[h->nl] = 0;
+        h->adj[h->nl] = 0;
+        h->nl++;
+    }
+    for (int d = 0; d < h->D; d++) {
+        int a = h->loop[d], b = h->loop[h->R[d]];
+        if (a == b) return -1;
+        h->lcross[a]++;
+        h->adj[a] |= (uint64_t)1 << b;
+    }
+    for (int l = 0; l < h->nl; l++) h->lcross[l] /= 2;
+    return 0;
+}
+
+/* The least code over the roots of least invariant, into h->best; returns whether some root
+ * reaching it numbers a dart of `wanted` before any other loop of `cand` (McKay's test). */
+static int child_code(Child *h, uint64_t cand, int wanted)
+{
+    int low = 1 << 30, have = 0, accepted = 0;
+    for (int o = 0; o < 2; o++)
+        for (int d = 0; d < h->D; d++) { int k = face_key(h, o, d); if (k < low) low = k; }
+    for (int o = 0; o < 2; o++) {
+        for (int d = 0; d < h->D; d++) {
+            if (face_key(h, o, d) != low) continue;
+            int first, r = code_from(h, o, d, have, cand, &first);
+            if (r < 0) continue;
+            if (r > 0) {
+                memcpy(h->best, h->code, sizeof(int) * h->D);
+                have = 1;
+                accepted = 0;
+            }
+            if (first == wanted) accepted = 1;
+        }
+    }
+    return accepted;
+}
+
+/* A candidate map: regions of 3 to 6 sides, no region on both sides of an edge, no two
+ * regions sharing two edges (the quad mesh is then simple with degrees 3 to 6). */
+static int child_is_candidate(const Child *h)
+{
+    static unsigned char pair[MAXV * MAXV / 4];
+    int nf = h->nf;
+    for (int f = 0; f < nf; f++) if (h->fdeg[f] < 3 || h->fdeg[f] > 6) return 0;
+    if ((size_t)nf * nf > sizeof(pair)) return -1;
+    memset(pair, 0, (size_t)nf * nf);
+    for (int d = 0; d < h->D; d++) {
+        int a = h->face[d], b = h->face[h->T[d]];
+        if (a == b || pair[a * nf + b]) return 0;
+        pair[a * nf + b] = 1;
+    }
+    return 1;
+}
+
+static PyObject *code_bytes(const Child *h)
+{
+    uint16_t buf[MAXD];
+    for (int i = 0; i < h->D; i++) buf[i] = (uint16_t)h->best[i];
+    return PyBytes_FromStringAndSize((const char *)buf, (Py_ssize_t)(2 * h->D));
+}
+
+static __attribute__((noinline)) void emit(Ctx *c, int newdart)
+{
+    Child *h = &child;
+    int id[MAXD];
+    int D = 0;
+    c->closed++;
+    for (int d = 0; d < c->n; d++) id[d] = is_marker(c, d) ? -1 : D++;
+    h->D = D;
+    for (int d = 0; d < c->n; d++) {
+        if (id[d] < 0) continue;
+        int t = c->T[d];
+        if (id[t] < 0) t = c->T[c->R[t]];      /* through the marker */
+        h->T[id[d]] = id[t];
+        h->R[id[d]] = id[c->R[d]];             /* markers are never on a crossing */
+    }
+    if (child_faces(h) > c->limit) { c->bounded++; return; }
+    if (child_loops(h) < 0) { c->failed = 2; return; }
+    int newloop = h->loop[id[newdart]];
+    /* candidates: deletable loops with the most crossings */
+    uint64_t cand = 0;
+    int most = -1;
+    for (int l = 0; l < h->nl; l++) {
+        if (!connected_without(h, l)) continue;
+        if (h->lcross[l] > most) { most = h->lcross[l]; cand = 0; }
+        if (h->lcross[l] == most) cand |= (uint64_t)1 << l;
+    }
+    if (!(cand >> newloop & 1) || !child_code(h, cand, newloop)) { c->rejected++; return; }
+    int final = child_is_candidate(h);
+    if (final < 0) { c->failed = 2; return; }
+    PyObject *code = code_bytes(h);
+    PyObject *item = code ? Py_BuildValue("(Ni)", code, final) : NULL;
+    if (!item || PyList_Append(c->out, item) < 0) c->failed = 1;
+    Py_XDECREF(item);
+}
+
+static void dfs(Ctx *c, int x, int y0, int cr)
+{
+    int face[MAXD], corner[MAXD + 1], k = 0, e = x, at = -1;
+    if (c->failed) return;
+    c->nodes++;
+    int st = ++c->stamp;
+    /* the current face (left of x), with its corners counted along it */
+    corner[0] = 0;
+    do {
+        if (e == y0) at = k;
+        face[k] = e; c->mark[e] = st; c->fid[e] = -1;
+        corner[k + 1] = corner[k] + !is_marker(c, e);
+        k++;
+        e = fnext(c, e);
+    } while (e != x);
+    int closable = at >= 0, sz = 0;
+    if (!closable) {
+        e = y0;
+        do { c->mark[e] = st; c->fid[e] = -2; sz += !is_marker(c, e); e = fnext(c, e); } while (e != y0);
+    }
+    /* a loop of the parent that stays deletable must not have more crossings than the new one */
+    int longest = 0, crossed = 0;
+    for (int l = 0; l < c->npl; l++) crossed += c->ci[l] > 0;
+    for (int l = 0; l < c->npl; l++)   /* it stays deletable if the new loop meets another loop */
+        if (c->pdel[l] && crossed > (c->ci[l] > 0) && c->pcross[l] + c->ci[l] > longest)
+            longest = c->pcross[l] + c->ci[l];
+    if (c->f0 + longest > c->limit) return;
+    /* Twice a lower bound on the child's crossings and on those of later loops: each face other
+     * than the open ones is a region of the child, or a piece later loops must cut to size;
+     * the open faces will hold the rest of the path. */
+    int limit2 = 2 * c->limit, sg = corner[k];
+    int base2 = 2 * (c->f0 + cr), open2 = closable ? both2(sg) : half2(sg) + half2(sz), nf = 0;
+    for (int d = 0; d < c->n; d++) {
+        if (c->mark[d] == st) continue;
+        int s = 0;
+        e = d;
+        do { c->mark[e] = st; c->fid[e] = nf; s += !is_marker(c, e); e = fnext(c, e); } while (e != d);
+        c->fsz[nf++] = s;
+        base2 += 2 * need(s);
+        if (base2 + open2 > limit2) return;
+    }
+    if (cr >= 2 && closable) {
+        chord(c, x, y0);
+        emit(c, c->n - 2);
+        unchord(c, x, y0);
+    }
+    if (cr >= c->budget || c->n + 4 > MAXD) return;
+    /* The chord to a new point on an edge d of the current face cuts it in two and enters the
+     * face across d: the child's bound, before drawing it.  (All of them first: fid and fsz
+     * belong to this node only until the first child overwrites them.) */
+    int go[MAXD], ngo = 0;
+    for (int i = 0; i < k; i++) {
+        int d = face[i];
+        if (c->P[d] || c->pedge[c->S[d]] < c->e0min || d == c->ban0 || d == c->ban1) continue;
+        int s1 = corner[i + 1] + 1, s2 = corner[k] - corner[i + 1] + 2, h = c->fid[c->T[d]];
+        int next2 = base2 + 2, sh = h >= 0 ? c->fsz[h] : sz;
+        if (h >= 0) next2 -= 2 * need(sh);
+        if (closable) {   /* the piece with the closing angle stays open */
+            int keep = at <= i ? s1 : s2, cut = at <= i ? s2 : s1;
+            next2 += 2 * need(cut) + half2(keep) + half2(sh + 1);
+        } else {
+            next2 += 2 * need(s1) + 2 * need(s2);
+            next2 += h >= 0 ? half2(sh + 1) + half2(sz) : both2(sz + 1);
+        }
+        if (next2 <= limit2) go[ngo++] = d;
+    }
+    for (int j = 0; j < ngo; j++) {
+        int d = go[j], e1, e2, l = c->npl ? c->ploop[c->S[d]] : 0;
+        subdivide(c, d, &e1, &e2);
+        chord(c, x, e2);
+        c->ci[l]++;
+        dfs(c, e1, y0, cr + 1);
+        c->ci[l]--;
+        unchord(c, x, e2);
+        unsubdivide(c, d, e1);
+    }
+}
+
+static Ctx ctx;
+
+/* Numbers the darts from root r in orientation o (rot, or irot when o is 1) breadth first,
+ * four a crossing, and writes each dart's twin's number into code; stops early and returns
+ * 1 if that code differs from ref (when ref is given). */
+static int number_from(const int *rot, const int *twin, int D, int r, int *num, int *order,
+                       int *code, const int *ref)
+{
+    int cnt = 0;
+    for (int d = 0; d < D; d++) num[d] = -1;
+    for (int t = r, j = 0; j < 4; j++) { num[t] = cnt; order[cnt++] = t; t = rot[t]; }
+    for (int i = 0; i < D; i++) {
+        int t = twin[order[i]];
+        if (num[t] < 0)
+            for (int j = 0; j < 4; j++) { num[t] = cnt; order[cnt++] = t; t = rot[t]; }
+        code[i] = num[twin[order[i]]];
+        if (ref && code[i] != ref[i]) return 1;
+    }
+    return 0;
+}
+
+/* Marks the edges (by their lesser dart) that are the least of their orbit under the parent's
+ * automorphisms, mirror images included: a curve's images under them give isomorphic children,
+ * and every orbit of curves has a member whose least crossed edge is such an edge. */
+static void edge_orbit_minima(Ctx *c, unsigned char *is_min)
+{
+    static int num0[MAXD], order0[MAXD], ref[MAXD], num[MAXD], order[MAXD], code[MAXD];
+    int D = c->n;
+    for (int d = 0; d < D; d++) is_min[d] = d < c->T[d];
+    number_from(c->R, c->T, D, 0, num0, order0, ref, NULL);
+    for (int o = 0; o < 2; o++) {
+        const int *rot = o ? c->IR : c->R;
+        for (int r = 0; r < D; r++) {
+            if (number_from(rot, c->T, D, r, num, order, code, ref)) continue;
+            for (int d = 0; d < D; d++) {    /* d -> order[num0[d]] is an automorphism */
+                int img = order[num0[d]];
+                if (is_min[d] && c->pedge[img] < d) is_min[d] = 0;
+            }
+        }
+    }
+}
+
+/* The parent's loops, their crossings, and which ones leave it connected when deleted. */
+static int parent_loops(Ctx *c)
+{
+    uint64_t adj[MAXL];
+    int n = c->n;
+    for (int d = 0; d < n; d++) c->ploop[d] = -1;
+    c->npl = 0;
+    for (int d = 0; d < n; d++) {
+        if (c->ploop[d] >= 0) continue;
+        if (c->npl >= MAXL) return -1;
+        int e = d;
+        do { c->ploop[e] = c->npl; c->ploop[c->T[e]] = c->npl; e = c->R[c->R[c->T[e]]]; } while (e != d);
+        c->pcross[c->npl] = 0;
+        adj[c->npl++] = 0;
+    }
+    for (int d = 0; d < n; d++) {
+        c->pcross[c->ploop[d]]++;
+        adj[c->ploop[d]] |= (uint64_t)1 << c->ploop[c->R[d]];
+    }
+    for (int l = 0; l < c->npl; l++) {
+        c->pcross[l] /= 2;
+        uint64_t all = 0, seen, frontier;
+        for (int m = 0; m < c->npl; m++) if (m != l) all |= (uint64_t)1 << m;
+        seen = frontier = all & -all;
+        while (frontier) {
+            uint64_t next = 0;
+            for (int m = 0; m < c->npl; m++) if (frontier >> m & 1) next |= adj[m];
+            next &= all & ~seen;
+            seen |= next;
+            frontier = next;
+        }
+        c->pdel[l] = seen == all;
+    }
+    return 0;
+}
+
+static PyObject *children(PyObject *self, PyObject *args)
+{
+    Py_buffer rb, tb;
+    int limit;
+    if (!PyArg_ParseTuple(args, "y*y*i", &rb, &tb, &limit)) return NULL;
+    Ctx *c = &ctx;
+    int n = (int)(rb.len / 2);
+    const uint16_t *rot = rb.buf, *twin = tb.buf;
+    int bad = rb.len != tb.len || rb.len % 2 || n < 2 || n > MAXD / 2;
+    if (!bad) {
+        for (int d = 0; d < n && !bad; d++) bad = rot[d] >= n || twin[d] >= n || twin[twin[d]] != d || twin[d] == d;
+    }
+    if (bad) {
+        PyBuffer_Release(&rb); PyBuffer_Release(&tb);
+        return PyErr_Format(PyExc_ValueError, "not an arrangement's rot and twin arrays");
+    }
+    memset(c, 0, sizeof(*c));
+    c->n = n;
+    for (int d = 0; d < n; d++) {
+        c->R[d] = rot[d]; c->T[d] = twin[d]; c->S[d] = d; c->O[d] = -1;
+        c->pedge[d] = d < twin[d] ? d : twin[d];
+    }
+    PyBuffer_Release(&rb); PyBuffer_Release(&tb);
+    for (int d = 0; d < n; d++) c->IR[c->R[d]] = d;
+    for (int d = 0; d < n; d++) {
+        if (c->O[d] >= 0) continue;
+        int e = d, deg = 0;
+        do { c->O[e] = c->nv; deg++; e = c->R[e]; } while (e != d);
+        if (deg != 4 && deg != 2) return PyErr_Format(PyExc_ValueError, "a vertex of degree %d", deg);
+        c->marker[c->nv++] = deg == 2;
+    }
+    c->nv0 = c->nv;
+    int markers = 0;
+    for (int v = 0; v < c->nv; v++) markers += c->marker[v];
+    c->f0 = c->nv - markers;
+    c->limit = limit;
+    c->budget = limit - c->f0;
+    if (!markers && parent_loops(c) < 0) return PyErr_Format(PyExc_ValueError, "more than %d loops", MAXL);
+    static unsigned char is_min[MAXD];
+    if (markers) for (int d = 0; d < n; d++) is_min[d] = d < c->T[d];
+    else edge_orbit_minima(c, is_min);
+    c->out = PyList_New(0);
+    if (!c->out) return NULL;
+    for (int e = 0; e < n && !c->failed; e++) {
+        if (!is_min[e]) continue;
+        int e1, e2, l = c->npl ? c->ploop[e] : 0;
+        c->e0min = e;
+        subdivide(c, e, &e1, &e2);
+        /* the start is the new loop's crossing on e nearest to e's origin */
+        c->ban0 = e;
+        c->ban1 = e1;
+        c->ci[l]++;
+        dfs(c, e1, e2, 1);
+        c->ci[l]--;
+        unsubdivide(c, e, e1);
+    }
+    if (c->failed) {
+        Py_DECREF(c->out);
+        if (c->failed == 2) return PyErr_Format(PyExc_ValueError, "more than %d loops", MAXL);
+        return NULL;
+    }
+    PyObject *res = Py_BuildValue("(N(LLLL))", c->out, c->nodes, c->closed, c->bounded, c->rejected);
+    return res;
+}
+
+static PyObject *canonical(PyObject *self, PyObject *args)
+{
+    Py_buffer rb, tb;
+    if (!PyArg_ParseTuple(args, "y*y*", &rb, &tb)) return NULL;
+    Child *h = &child;
+    int n = (int)(rb.len / 2), bad = rb.len != tb.len || rb.len % 2 || n < 4 || n % 4 || n > MAXD;
+    const uint16_t *rot = rb.buf, *twin = tb.buf;
+    static int seen[MAXD];
+    if (!bad) {
+        memset(seen, 0, sizeof(int) * (size_t)n);
+        for (int d = 0; d < n && !bad; d++) {
+            bad = rot[d] >= n || twin[d] >= n || twin[d] == d || twin[twin[d]] != d || seen[rot[d]]++;
+            h->R[d] = rot[d];
+            h->T[d] = twin[d];
+        }
+    }
+    PyBuffer_Release(&rb);
+    PyBuffer_Release(&tb);
+    if (bad) return PyErr_Format(PyExc_ValueError, "not the rot and twin arrays of a 4-regular map");
+    h->D = n;
+    /* every crossing has four darts, and the map is connected */
+    for (int d = 0; d < n; d++) {
+        int e = d, k = 0;
+        do { e = h->R[e]; k++; } while (e != d && k <= 4);
+        if (k != 4) return PyErr_Format(PyExc_ValueError, "a crossing without four darts");
+    }
+    int stack[MAXD], top = 0, reached = 1;
+    memset(seen, 0, sizeof(int) * (size_t)n);
+    seen[0] = 1;
+    stack[top++] = 0;
+    while (top) {
+        int d = stack[--top], nb[2] = {h->R[d], h->T[d]};
+        for (int j = 0; j < 2; j++)
+            if (!seen[nb[j]]) { seen[nb[j]] = 1; reached++; stack[top++] = nb[j]; }
+    }
+    if (reached != n) return PyErr_Format(PyExc_ValueError, "the map is not connected");
+    child_faces(h);
+    if (child_loops(h) < 0) return PyErr_Format(PyExc_ValueError, "a loop crosses itself (or more than %d loops)", MAXL);
+    child_code(h, 0, -1);
+    int final = child_is_candidate(h);
+    return Py_BuildValue("(Ni)", code_bytes(h), final > 0);
+}
+
+static PyMethodDef methods[] = {
+    {"canonical", canonical, METH_VARARGS,
+     "canonical(rot, twin) -> (canonical twin array, is_candidate) of an arrangement"},
+    {"children", children, METH_VARARGS,
+     "children(rot, twin, limit) -> ([(canonical twin array, is_candidate)], "
+     "(curves drawn, closed, over the bound, not canonical))"},
+    {NULL, NULL, 0, NULL},
+};
+
+static struct PyModuleDef module = {PyModuleDef_HEAD_INIT, "_arrangements", NULL, -1, methods};
+
+PyMODINIT_FUNC PyInit__arrangements(void) { return PyModule_Create(&module); }

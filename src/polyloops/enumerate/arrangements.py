@@ -1,0 +1,215 @@
+"""Candidate maps without plantri: arrangements of loops, built one loop at a time.
+
+The dual of a quad mesh is an *arrangement*: a 4-regular map on the sphere whose crossings are
+the quads, whose regions are the corners and whose straight-ahead walks are the loops.  A
+genus-0 polycube's arrangement has simple loops, regions of 3 to 6 sides, and a simple quad
+mesh (no region on both sides of an edge, no two regions sharing two edges): these *candidate
+maps* are what the catalog's per-map work needs, and exactly the maps plantri's filter keeps.
+
+This module generates them directly, by McKay's canonical construction path.  A connected
+arrangement with at least two loops has a loop whose deletion leaves it connected (a non-cut
+vertex of the graph of crossing loops), so every candidate map is reached from the single
+loop by adding simple closed curves.  A child is kept only when its new loop is its
+*canonical loop to delete* (among loops whose deletion leaves it connected, those with the
+most crossings, and of these the one met first in the canonical numbering), so each
+arrangement is built once, from one parent, and the search is a tree that splits into
+independent subtrees (``res``/``mod``).  Deleting a loop keeps loops simple but not region
+sizes, so intermediate arrangements have bigons and large regions; a counting bound prunes
+those that cannot grow into a candidate within the corner budget (``docs/catalog.md`` proves
+it).  The search itself is the compiled extension ``_arrangements``.
+
+>>> from collections import Counter
+>>> sorted(Counter(a.corners for a in candidate_arrangements(16)).items())
+[(8, 1), (12, 1), (14, 4), (16, 4)]
+>>> cube = next(candidate_arrangements(8))
+>>> cube.crossings, cube.quad_mesh().num_corners
+(6, 8)
+"""
+
+from __future__ import annotations
+
+import array
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass, field
+from functools import cached_property
+
+from polyloops.core.errors import PolyloopsError
+from polyloops.core.halfedge import HalfEdgeMap, permutation_orbits
+
+
+class ArrangementError(PolyloopsError, ValueError):
+    """Arrays that are not an arrangement of simple loops, or a generator that cannot run."""
+
+
+def compiled_generator_available() -> bool:
+    """Whether the install built the compiled arrangement search (it needs a C compiler)."""
+    try:
+        from polyloops.enumerate import _arrangements  # noqa: F401
+    except ImportError:
+        return False
+    return True
+
+
+def _module():
+    try:
+        from polyloops.enumerate import _arrangements
+    except ImportError:
+        raise ArrangementError("the compiled arrangement search was not built (a C compiler and the "
+                               "Python headers are needed at install time): reinstall with them, "
+                               "or use --generator plantri") from None
+    return _arrangements
+
+
+def _pack(values: tuple[int, ...] | list[int]) -> bytes:
+    return array.array("H", values).tobytes()
+
+
+def _unpack(data: bytes) -> tuple[int, ...]:
+    return tuple(array.array("H", data))
+
+
+@dataclass(frozen=True)
+class Arrangement:
+    """A canonical arrangement: its darts numbered four a crossing, counter-clockwise, so that
+    ``rot(d) = 4 (d // 4) + (d + 1) % 4``; ``twin`` pairs the two darts of each edge.
+
+    >>> from polyloops.core.examples import load_example
+    >>> a = Arrangement.of(load_example("cube").map)
+    >>> a.crossings, a.corners, sorted(a.region_sizes())
+    (6, 8, [3, 3, 3, 3, 3, 3, 3, 3])
+    >>> [len(loop) for loop in a.loops()]
+    [4, 4, 4]
+    """
+
+    twin: tuple[int, ...]
+    candidate: bool = field(default=False, compare=False)
+
+    @classmethod
+    def of(cls, m: HalfEdgeMap) -> Arrangement:
+        """The canonical arrangement dual to a quad mesh (the same darts: a quad's darts turn
+        around its crossing, and ``twin`` crosses an edge).  Raises
+        :class:`ArrangementError` unless every face is a quad and every loop is simple."""
+        if any(len(f) != 4 for f in m.faces):
+            raise ArrangementError("not a quad mesh: a face is not a quad")
+        try:
+            code, candidate = _module().canonical(_pack(m.next), _pack(m.twin))
+        except ValueError as err:
+            raise ArrangementError(str(err)) from None
+        return cls(_unpack(code), bool(candidate))
+
+    @property
+    def crossings(self) -> int:
+        """The number of crossings (the quads)."""
+        return len(self.twin) // 4
+
+    @property
+    def corners(self) -> int:
+        """The number of regions (the corners of the quad mesh): crossings + 2, by Euler."""
+        return self.crossings + 2
+
+    @cached_property
+    def rot(self) -> tuple[int, ...]:
+        """Per dart, the next dart counter-clockwise around its crossing."""
+        return tuple(4 * (d // 4) + (d + 1) % 4 for d in range(len(self.twin)))
+
+    @cached_property
+    def _regions(self) -> list[list[int]]:
+        # The region on the left of d continues with the dart before twin(d) at its crossing.
+        irot = [4 * (d // 4) + (d + 3) % 4 for d in range(len(self.twin))]
+        return permutation_orbits([irot[t] for t in self.twin])
+
+    def region_sizes(self) -> list[int]:
+        """The number of sides of each region."""
+        return [len(r) for r in self._regions]
+
+    def loops(self) -> list[list[int]]:
+        """Each loop as the crossings it passes, in order."""
+        rot, twin = self.rot, self.twin
+        seen: set[int] = set()
+        out = []
+        for d in range(len(twin)):
+            if d in seen:
+                continue
+            loop, e = [], d
+            while e not in seen:
+                seen.update((e, twin[e]))
+                loop.append(e // 4)
+                e = rot[rot[twin[e]]]
+            out.append(loop)
+        return out
+
+    def quad_mesh(self) -> HalfEdgeMap:
+        """The dual quad mesh: one quad a crossing, one corner a region."""
+        region = {}
+        for i, r in enumerate(self._regions):
+            for d in r:
+                region[d] = i
+        # The corner where dart d starts is the region in the angle before d.
+        before = [4 * (d // 4) + (d + 3) % 4 for d in range(len(self.twin))]
+        return HalfEdgeMap.from_faces([[region[before[d]] for d in range(4 * v, 4 * v + 4)]
+                                       for v in range(self.crossings)])
+
+
+@dataclass(frozen=True)
+class SearchStats:
+    """What a search did: curves drawn (partial paths), closed curves, closed curves over the
+    bound, closed curves that were not the canonical loop to delete, arrangements kept (the
+    objects visited) and candidate maps among them."""
+
+    curves: int = 0
+    closed: int = 0
+    over_bound: int = 0
+    not_canonical: int = 0
+    arrangements: int = 0
+    candidates: int = 0
+
+    def __add__(self, other: SearchStats) -> SearchStats:
+        return SearchStats(*(a + b for a, b in zip(self.astuple(), other.astuple(), strict=True)))
+
+    def astuple(self) -> tuple[int, ...]:
+        """The six counts in order."""
+        return (self.curves, self.closed, self.over_bound, self.not_canonical, self.arrangements,
+                self.candidates)
+
+
+SINGLE_LOOP = (_pack([1, 0]), _pack([1, 0]))  # one loop, one marker vertex on it
+
+
+def children(parent: Arrangement | None, max_corners: int) -> tuple[list[Arrangement], SearchStats]:
+    """The canonical children of ``parent`` (``None``: the single loop) that can still grow
+    into a candidate map with at most ``max_corners`` corners, each once, in a fixed order."""
+    rot, twin = SINGLE_LOOP if parent is None else (_pack(parent.rot), _pack(parent.twin))
+    found, (curves, closed, over, rejected) = _module().children(rot, twin, max_corners - 2)
+    kids, seen = [], set()
+    for code, candidate in found:
+        if code not in seen:
+            seen.add(code)
+            kids.append(Arrangement(_unpack(code), bool(candidate)))
+    stats = SearchStats(curves, closed, over, rejected, len(kids), sum(k.candidate for k in kids))
+    return kids, stats
+
+
+def candidate_arrangements(max_corners: int, res: int = 0, mod: int = 1,
+                           on_stats: Callable[[SearchStats], None] | None = None) -> Iterator[Arrangement]:
+    """Every candidate map with at most ``max_corners`` corners, once up to isomorphism (mirror
+    images identified), as its arrangement.  ``res``/``mod`` keeps the subtrees below the
+    two-loop arrangements whose rank is ``res`` modulo ``mod`` (every slice repeats the cheap
+    first step, which slice 0 alone reports, so the statistics of the slices add up to those
+    of one run).  ``on_stats`` sees the statistics of every expanded arrangement."""
+    if not 0 <= res < mod:
+        raise ArrangementError("res/mod needs 0 <= res < mod")
+    first, stats = children(None, max_corners)
+    if on_stats and res == 0:
+        on_stats(stats)
+    for rank, top in enumerate(first):
+        if rank % mod != res:
+            continue
+        stack = [top]
+        while stack:
+            node = stack.pop()
+            if node.candidate:
+                yield node
+            kids, stats = children(node, max_corners)
+            if on_stats:
+                on_stats(stats)
+            stack.extend(reversed(kids))
