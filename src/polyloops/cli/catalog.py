@@ -33,14 +33,16 @@ def cmd_catalog(args: argparse.Namespace) -> int:
         bar.reset(total=len(jobs))
 
     def progress(result: dict[str, Any]) -> None:
-        maps[0] += result["quadrangulations"]
+        # plantri's jobs count the maps they read, the loops' the arrangements they built
+        maps[0] += result["search"]["arrangements"] if "search" in result else result["quadrangulations"]
         bar.update(1)
-        bar.set_postfix(corners=result["n"], maps=maps[0])
+        bar.set_postfix({"corners": result["n"], "arrangements" if "search" in result else "maps": maps[0]})
 
     try:
         built = build_catalog(args.output, args.max_corners, args.min_corners, args.symmetry,
                               workers=args.workers, res=args.res, mod=args.mod, dask=args.dask,
-                              plantri=args.plantri, method=args.method, progress=progress, on_plan=planned)
+                              plantri=args.plantri, method=args.method, generator=args.generator,
+                              progress=progress, on_plan=planned)
     except (CatalogRunError, PlantriError) as err:
         raise CliError(str(err)) from None
     finally:
@@ -54,6 +56,8 @@ def cmd_catalog(args: argparse.Namespace) -> int:
             for k, v in summary["counts"].items()]
     text = "corners  quadrangulations  simple strips  labelled  rotation  full\n" + "\n".join(
         f"{r[0]:>7}  {r[1]:>16}  {r[2]:>13}  {r[3]:>8}  {r[4]:>8}  {r[5]:>4}" for r in rows)
+    if "search" in summary:
+        text += f"\narrangements built: {summary['search']['arrangements']} (generator loops)"
     emit(args, summary, f"{text}\nwrote {built.records} records ({args.symmetry}) to {args.output}")
     return EXIT_OK
 
@@ -105,14 +109,19 @@ def _export_arguments(p: argparse.ArgumentParser) -> None:
 
 def add_commands(command: AddCommand, hidden: AddCommand) -> None:
     p = command("catalog", cmd_catalog, "the catalog of genus-0 polycubes up to order-equivalence, by "
-                "number of corners, from plantri's quadrangulations; 'catalog query DIR WHERE' "
+                "number of corners, from plantri's quadrangulations or arrangements of loops; "
+                "'catalog query DIR WHERE' "
                 "searches one, 'catalog export DIR --csv' writes its table", file_arg=False)
     p.add_argument("--max-corners", type=count_arg(0), metavar="N", help="required to build")
     p.add_argument("--min-corners", type=count_arg(8), default=8, metavar="M")
     p.add_argument("--symmetry", choices=SYMMETRIES, default="full",
                    help="which classes the records list (summary.json counts all three); default full")
     p.add_argument("--workers", type=count_arg(1), default=1, metavar="K", help="local worker processes")
-    p.add_argument("--res", type=count_arg(0), metavar="R", help="only plantri's slice R of M (with --mod)")
+    p.add_argument("--generator", choices=("plantri", "loops"), default="plantri",
+                   help="where candidate maps come from: plantri (every quadrangulation, filtered; "
+                   "the default) or loops (arrangements built one loop at a time, compiled at "
+                   "install); same records either way")
+    p.add_argument("--res", type=count_arg(0), metavar="R", help="only slice R of M (with --mod)")
     p.add_argument("--mod", type=count_arg(1), metavar="M")
     p.add_argument("--dask", metavar="ADDRESS", help="run the jobs on a Dask cluster (an address, or local)")
     p.add_argument("--plantri", metavar="PATH", help="the plantri to use (default: the one from "

@@ -1,6 +1,10 @@
 """Running the genus-0 catalog: jobs, workers, resuming, storage.
 
-A run is split into jobs ``(n, res, mod)``: the maps plantri writes for ``-qc2 n res/mod``.
+The candidate maps come from one of two generators: ``plantri`` (its quadrangulations, filtered;
+:mod:`polyloops.enumerate.quadrangulations`) or ``loops`` (arrangements built one loop at a
+time; :mod:`polyloops.enumerate.arrangements`).  A plantri run is split into jobs
+``(n, res, mod)``: the maps plantri writes for ``-qc2 n res/mod``; a loops run into jobs
+covering every corner count at once, each a share ``res/mod`` of the search tree.
 Each finished job is written to ``DIR/parts/`` atomically, so an interrupted run resumes
 where it stopped.  When all jobs are done, the parts are merged into ``DIR/catalog.jsonl``,
 ``DIR/catalog.sqlite`` (records of the chosen symmetry mode) and ``DIR/summary.json`` (counts
@@ -27,6 +31,8 @@ from polyloops.enumerate.catalog import MODES, map_classes
 from polyloops.enumerate.parallel import run_jobs
 from polyloops.enumerate.quadrangulations import FilteredBatch, candidate_maps, resolve_method
 
+GENERATORS = ("plantri", "loops")
+
 # Version 2: chirality and loops per axis fixed; version 3: removable loops, irreducible,
 # versioned signatures; version 4: the number of maps whose strips are all simple.  Parts of
 # older versions are recomputed.
@@ -40,22 +46,36 @@ class CatalogRunError(PolyloopsError, ValueError):
 
 @dataclass(frozen=True)
 class Job:
-    """One slice of a catalog run: the maps plantri writes for ``-qc2 n res/mod``."""
+    """One slice of a catalog run: the maps plantri writes for ``-qc2 n res/mod``, or, for the
+    ``loops`` generator, share ``res/mod`` of the search for every corner count from ``low``
+    through ``n``."""
 
     n: int
     res: int = 0
     mod: int = 1
+    generator: str = "plantri"
+    low: int | None = None
 
     @property
     def name(self) -> str:
-        """The job's file name stem, such as ``n024-0of1``."""
+        """The job's file name stem, such as ``n024-0of1`` or ``loops-8to28-0of16``."""
+        if self.generator == "loops":
+            return f"loops-{self.low}to{self.n}-{self.res}of{self.mod}"
         return f"n{self.n:03d}-{self.res}of{self.mod}"
+
+    @classmethod
+    def of(cls, result: dict[str, Any]) -> Job:
+        """The job a result answers."""
+        return cls(result["n"], result["res"], result["mod"], result.get("generator", "plantri"),
+                   result.get("low"))
 
 
 def run_job(job: Job, plantri: str, method: str = "auto") -> dict[str, Any]:
     """Generate and classify one slice of the quadrangulations with ``job.n`` vertices.
     ``method`` is the strip filter's (:func:`polyloops.enumerate.quadrangulations.filtered_batches`);
-    the result does not depend on it."""
+    the result does not depend on it.  A ``loops`` job runs :func:`run_loops_job`."""
+    if job.generator == "loops":
+        return run_loops_job(job)
     start = time.perf_counter()
     maps, simple = [0], [0]
     candidates = 0
@@ -74,6 +94,95 @@ def run_job(job: Job, plantri: str, method: str = "auto") -> dict[str, Any]:
             "records": records, "seconds": time.perf_counter() - start}
 
 
+def run_loops_job(job: Job, top: Any = None, top_search: dict[str, int] | None = None) -> dict[str, Any]:
+    """Generate and classify share ``job.res/job.mod`` of the candidate maps with ``job.low``
+    to ``job.n`` corners, from arrangements of loops: below ``top``, the share's part of the
+    frontier (:func:`share_of`), or when it is not given, below the frontier computed here.
+    The result holds the records by corner count and the search's statistics; share 0 adds the
+    frontier's (``top_search``), so the shares add up to one search."""
+    from polyloops.enumerate.arrangements import SearchStats, candidate_arrangements
+
+    start = time.perf_counter()
+    low = job.low if job.low is not None else job.n
+    stats = [SearchStats(*(top_search or {}).values())] if job.res == 0 else [SearchStats()]
+
+    def seen(s: SearchStats) -> None:
+        stats[0] = stats[0] + s
+
+    per_n: dict[str, dict[str, Any]] = {
+        str(n): {"candidates": 0, "records": {mode: [] for mode in MODES}} for n in range(low, job.n + 1)}
+    # a given ``top`` is this share's part of the frontier (share_of): all of it is ours
+    res, mod = (0, 1) if top is not None else (job.res, job.mod)
+    for a in candidate_arrangements(job.n, res, mod, on_stats=seen, top=top):
+        if a.corners < low:
+            continue
+        entry = per_n[str(a.corners)]
+        entry["candidates"] += 1
+        for mode, recs in map_classes(a.quad_mesh()).items():
+            entry["records"][mode].extend(r.to_json() for r in recs)
+    search = dict(zip(SEARCH_FIELDS, stats[0].astuple(), strict=True))
+    return {"version": SCHEMA_VERSION, "generator": "loops", "n": job.n, "low": low, "res": job.res,
+            "mod": job.mod, "per_n": per_n, "search": search, "seconds": time.perf_counter() - start}
+
+
+def _expand_chunk(args: tuple[list[Any], int]) -> list[Any]:
+    from polyloops.enumerate.arrangements import expand
+
+    return expand(*args)
+
+
+def loops_frontier(max_n: int, workers: int = 1, dask: str | None = None) -> tuple[Any, dict[str, int]]:
+    """The loops search's frontier for ``max_n`` corners and its statistics, each level spread
+    over the workers.  It is not stored: a rerun computes it again (its levels take about half
+    of the search at 24 corners) and then skips the shares already done."""
+    from polyloops.enumerate.arrangements import SearchStats, frontier
+
+    stats = [SearchStats()]
+
+    def seen(s: SearchStats) -> None:
+        stats[0] = stats[0] + s
+
+    def spread(nodes: list[Any], max_corners: int) -> list[Any]:
+        size = max(1, -(-len(nodes) // (4 * workers)))
+        chunks = [(nodes[i:i + size], max_corners) for i in range(0, len(nodes), size)]
+        parts = run_jobs(_expand_chunk, chunks, workers, dask, ordered=True)
+        return [pair for part in parts for pair in part]
+
+    top = frontier(max_n, on_stats=seen, expander=spread)
+    return top, dict(zip(SEARCH_FIELDS, stats[0].astuple(), strict=True))
+
+
+def share_of(top: Any, res: int, mod: int) -> Any:
+    """The part of a frontier one share needs: its roots (rank ``res`` modulo ``mod``), and the
+    candidates above the frontier for share 0."""
+    from polyloops.enumerate.arrangements import Frontier
+
+    return Frontier(top.loops, top.roots[res::mod], top.shallow if res == 0 else ())
+
+
+SEARCH_FIELDS = ("curves", "closed", "over_bound", "not_canonical", "arrangements", "candidates")
+
+
+def per_corner(results: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    """Results by corner count, whichever generator made them: each with ``n``, ``records``,
+    ``candidates``, and plantri's ``quadrangulations`` and ``simple_strips`` (``None`` for loops)."""
+    out = []
+    for r in results:
+        if r.get("generator") == "loops":
+            out.extend({"n": int(n), "quadrangulations": None, "simple_strips": None, **entry}
+                       for n, entry in r["per_n"].items())
+        else:
+            out.append(r)
+    return out
+
+
+def loops_slices(max_n: int, workers: int) -> int:
+    """How many shares a loops run is cut into: every share repeats the search's first step (a
+    second at 28 corners), and finished shares are what a rerun keeps, so eight a worker from
+    26 corners on."""
+    return 1 if workers <= 1 and max_n < 26 else max(workers, 1) * (8 if max_n >= 26 else 1)
+
+
 def slices(n: int, workers: int) -> int:
     """How many plantri slices a corner count is split into.  Each slice of ``plantri -qc2 n
     res/mod`` first regenerates the part of plantri's search tree above its split level, about
@@ -83,11 +192,18 @@ def slices(n: int, workers: int) -> int:
     return 1 if workers <= 1 or n < 24 else workers * 2 ** ((n - 22) // 2)
 
 
-def plan_jobs(min_n: int, max_n: int, res: int | None, mod: int | None, workers: int) -> list[Job]:
+def plan_jobs(min_n: int, max_n: int, res: int | None, mod: int | None, workers: int,
+              generator: str = "plantri") -> list[Job]:
     """One job per even corner count, split further for large counts when several workers
     run; with ``res/mod`` given, just that slice of each corner count.  Odd counts have no
     polycube (:func:`polyloops.enumerate.quadrangulations.odd_corners_have_no_polycube`) and
-    get no job."""
+    get no job.  The ``loops`` generator covers all counts in each job, cut into
+    :func:`loops_slices` shares (or just share ``res/mod``)."""
+    if generator == "loops":
+        if mod is not None:
+            return [Job(max_n, res or 0, mod, "loops", min_n)]
+        parts = loops_slices(max_n, workers)
+        return [Job(max_n, r, parts, "loops", min_n) for r in range(parts)]
     jobs = []
     for n in range(min_n, max_n + 1):
         if n % 2:
@@ -113,8 +229,7 @@ def load_part(out: Path, job: Job) -> dict[str, Any] | None:
         data = json.loads(path.read_text())
     except (OSError, ValueError):
         return None
-    ok = data.get("version") == SCHEMA_VERSION and (data["n"], data["res"], data["mod"]) == (
-        job.n, job.res, job.mod)
+    ok = data.get("version") == SCHEMA_VERSION and Job.of(data) == job
     return data if ok else None
 
 
@@ -131,43 +246,58 @@ def execute(jobs: list[Job], out: Path, plantri: str, workers: int = 1, dask: st
             progress(part)
 
     def finish(result: dict[str, Any]) -> None:
-        job = Job(result["n"], result["res"], result["mod"])
+        job = Job.of(result)
         write_atomic(part_path(out, job), json.dumps(result, separators=(",", ":")))
         done[job] = result
         if progress:
             progress(result)
 
-    tasks = [(job, plantri, method) for job in todo]
+    tops = {n: loops_frontier(n, workers, dask) for n in {job.n for job in todo if job.generator == "loops"}}
+    tasks = [(job, plantri, method, share_of(tops[job.n][0], job.res, job.mod), tops[job.n][1])
+             if job.generator == "loops" else (job, plantri, method, None, None) for job in todo]
     for result in run_jobs(_run_job_star, tasks, workers, dask, ordered=False):
         finish(result)
     return [done[job] for job in jobs]  # type: ignore[misc]
 
 
-def _run_job_star(args: tuple[Job, str, str]) -> dict[str, Any]:
-    return run_job(*args)
+def _run_job_star(args: tuple[Job, str, str, Any, Any]) -> dict[str, Any]:
+    job, plantri, method, top, top_search = args
+    if job.generator == "loops":
+        return run_loops_job(job, top, top_search)
+    return run_job(job, plantri, method)
 
 
 # -- merging and storage ---------------------------------------------------------------------
 
 def summarize(results: list[dict[str, Any]], min_n: int, max_n: int, partial: bool) -> dict[str, Any]:
-    """The counts of a run by corners, in all three modes, with the numbers of maps seen."""
-    counts = {str(n): dict.fromkeys(MODES, 0) for n in range(min_n, max_n + 1)}
+    """The counts of a run by corners, in all three modes, with the numbers of maps seen
+    (plantri) or the statistics of the search (loops: ``generator`` and ``search`` are added,
+    and the counts of quadrangulations, which that search does not visit, are ``None``)."""
+    loops = [r for r in results if r.get("generator") == "loops"]
+    corners = [str(n) for n in range(min_n, max_n + 1)]
+    counts = {n: dict.fromkeys(MODES, 0) for n in corners}
     # Odd counts are not generated (no polycube has them): their number of maps is unknown.
-    quads: dict[str, int | None] = {str(n): None if n % 2 else 0 for n in range(min_n, max_n + 1)}
     # Every map with an odd number of corners has a self-crossing strip (the theorem of
     # odd_corners_have_no_polycube), so its count of all-simple maps is known: zero.
-    simple = {str(n): 0 for n in range(min_n, max_n + 1)}
-    for r in results:
-        quads[str(r["n"])] = (quads[str(r["n"])] or 0) + r["quadrangulations"]
-        simple[str(r["n"])] += r["simple_strips"]
+    quads: dict[str, int | None] = {n: None if loops or int(n) % 2 else 0 for n in corners}
+    simple: dict[str, int | None] = {n: None if loops and int(n) % 2 == 0 else 0 for n in corners}
+    for r in per_corner(results):
+        n = str(r["n"])
+        if not loops:
+            quads[n] = (quads[n] or 0) + r["quadrangulations"]
+            simple[n] = (simple[n] or 0) + r["simple_strips"]
         for mode in MODES:
-            counts[str(r["n"])][mode] += len(r["records"][mode])
+            counts[n][mode] += len(r["records"][mode])
     # quadrangulations: plantri's simple ones with minimum degree 3; simple_strips: those of
     # them whose strips are all simple closed curves (any degrees).
     out: dict[str, Any] = {"genus": 0, "counts": counts, "quadrangulations": quads,
                            "simple_strips": simple}
+    if loops:
+        out["generator"] = "loops"
+        out["search"] = {k: sum(r["search"][k] for r in loops) for k in SEARCH_FIELDS}
     if partial:
-        out["partial"] = "only the plantri slice res/mod given on the command line"
+        out["partial"] = (f"only the {'share of the search' if loops else 'plantri slice'} res/mod "
+                          "given on the command line")
     return out
 
 
@@ -201,7 +331,7 @@ def write_catalog(out: Path, results: list[dict[str, Any]], symmetry: Symmetry |
                   summary: dict[str, Any]) -> int:
     """Write ``catalog.jsonl``, ``catalog.sqlite`` and ``summary.json`` atomically; returns the number
     of records."""
-    records = sorted((rec for r in results for rec in r["records"][symmetry]),
+    records = sorted((rec for r in per_corner(results) for rec in r["records"][symmetry]),
                      key=lambda rec: (rec["corners"], rec["signature"]))
     symmetry = Symmetry.parse(symmetry)
     names = class_names(records, symmetry)
@@ -244,7 +374,7 @@ class CatalogBuild:
 def build_catalog(out: Path | str, max_corners: int, min_corners: int = 8,
                   symmetry: Symmetry | str = Symmetry.FULL, *, workers: int = 1,
                   res: int | None = None, mod: int | None = None, dask: str | None = None,
-                  plantri: str | None = None, method: str = "auto",
+                  plantri: str | None = None, method: str = "auto", generator: str = "plantri",
                   progress: Callable[[dict[str, Any]], None] | None = None,
                   on_plan: Callable[[list[Job]], None] | None = None) -> CatalogBuild:
     """Build (or resume) the genus-0 catalog in directory ``out``.
@@ -259,11 +389,15 @@ def build_catalog(out: Path | str, max_corners: int, min_corners: int = 8,
     symmetry:
         The mode the records list (``summary.json`` counts all three).
     workers, dask, res, mod:
-        Split the work over local processes or a Dask cluster, or do only plantri's slice
-        ``res`` of ``mod``; the bytes written do not depend on the split.
+        Split the work over local processes or a Dask cluster, or do only the slice ``res``
+        of ``mod``; the bytes written do not depend on the split.
+    generator:
+        ``plantri`` (filter every quadrangulation) or ``loops`` (build arrangements of loops,
+        :mod:`polyloops.enumerate.arrangements`); the records and their counts are the same,
+        ``summary.json`` says which maps each visited.
     plantri, method:
         Which plantri binary and which strip filter (see
-        :func:`polyloops.enumerate.quadrangulations.filtered_batches`).
+        :func:`polyloops.enumerate.quadrangulations.filtered_batches`), for ``plantri``.
     progress, on_plan:
         Called with each finished job's result, and once with the list of jobs.
 
@@ -274,7 +408,8 @@ def build_catalog(out: Path | str, max_corners: int, min_corners: int = 8,
     Raises
     ------
     CatalogRunError
-        For arguments that do not fit together or an output that is not a directory.
+        For arguments that do not fit together, an output that is not a directory, or the
+        ``loops`` generator without its compiled search.
     PlantriError
         When plantri cannot be found or fails.
 
@@ -294,12 +429,23 @@ def build_catalog(out: Path | str, max_corners: int, min_corners: int = 8,
     if workers < 1:
         raise CatalogRunError("--workers must be at least 1")
     symmetry = Symmetry.parse(symmetry)
-    binary = find_plantri(plantri)
+    if generator not in GENERATORS:
+        raise CatalogRunError(f"unknown generator {generator!r}: choose one of {', '.join(GENERATORS)}")
+    if generator == "loops":
+        from polyloops.enumerate.arrangements import compiled_generator_available
+
+        if not compiled_generator_available():
+            raise CatalogRunError("the compiled arrangement search was not built (a C compiler and "
+                                  "the Python headers are needed at install time): reinstall with "
+                                  "them, or use --generator plantri")
+        binary = ""
+    else:
+        binary = find_plantri(plantri)
     if out.exists() and not out.is_dir():
         raise CatalogRunError(f"{out}: exists and is not a directory")
     if not out.absolute().parent.is_dir():  # like every other output: the directory above must exist
         raise CatalogRunError(f"{out}: the directory {out.absolute().parent} does not exist")
-    jobs = plan_jobs(min_corners, max_corners, res, mod, workers)
+    jobs = plan_jobs(min_corners, max_corners, res, mod, workers, generator)
     if on_plan:
         on_plan(jobs)
     try:
