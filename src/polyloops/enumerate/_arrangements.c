@@ -14,8 +14,8 @@
  *   - can still grow into an arrangement with at most `limit` crossings whose regions have 3 to
  *     6 sides (the counting bound `need`), and
  *   - has the new curve as its canonical loop to delete: among loops whose deletion leaves
- *     the arrangement connected, those with the most crossings, and of these the one met first
- *     in the canonical numbering (McKay's canonical construction path),
+ *     the arrangement connected, those with the fewest crossings, and of these the one met
+ *     first in the canonical numbering (McKay's canonical construction path),
  * as its canonical twin array (uint16), with a flag telling whether the child is itself a
  * candidate (regions of 3 to 6 sides, no two regions sharing two edges or one region on both
  * sides of an edge).  A parent with two darts is the single loop, with one marker vertex.
@@ -276,13 +276,13 @@ static __attribute__((noinline)) void emit(Ctx *c, int newdart)
     if (child_faces(h) > c->limit) { c->bounded++; return; }
     if (child_loops(h) < 0) { c->failed = 2; return; }
     int newloop = h->loop[id[newdart]];
-    /* candidates: deletable loops with the most crossings */
+    /* candidates: deletable loops with the fewest crossings */
     uint64_t cand = 0;
-    int most = -1;
+    int fewest = 1 << 30;
     for (int l = 0; l < h->nl; l++) {
         if (!connected_without(h, l)) continue;
-        if (h->lcross[l] > most) { most = h->lcross[l]; cand = 0; }
-        if (h->lcross[l] == most) cand |= (uint64_t)1 << l;
+        if (h->lcross[l] < fewest) { fewest = h->lcross[l]; cand = 0; }
+        if (h->lcross[l] == fewest) cand |= (uint64_t)1 << l;
     }
     if (!(cand >> newloop & 1) || !child_code(h, cand, newloop)) { c->rejected++; return; }
     int final = child_is_candidate(h);
@@ -314,12 +314,13 @@ static void dfs(Ctx *c, int x, int y0, int cr)
         do { c->mark[e] = st; c->fid[e] = -2; sz += !is_marker(c, e); e = fnext(c, e); } while (e != y0);
     }
     /* a loop of the parent that stays deletable must not have more crossings than the new one */
-    int longest = 0, crossed = 0;
+    /* A loop of the parent that stays deletable (the new loop meets another loop too) must
+     * have at least as many crossings as the new one: the new loop meets the other loops at
+     * most as often as that loop's crossings in the parent. */
+    int crossed = 0;
     for (int l = 0; l < c->npl; l++) crossed += c->ci[l] > 0;
-    for (int l = 0; l < c->npl; l++)   /* it stays deletable if the new loop meets another loop */
-        if (c->pdel[l] && crossed > (c->ci[l] > 0) && c->pcross[l] + c->ci[l] > longest)
-            longest = c->pcross[l] + c->ci[l];
-    if (c->f0 + longest > c->limit) return;
+    for (int l = 0; l < c->npl; l++)
+        if (c->pdel[l] && crossed > (c->ci[l] > 0) && cr - c->ci[l] > c->pcross[l]) return;
     /* Twice a lower bound on the child's crossings and on those of later loops: each face other
      * than the open ones is a region of the child, or a piece later loops must cut to size;
      * the open faces will hold the rest of the path. */
@@ -399,12 +400,20 @@ static void edge_orbit_minima(Ctx *c, unsigned char *is_min)
 {
     static int num0[MAXD], order0[MAXD], ref[MAXD], num[MAXD], order[MAXD], code[MAXD];
     int D = c->n;
+    Child *h = &child;   /* for the invariant that automorphisms keep: roots are tried by it */
+    h->D = D;
+    memcpy(h->R, c->R, sizeof(int) * (size_t)D);
+    memcpy(h->T, c->T, sizeof(int) * (size_t)D);
+    child_faces(h);
+    child_loops(h);
+    int low = 1 << 30, root = 0;
+    for (int d = 0; d < D; d++) { int k = face_key(h, 0, d); if (k < low) { low = k; root = d; } }
     for (int d = 0; d < D; d++) is_min[d] = d < c->T[d];
-    number_from(c->R, c->T, D, 0, num0, order0, ref, NULL);
+    number_from(c->R, c->T, D, root, num0, order0, ref, NULL);
     for (int o = 0; o < 2; o++) {
         const int *rot = o ? c->IR : c->R;
         for (int r = 0; r < D; r++) {
-            if (number_from(rot, c->T, D, r, num, order, code, ref)) continue;
+            if (face_key(h, o, r) != low || number_from(rot, c->T, D, r, num, order, code, ref)) continue;
             for (int d = 0; d < D; d++) {    /* d -> order[num0[d]] is an automorphism */
                 int img = order[num0[d]];
                 if (is_min[d] && c->pedge[img] < d) is_min[d] = 0;
