@@ -300,3 +300,21 @@ def labelled_structures(draw) -> LoopStructure:
         loop = draw(st.integers(0, len(ls.loops) - 1))
         ls = ls.relabelled(loop, draw(st.sampled_from([a for a in Axis if a != ls.axes[loop]])))
     return ls.forget_orientation()
+
+
+@st.composite
+def arrangements(draw, max_corners: int = 18, max_loops: int = 6):
+    """An arrangement of loops from the canonical construction, drawn as a path down its search
+    tree: each step a drawn index among the children (so failures shrink to shallow, early
+    arrangements)."""
+    from polyloops.enumerate.arrangements import children
+
+    node = None
+    for _ in range(max_loops - 1):
+        kids, _stats = children(node, max_corners)
+        if not kids or (node is not None and not draw(st.booleans())):
+            break
+        node = kids[draw(st.integers(0, len(kids) - 1))]
+    if node is None:
+        node = children(None, max_corners)[0][0]
+    return node

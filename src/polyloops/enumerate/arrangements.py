@@ -138,6 +138,59 @@ class Arrangement:
             out.append(loop)
         return out
 
+    def loop_darts(self) -> list[list[int]]:
+        """Each loop's darts (both directions), in the order of :meth:`loops`."""
+        rot, twin = self.rot, self.twin
+        seen: set[int] = set()
+        out = []
+        for d in range(len(twin)):
+            if d in seen:
+                continue
+            darts, e = [], d
+            while e not in seen:
+                seen.update((e, twin[e]))
+                darts.extend((e, twin[e]))
+                e = rot[rot[twin[e]]]
+            out.append(darts)
+        return out
+
+    def without_loop(self, i: int) -> Arrangement:
+        """The arrangement with loop ``i`` (in the order of :meth:`loops`) deleted, in canonical
+        form; the other loops run straight through its crossings.  Raises
+        :class:`ArrangementError` when what is left is not connected (or is a single loop,
+        which has no crossing).
+
+        >>> from polyloops.core.examples import load_example
+        >>> cube = Arrangement.of(load_example("cube").map)
+        >>> [len(loop) for loop in cube.without_loop(0).loops()]
+        [2, 2]
+        """
+        loops = self.loops()
+        if not 0 <= i < len(loops):
+            raise ArrangementError(f"no loop {i}: the arrangement has {len(loops)}")
+        gone = set(loops[i])
+        rot, twin = self.rot, self.twin
+        keep = [d for d in range(len(twin)) if d // 4 not in gone]
+        if not keep:
+            raise ArrangementError("deleting that loop leaves a single loop without crossings")
+        index = {d: k for k, d in enumerate(keep)}
+
+        def through(t: int) -> int:
+            while t // 4 in gone:  # straight on through a deleted crossing
+                t = twin[rot[rot[t]]]
+            return t
+
+        new_rot = [index[rot[d]] for d in keep]
+        new_twin = [index[through(twin[d])] for d in keep]
+        try:
+            code, candidate = _module().canonical(_pack(new_rot), _pack(new_twin))
+        except ValueError as err:
+            raise ArrangementError(f"deleting loop {i}: {err}") from None
+        out = Arrangement(_unpack(code), bool(candidate))
+        if len(out.loops()) != len(loops) - 1:  # a loop that crossed only loop i
+            raise ArrangementError(f"deleting loop {i} leaves a loop without crossings")
+        return out
+
     def quad_mesh(self) -> HalfEdgeMap:
         """The dual quad mesh: one quad a crossing, one corner a region."""
         region = {}

@@ -1,0 +1,234 @@
+"""The arrangement search (enumerate/arrangements.py and its compiled core) against its slow
+twin, against plantri's filter, and its own properties."""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import random
+from collections import Counter
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from arrangement_reference import canonical_code, reference_arrangements
+from polyloops.core.halfedge import HalfEdgeMap
+from polyloops.enumerate.arrangements import (
+    Arrangement,
+    ArrangementError,
+    SearchStats,
+    candidate_arrangements,
+    children,
+    frontier,
+)
+from polyloops.enumerate.catalog_run import CatalogRunError, build_catalog
+from polyloops.enumerate.quadrangulations import candidate_maps, find_plantri
+from strategies import arrangements
+
+
+def whole_tree(max_corners: int) -> list[Arrangement]:
+    out, stack = [], [None]
+    while stack:
+        node = stack.pop()
+        if node is not None:
+            out.append(node)
+        stack.extend(children(node, max_corners)[0])
+    return out
+
+
+def reference_code(a: Arrangement) -> tuple[int, ...]:
+    return canonical_code(list(a.rot), list(a.twin))
+
+
+@pytest.mark.parametrize("max_corners", [12, 14, pytest.param(16, marks=pytest.mark.slow)])
+def test_search_visits_exactly_what_the_slow_twin_finds(max_corners):
+    """The compiled search (canonical construction, every cut) visits each connected
+    arrangement of simple loops that passes the counting bound once: the slow twin's list,
+    made with no canonical construction, another canonical code and only the final bound."""
+    tree = whole_tree(max_corners)
+    codes = [reference_code(a) for a in tree]
+    assert len(set(codes)) == len(codes)  # no arrangement twice
+    expected = reference_arrangements(max_corners)
+    assert set(codes) == set(expected)
+    assert {c: a.candidate for c, a in zip(codes, tree, strict=True)} == expected
+
+
+def mirror_and_renumber(a: Arrangement, rng: random.Random) -> tuple[list[int], list[int]]:
+    """The same arrangement with darts renumbered at random, mirrored half the time."""
+    n = len(a.twin)
+    rot = list(a.rot)
+    if rng.random() < 0.5:
+        rot = [4 * (d // 4) + (d + 3) % 4 for d in range(n)]
+    perm = list(range(n))
+    rng.shuffle(perm)
+    new_rot, new_twin = [0] * n, [0] * n
+    for d in range(n):
+        new_rot[perm[d]] = perm[rot[d]]
+        new_twin[perm[d]] = perm[a.twin[d]]
+    return new_rot, new_twin
+
+
+@settings(max_examples=60, deadline=None)
+@given(arrangements(), st.randoms(use_true_random=False))
+def test_canonical_form_ignores_numbering_and_mirror(a, rng):
+    from polyloops.enumerate import _arrangements
+
+    rot, twin = mirror_and_renumber(a, rng)
+    code, candidate = _arrangements.canonical(bytes_of(rot), bytes_of(twin))
+    assert Arrangement(tuple(memoryview(code).cast("H")), bool(candidate)) == a
+    assert bool(candidate) == a.candidate
+    assert canonical_code(rot, twin) == reference_code(a)
+
+
+def bytes_of(values: list[int]) -> bytes:
+    import array
+
+    return array.array("H", values).tobytes()
+
+
+@settings(max_examples=40, deadline=None)
+@given(arrangements(max_corners=20))
+def test_children_give_back_their_parent(a):
+    """McKay's property: each child has one loop more, and deleting one of its loops with the
+    fewest crossings among those whose deletion keeps it connected gives back the parent."""
+    kids, stats = children(a, 20)
+    assert stats.arrangements == len(kids) == len(set(kids))
+    for kid in kids:
+        loops = kid.loops()
+        assert len(loops) == len(a.loops()) + 1
+        deletable = {}
+        for i in range(len(loops)):
+            with contextlib.suppress(ArrangementError):
+                deletable[i] = kid.without_loop(i)
+        fewest = min(len(loops[i]) for i in deletable)
+        assert a in [p for i, p in deletable.items() if len(loops[i]) == fewest]
+
+
+@pytest.mark.parametrize("n", [*range(8, 23, 2), pytest.param(24, marks=pytest.mark.slow),
+                               pytest.param(26, marks=pytest.mark.slow)])
+def test_candidates_are_plantris(n):
+    """The candidate maps with n corners are those plantri's filter keeps, map for map."""
+    mine = [a for a in candidate_arrangements(n) if a.corners == n]
+    theirs = {Arrangement.of(m) for m in candidate_maps(n, find_plantri())}
+    assert len(set(mine)) == len(mine)
+    assert set(mine) == theirs
+
+
+def test_quad_mesh_round_trip():
+    found = list(candidate_arrangements(20))
+    assert Counter(a.corners for a in found)[20] == 60
+    for a in found:
+        m = a.quad_mesh()
+        assert isinstance(m, HalfEdgeMap)
+        assert (m.num_corners, m.num_faces) == (a.corners, a.crossings)
+        assert sorted(len(f) for f in m.faces) == [4] * a.crossings
+        assert Arrangement.of(m) == a and Arrangement.of(m).candidate
+        assert all(3 <= s <= 6 for s in a.region_sizes())
+
+
+def test_shares_partition_the_search():
+    one: list[Arrangement] = []
+    total = [SearchStats()]
+
+    def add(s: SearchStats) -> None:
+        total[0] = total[0] + s
+
+    whole = list(candidate_arrangements(20, on_stats=add))
+    parts, split = [], [SearchStats()]
+
+    def add_split(s: SearchStats) -> None:
+        split[0] = split[0] + s
+
+    top = frontier(20)
+    for res in range(3):
+        parts.append(list(candidate_arrangements(20, res, 3, on_stats=add_split)))
+        one.extend(parts[-1])
+    assert sorted(one, key=lambda a: a.twin) == sorted(whole, key=lambda a: a.twin)
+    assert len(one) == len(set(one))
+    assert split[0] == total[0]
+    assert len(top.roots) > 3 and all(len(r.loops()) == 3 for r in top.roots)
+    with pytest.raises(ArrangementError):
+        next(candidate_arrangements(20, 3, 3))
+
+
+def test_bad_maps_are_refused():
+    tetrahedron = HalfEdgeMap.from_faces([[0, 1, 2], [0, 3, 1], [1, 3, 2], [2, 3, 0]])
+    with pytest.raises(ArrangementError, match="not a quad"):
+        Arrangement.of(tetrahedron)
+    # plantri's only map with 10 corners has a loop that crosses itself
+    (rows,) = [m for m in _all_maps(10)]
+    with pytest.raises(ArrangementError, match="crosses itself"):
+        Arrangement.of(rows)
+    cube = next(candidate_arrangements(8))
+    with pytest.raises(ArrangementError, match="no loop 3"):
+        cube.without_loop(3)
+    two = cube.without_loop(0)
+    with pytest.raises(ArrangementError, match="single loop"):
+        two.without_loop(0)
+
+
+def _all_maps(n: int):
+    from polyloops.enumerate.quadrangulations import Batch, plantri_batches
+
+    for rows in plantri_batches(n, find_plantri()):
+        batch = Batch(rows)
+        for i in range(len(batch)):
+            yield batch.map(i)
+
+
+def _files(path):
+    return (path / "catalog.jsonl").read_bytes(), (path / "catalog.sqlite").read_bytes()
+
+
+def test_catalog_from_loops_is_plantris(tmp_path):
+    """Record for record, byte for byte: the catalog through 20 corners from either
+    generator, with one worker or two, whole or in shares."""
+    plantri = build_catalog(tmp_path / "p", 20)
+    loops = build_catalog(tmp_path / "l", 20, generator="loops")
+    assert _files(tmp_path / "p") == _files(tmp_path / "l")
+    assert loops.summary["counts"] == plantri.summary["counts"]
+    assert loops.summary["generator"] == "loops"
+    assert loops.summary["search"]["candidates"] == sum(1 for _ in candidate_arrangements(20))
+    assert set(loops.summary["quadrangulations"].values()) == {None}
+    two = build_catalog(tmp_path / "w", 20, generator="loops", workers=2)
+    assert _files(tmp_path / "w") == _files(tmp_path / "p")
+    assert two.summary == loops.summary
+    # shares on "different machines": together they hold every record once
+    records = []
+    for res in range(2):
+        part = build_catalog(tmp_path / f"s{res}", 20, generator="loops", res=res, mod=2)
+        assert "partial" in part.summary
+        records += (tmp_path / f"s{res}" / "catalog.jsonl").read_text().splitlines()
+    whole = (tmp_path / "p" / "catalog.jsonl").read_text().splitlines()
+    key = [json.loads(r)["signature"] for r in whole]
+    assert sorted(json.loads(r)["signature"] for r in records) == sorted(key)
+
+
+def test_catalog_resumes_loops_shares(tmp_path):
+    built = build_catalog(tmp_path / "c", 18, generator="loops", workers=2)
+    parts = sorted((tmp_path / "c" / "parts").glob("loops-*.json"))
+    assert parts
+    parts[0].unlink()
+    again = build_catalog(tmp_path / "c", 18, generator="loops", workers=2)
+    assert again.summary == built.summary
+
+
+def test_loops_generator_needs_its_compiled_search(tmp_path, monkeypatch):
+    import polyloops.enumerate.arrangements as arrangements_module
+
+    monkeypatch.setattr(arrangements_module, "compiled_generator_available", lambda: False)
+    with pytest.raises(CatalogRunError, match="--generator plantri"):
+        build_catalog(tmp_path / "c", 12, generator="loops")
+    with pytest.raises(CatalogRunError, match="unknown generator"):
+        build_catalog(tmp_path / "c", 12, generator="nope")
+
+
+@pytest.mark.slow
+def test_catalog_from_loops_through_28_is_the_shipped_one(tmp_path):
+    from polyloops.enumerate.census import default_catalog
+
+    build_catalog(tmp_path / "c", 28, generator="loops", workers=2)
+    shipped = [line for line in (default_catalog() / "catalog.jsonl").read_text().splitlines()
+               if json.loads(line)["corners"] <= 28]
+    assert (tmp_path / "c" / "catalog.jsonl").read_text().splitlines() == shipped
