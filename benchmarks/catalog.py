@@ -1,18 +1,22 @@
-"""The catalog's two strip filters, and plantri alone, per corner count.
+"""The catalog's two generators, per corner count: plantri's maps filtered, and arrangements
+of loops built one loop at a time.
 
-For each even corner count n, three runs, each a fresh process:
+For each even corner count n, runs each in a fresh process:
 
 - plantri alone: ``plantri -qc2 n`` split into the same slices as the catalog, output discarded
   (the floor for any method that reads every quadrangulation);
-- ``polyloops catalog --min-corners n --max-corners n --method numpy`` (the reference filter);
-- the same with ``--method compiled``.
+- ``polyloops catalog --min-corners n --max-corners n --generator plantri`` (compiled filter);
+- the same with ``--generator loops``;
+- optionally (``--numpy-up-to N``) the plantri generator with the numpy filter.
 
 Each catalog run uses ``--workers K`` (default 2, this machine's cores); its CPU time adds up
 all its processes (workers and plantri), so CPU columns compare like with like.  Objects
-visited: the maps plantri writes (both filters read all of them) and the candidates that pass
-the filter to the per-map work.
+visited: the maps plantri writes (the filter reads all of them), the arrangements the loops
+search builds (all of those with at most n corners that can still grow into a candidate), and
+the candidates both pass to the per-map work.  The script checks that the records are the
+same bytes.
 
-Usage: python benchmarks/catalog.py [--min N] [--max N] [--workers K] [--skip-numpy-above N]
+Usage: python benchmarks/catalog.py [--min N] [--max N] [--workers K] [--numpy-up-to N]
 """
 
 from __future__ import annotations
@@ -61,17 +65,22 @@ def plantri_alone(plantri: str, n: int, workers: int) -> tuple[float, float]:
     return time.perf_counter() - start, children_cpu() - cpu
 
 
-def catalog(n: int, workers: int, method: str) -> tuple[float, float, dict]:
+def catalog(n: int, workers: int, generator: str, method: str = "compiled") -> tuple[float, float, dict]:
     with tempfile.TemporaryDirectory() as tmp:
         out = Path(tmp) / "c"
         wall, cpu = measure([sys.executable, "-m", "polyloops", "catalog", "--min-corners", str(n),
                              "--max-corners", str(n), "--workers", str(workers), "--method", method,
-                             "-o", str(out)])
+                             "--generator", generator, "-o", str(out)])
+        summary = json.loads((out / "summary.json").read_text())
         parts = [json.loads(p.read_text()) for p in (out / "parts").iterdir()]
-        visited = {"maps": sum(p["quadrangulations"] for p in parts),
-                   "candidates": sum(p["candidates"] for p in parts),
-                   "records": (out / "catalog.jsonl").read_bytes()}
-        return wall, cpu, visited
+        if generator == "loops":
+            visited = summary["search"]["arrangements"]
+            candidates = sum(p["per_n"][str(n)]["candidates"] for p in parts)
+        else:
+            visited = sum(p["quadrangulations"] for p in parts)
+            candidates = sum(p["candidates"] for p in parts)
+        return wall, cpu, {"visited": visited, "candidates": candidates,
+                           "records": (out / "catalog.jsonl").read_bytes()}
 
 
 def main() -> None:
@@ -79,27 +88,32 @@ def main() -> None:
     ap.add_argument("--min", type=int, default=20)
     ap.add_argument("--max", type=int, default=26)
     ap.add_argument("--workers", type=int, default=2)
-    ap.add_argument("--skip-numpy-above", type=int, default=26, metavar="N",
-                    help="the numpy filter takes about 17 minutes at 28 corners")
+    ap.add_argument("--numpy-up-to", type=int, default=0, metavar="N",
+                    help="also time the numpy strip filter up to N corners (17 minutes at 28)")
     args = ap.parse_args()
     plantri = find_plantri()
     rows = []
     for n in range(args.min + args.min % 2, args.max + 1, 2):
-        p_wall, p_cpu = plantri_alone(plantri, n, args.workers)
-        c_wall, c_cpu, fast = catalog(n, args.workers, "compiled")
-        row = [n, fast["maps"], fast["candidates"], p_wall, p_cpu, c_wall, c_cpu]
-        if n <= args.skip_numpy_above:
-            n_wall, n_cpu, slow = catalog(n, args.workers, "numpy")
-            if slow["records"] != fast["records"] or slow["maps"] != fast["maps"]:
-                raise SystemExit(f"{n} corners: the two methods disagree")
-            row += [n_wall, n_cpu, n_cpu / c_cpu]
+        _, p_cpu = plantri_alone(plantri, n, args.workers)
+        f_wall, f_cpu, filt = catalog(n, args.workers, "plantri")
+        l_wall, l_cpu, loops = catalog(n, args.workers, "loops")
+        if loops["records"] != filt["records"] or loops["candidates"] != filt["candidates"]:
+            raise SystemExit(f"{n} corners: the two generators disagree")
+        row = [n, filt["visited"], loops["visited"], filt["candidates"], p_cpu, f_wall, f_cpu,
+               l_wall, l_cpu, f_cpu / l_cpu]
+        if n <= args.numpy_up_to:
+            _, n_cpu, slow = catalog(n, args.workers, "plantri", "numpy")
+            if slow["records"] != filt["records"]:
+                raise SystemExit(f"{n} corners: the two strip filters disagree")
+            row += [n_cpu]
         else:
-            row += ["-", "-", "-"]
-        rows.append([*row, c_cpu / p_cpu])
+            row += ["-"]
+        rows.append(row)
         print(f"{n} corners done", file=sys.stderr)
-    print(markdown_table(["corners", "maps visited", "candidates", "plantri wall s", "plantri CPU s",
-                          "compiled wall s", "compiled CPU s", "numpy wall s", "numpy CPU s",
-                          "numpy/compiled CPU", "compiled/plantri CPU"], rows))
+    print(markdown_table(["corners", "maps visited (plantri)", "arrangements visited (loops)",
+                          "candidates", "plantri alone CPU s", "plantri wall s", "plantri CPU s",
+                          "loops wall s", "loops CPU s", "plantri/loops CPU", "numpy filter CPU s"],
+                         rows))
 
 
 if __name__ == "__main__":
