@@ -76,7 +76,7 @@ def test_canonical_form_ignores_numbering_and_mirror(a, rng):
 
     rot, twin = mirror_and_renumber(a, rng)
     code, candidate = _arrangements.canonical(bytes_of(rot), bytes_of(twin))
-    assert Arrangement(tuple(memoryview(code).cast("H")), bool(candidate)) == a
+    assert Arrangement(code, bool(candidate)) == a
     assert bool(candidate) == a.candidate
     assert canonical_code(rot, twin) == reference_code(a)
 
@@ -150,6 +150,16 @@ def test_shares_partition_the_search():
     assert len(top.roots) > 3 and all(len(r.loops()) == 3 for r in top.roots)
     with pytest.raises(ArrangementError):
         next(candidate_arrangements(20, 3, 3))
+
+
+def test_bad_arrays_are_refused():
+    from polyloops.enumerate import _arrangements
+
+    for rot, twin in [([0, 0], [1, 0]), ([1, 0], [0, 1]), ([1, 2, 0], [1, 0, 2]), ([], [])]:
+        with pytest.raises(ValueError):
+            _arrangements.children(bytes_of(rot), bytes_of(twin), 10)
+    with pytest.raises(ValueError, match="degree 3"):
+        _arrangements.children(bytes_of([1, 2, 0, 3]), bytes_of([3, 2, 1, 0]), 10)
 
 
 def test_bad_maps_are_refused():

@@ -32,7 +32,8 @@
 typedef struct {
     int R[MAXD], IR[MAXD], T[MAXD], O[MAXD], S[MAXD];
     unsigned char P[MAXD];
-    int mark[MAXD], fid[MAXD], fsz[MAXD];
+    int mark[MAXD], fs[MAXD];
+    unsigned lab[MAXD], nextlab;   /* reset with each parent */
     int stamp;
     int n, nv, nv0;
     int pedge[MAXD];
@@ -293,27 +294,49 @@ static __attribute__((noinline)) void emit(Ctx *c, int newdart)
     Py_XDECREF(item);
 }
 
-static void dfs(Ctx *c, int x, int y0, int cr)
+/* Every face of the partial map carries a label and its number of corners on each of its darts
+ * (lab, fs).  A step changes three faces only (the current one splits in two, the one across
+ * the crossed edge gains a corner), so a node updates those and restores them on the way back;
+ * the bound of the faces that are not open (base2) comes from the parent. */
+static void label_face(Ctx *c, int d, unsigned label, int size)
+{
+    int e = d;
+    do { c->lab[e] = label; c->fs[e] = size; e = fnext(c, e); } while (e != d);
+}
+
+/* The parent's faces labelled; returns twice their needs. */
+static int label_all(Ctx *c)
+{
+    int st = ++c->stamp, sum = 0;
+    for (int d = 0; d < c->n; d++) {
+        if (c->mark[d] == st) continue;
+        int s = 0, e = d;
+        do { c->mark[e] = st; s += !is_marker(c, e); e = fnext(c, e); } while (e != d);
+        label_face(c, d, ++c->nextlab, s);
+        sum += 2 * need(s);
+    }
+    return sum;
+}
+
+static void dfs(Ctx *c, int x, int y0, int cr, int base2)
 {
     int face[MAXD], corner[MAXD + 1], k = 0, e = x, at = -1;
     if (c->failed) return;
     c->nodes++;
-    int st = ++c->stamp;
     /* the current face (left of x), with its corners counted along it */
     corner[0] = 0;
     do {
         if (e == y0) at = k;
-        face[k] = e; c->mark[e] = st; c->fid[e] = -1;
+        face[k] = e;
         corner[k + 1] = corner[k] + !is_marker(c, e);
         k++;
         e = fnext(c, e);
     } while (e != x);
-    int closable = at >= 0, sz = 0;
-    if (!closable) {
-        e = y0;
-        do { c->mark[e] = st; c->fid[e] = -2; sz += !is_marker(c, e); e = fnext(c, e); } while (e != y0);
-    }
-    /* a loop of the parent that stays deletable must not have more crossings than the new one */
+    int sg = corner[k];
+    unsigned lg = ++c->nextlab;
+    for (int i = 0; i < k; i++) { c->lab[face[i]] = lg; c->fs[face[i]] = sg; }
+    int closable = at >= 0, sz = c->fs[y0];
+    unsigned lz = c->lab[y0];
     /* A loop of the parent that stays deletable (the new loop meets another loop too) must
      * have at least as many crossings as the new one: the new loop meets the other loops at
      * most as often as that loop's crossings in the parent. */
@@ -321,54 +344,66 @@ static void dfs(Ctx *c, int x, int y0, int cr)
     for (int l = 0; l < c->npl; l++) crossed += c->ci[l] > 0;
     for (int l = 0; l < c->npl; l++)
         if (c->pdel[l] && crossed > (c->ci[l] > 0) && cr - c->ci[l] > c->pcross[l]) return;
-    /* Twice a lower bound on the child's crossings and on those of later loops: each face other
-     * than the open ones is a region of the child, or a piece later loops must cut to size;
-     * the open faces will hold the rest of the path. */
-    int limit2 = 2 * c->limit, sg = corner[k];
-    int base2 = 2 * (c->f0 + cr), open2 = closable ? both2(sg) : half2(sg) + half2(sz), nf = 0;
-    for (int d = 0; d < c->n; d++) {
-        if (c->mark[d] == st) continue;
-        int s = 0;
-        e = d;
-        do { c->mark[e] = st; c->fid[e] = nf; s += !is_marker(c, e); e = fnext(c, e); } while (e != d);
-        c->fsz[nf++] = s;
-        base2 += 2 * need(s);
-        if (base2 + open2 > limit2) return;
-    }
+    /* Twice a lower bound on the child's crossings and on those of later loops: base2 covers
+     * the faces other than the open ones (regions of the child, or pieces later loops must
+     * cut to size); the open faces will hold the rest of the path. */
+    int limit2 = 2 * c->limit;
+    if (base2 + (closable ? both2(sg) : half2(sg) + half2(sz)) > limit2) return;
+    /* Closing cuts the current face into the darts before y0 and those from y0 on, each with
+     * the chord: the child's exact bound, before building it. */
     if (cr >= 2 && closable) {
-        chord(c, x, y0);
-        emit(c, c->n - 2);
-        unchord(c, x, y0);
+        int a = corner[at] + 1, b = corner[k] - corner[at] + 1;
+        if (base2 + 2 * need(a) + 2 * need(b) <= limit2) {
+            chord(c, x, y0);
+            emit(c, c->n - 2);
+            unchord(c, x, y0);
+        } else {
+            c->closed++;
+            c->bounded++;
+        }
     }
     if (cr >= c->budget || c->n + 4 > MAXD) return;
     /* The chord to a new point on an edge d of the current face cuts it in two and enters the
-     * face across d: the child's bound, before drawing it.  (All of them first: fid and fsz
-     * belong to this node only until the first child overwrites them.) */
-    int go[MAXD], ngo = 0;
+     * face across d: the child's bound, before drawing it. */
+    int go[MAXD], gob[MAXD], goi[MAXD], ngo = 0;
     for (int i = 0; i < k; i++) {
         int d = face[i];
         if (c->P[d] || c->pedge[c->S[d]] < c->e0min || d == c->ban0 || d == c->ban1) continue;
-        int s1 = corner[i + 1] + 1, s2 = corner[k] - corner[i + 1] + 2, h = c->fid[c->T[d]];
-        int next2 = base2 + 2, sh = h >= 0 ? c->fsz[h] : sz;
-        if (h >= 0) next2 -= 2 * need(sh);
+        int t = c->T[d], z = c->lab[t] == lz;   /* is the face across the closing face? */
+        int s1 = corner[i + 1] + 1, s2 = corner[k] - corner[i + 1] + 2, sh = c->fs[t];
+        int nb2 = base2 + 2 - (z ? 0 : 2 * need(sh)), next2;
         if (closable) {   /* the piece with the closing angle stays open */
             int keep = at <= i ? s1 : s2, cut = at <= i ? s2 : s1;
-            next2 += 2 * need(cut) + half2(keep) + half2(sh + 1);
+            nb2 += 2 * need(cut);
+            next2 = nb2 + half2(keep) + half2(sh + 1);
         } else {
-            next2 += 2 * need(s1) + 2 * need(s2);
-            next2 += h >= 0 ? half2(sh + 1) + half2(sz) : both2(sz + 1);
+            nb2 += 2 * need(s1) + 2 * need(s2);
+            next2 = nb2 + (z ? both2(sz + 1) : half2(sh + 1) + half2(sz));
         }
-        if (next2 <= limit2) go[ngo++] = d;
+        if (next2 <= limit2) { go[ngo] = d; gob[ngo] = nb2; goi[ngo++] = i; }
     }
     for (int j = 0; j < ngo; j++) {
-        int d = go[j], e1, e2, l = c->npl ? c->ploop[c->S[d]] : 0;
+        int d = go[j], i = goi[j], e1, e2, l = c->npl ? c->ploop[c->S[d]] : 0;
+        int t = c->T[d], sh = c->fs[t];
+        unsigned lh = c->lab[t];
         subdivide(c, d, &e1, &e2);
         chord(c, x, e2);
+        /* the two pieces: face[0..i] with the chord's dart at q, and e2, face[i+1..] with
+         * the chord's dart at p */
+        unsigned l1 = ++c->nextlab, l2 = ++c->nextlab;
+        int s1 = corner[i + 1] + 1, s2 = corner[k] - corner[i + 1] + 2;
+        int a = c->n - 2, b = c->n - 1;
+        for (int m = 0; m <= i; m++) { c->lab[face[m]] = l1; c->fs[face[m]] = s1; }
+        c->lab[b] = l1; c->fs[b] = s1;
+        for (int m = i + 1; m < k; m++) { c->lab[face[m]] = l2; c->fs[face[m]] = s2; }
+        c->lab[e2] = l2; c->fs[e2] = s2; c->lab[a] = l2; c->fs[a] = s2;
         c->ci[l]++;
-        dfs(c, e1, y0, cr + 1);
+        dfs(c, e1, y0, cr + 1, gob[j]);
         c->ci[l]--;
         unchord(c, x, e2);
         unsubdivide(c, d, e1);
+        for (int m = 0; m < k; m++) { c->lab[face[m]] = lg; c->fs[face[m]] = sg; }
+        label_face(c, t, lh, sh);
     }
 }
 
@@ -464,11 +499,17 @@ static PyObject *children(PyObject *self, PyObject *args)
     int limit;
     if (!PyArg_ParseTuple(args, "y*y*i", &rb, &tb, &limit)) return NULL;
     Ctx *c = &ctx;
-    int n = (int)(rb.len / 2);
-    const uint16_t *rot = rb.buf, *twin = tb.buf;
-    int bad = rb.len != tb.len || rb.len % 2 || n < 2 || n > MAXD / 2;
+    int n = (int)(tb.len / 2), implicit = rb.len == 0;
+    static uint16_t blocks[MAXD];   /* an empty rot: four darts a crossing, in order */
+    if (implicit)
+        for (int d = 0; d < n && d < MAXD; d++) blocks[d] = (uint16_t)(4 * (d / 4) + (d + 1) % 4);
+    const uint16_t *rot = implicit ? blocks : rb.buf, *twin = tb.buf;
+    int bad = (!implicit && rb.len != tb.len) || tb.len % 2 || n < 2 || n > MAXD / 2 || (implicit && n % 4);
+    static unsigned char hit[MAXD];
     if (!bad) {
-        for (int d = 0; d < n && !bad; d++) bad = rot[d] >= n || twin[d] >= n || twin[twin[d]] != d || twin[d] == d;
+        memset(hit, 0, (size_t)n);
+        for (int d = 0; d < n && !bad; d++)   /* rot a permutation, twin an involution without fixed points */
+            bad = rot[d] >= n || twin[d] >= n || hit[rot[d]]++ || twin[twin[d]] != d || twin[d] == d;
     }
     if (bad) {
         PyBuffer_Release(&rb); PyBuffer_Release(&tb);
@@ -501,18 +542,27 @@ static PyObject *children(PyObject *self, PyObject *args)
     else edge_orbit_minima(c, is_min);
     c->out = PyList_New(0);
     if (!c->out) return NULL;
+    int needs2 = label_all(c);
     for (int e = 0; e < n && !c->failed; e++) {
         if (!is_min[e]) continue;
-        int e1, e2, l = c->npl ? c->ploop[e] : 0;
+        int e1, e2, l = c->npl ? c->ploop[e] : 0, te = c->T[e];
+        int sa = c->fs[e], sb = c->fs[te];
+        unsigned la = c->lab[e], lb = c->lab[te];
         c->e0min = e;
         subdivide(c, e, &e1, &e2);
+        /* the faces on either side of e gain the start as a corner; they are the open ones */
+        label_face(c, e, la, sa + 1);
+        label_face(c, e1, lb, sb + 1);
+        int base2 = 2 * (c->f0 + 1) + needs2 - 2 * need(sa) - 2 * need(sb);
         /* the start is the new loop's crossing on e nearest to e's origin */
         c->ban0 = e;
         c->ban1 = e1;
         c->ci[l]++;
-        dfs(c, e1, e2, 1);
+        dfs(c, e1, e2, 1, base2);
         c->ci[l]--;
         unsubdivide(c, e, e1);
+        label_face(c, e, la, sa);
+        label_face(c, te, lb, sb);
     }
     if (c->failed) {
         Py_DECREF(c->out);
@@ -571,6 +621,7 @@ static PyMethodDef methods[] = {
      "canonical(rot, twin) -> (canonical twin array, is_candidate) of an arrangement"},
     {"children", children, METH_VARARGS,
      "children(rot, twin, limit) -> ([(canonical twin array, is_candidate)], "
+     "(an empty rot: that of a canonical arrangement) "
      "(curves drawn, closed, over the bound, not canonical))"},
     {NULL, NULL, 0, NULL},
 };

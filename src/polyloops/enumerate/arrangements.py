@@ -71,7 +71,9 @@ def _unpack(data: bytes) -> tuple[int, ...]:
 @dataclass(frozen=True)
 class Arrangement:
     """A canonical arrangement: its darts numbered four a crossing, counter-clockwise, so that
-    ``rot(d) = 4 (d // 4) + (d + 1) % 4``; ``twin`` pairs the two darts of each edge.
+    ``rot(d) = 4 (d // 4) + (d + 1) % 4``; ``twin`` pairs the two darts of each edge.  ``code``
+    is ``twin`` as unsigned 16-bit numbers (the identity of the arrangement: equal codes,
+    isomorphic arrangements).
 
     >>> from polyloops.core.examples import load_example
     >>> a = Arrangement.of(load_example("cube").map)
@@ -81,7 +83,7 @@ class Arrangement:
     [4, 4, 4]
     """
 
-    twin: tuple[int, ...]
+    code: bytes
     candidate: bool = field(default=False, compare=False)
 
     @classmethod
@@ -95,12 +97,17 @@ class Arrangement:
             code, candidate = _module().canonical(_pack(m.next), _pack(m.twin))
         except ValueError as err:
             raise ArrangementError(str(err)) from None
-        return cls(_unpack(code), bool(candidate))
+        return cls(code, bool(candidate))
+
+    @cached_property
+    def twin(self) -> tuple[int, ...]:
+        """Per dart, the other dart of its edge."""
+        return _unpack(self.code)
 
     @property
     def crossings(self) -> int:
         """The number of crossings (the quads)."""
-        return len(self.twin) // 4
+        return len(self.code) // 8
 
     @property
     def corners(self) -> int:
@@ -186,7 +193,7 @@ class Arrangement:
             code, candidate = _module().canonical(_pack(new_rot), _pack(new_twin))
         except ValueError as err:
             raise ArrangementError(f"deleting loop {i}: {err}") from None
-        out = Arrangement(_unpack(code), bool(candidate))
+        out = Arrangement(code, bool(candidate))
         if len(out.loops()) != len(loops) - 1:  # a loop that crossed only loop i
             raise ArrangementError(f"deleting loop {i} leaves a loop without crossings")
         return out
@@ -226,18 +233,19 @@ class SearchStats:
 
 
 SINGLE_LOOP = (_pack([1, 0]), _pack([1, 0]))  # one loop, one marker vertex on it
+IMPLICIT = b""  # a canonical arrangement's rotation, which the search works out itself
 
 
 def children(parent: Arrangement | None, max_corners: int) -> tuple[list[Arrangement], SearchStats]:
     """The canonical children of ``parent`` (``None``: the single loop) that can still grow
     into a candidate map with at most ``max_corners`` corners, each once, in a fixed order."""
-    rot, twin = SINGLE_LOOP if parent is None else (_pack(parent.rot), _pack(parent.twin))
+    rot, twin = SINGLE_LOOP if parent is None else (IMPLICIT, parent.code)
     found, (curves, closed, over, rejected) = _module().children(rot, twin, max_corners - 2)
     kids, seen = [], set()
     for code, candidate in found:
         if code not in seen:
             seen.add(code)
-            kids.append(Arrangement(_unpack(code), bool(candidate)))
+            kids.append(Arrangement(code, bool(candidate)))
     stats = SearchStats(curves, closed, over, rejected, len(kids), sum(k.candidate for k in kids))
     return kids, stats
 
