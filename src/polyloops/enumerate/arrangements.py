@@ -236,9 +236,7 @@ SINGLE_LOOP = (_pack([1, 0]), _pack([1, 0]))  # one loop, one marker vertex on i
 IMPLICIT = b""  # a canonical arrangement's rotation, which the search works out itself
 
 
-def children(parent: Arrangement | None, max_corners: int) -> tuple[list[Arrangement], SearchStats]:
-    """The canonical children of ``parent`` (``None``: the single loop) that can still grow
-    into a candidate map with at most ``max_corners`` corners, each once, in a fixed order."""
+def _children(parent: Arrangement | None, max_corners: int) -> tuple[list[Arrangement], tuple[int, ...]]:
     rot, twin = SINGLE_LOOP if parent is None else (IMPLICIT, parent.code)
     found, (curves, closed, over, rejected) = _module().children(rot, twin, max_corners - 2)
     kids, seen = [], set()
@@ -246,8 +244,14 @@ def children(parent: Arrangement | None, max_corners: int) -> tuple[list[Arrange
         if code not in seen:
             seen.add(code)
             kids.append(Arrangement(code, bool(candidate)))
-    stats = SearchStats(curves, closed, over, rejected, len(kids), sum(k.candidate for k in kids))
-    return kids, stats
+    return kids, (curves, closed, over, rejected, len(kids), sum(k.candidate for k in kids))
+
+
+def children(parent: Arrangement | None, max_corners: int) -> tuple[list[Arrangement], SearchStats]:
+    """The canonical children of ``parent`` (``None``: the single loop) that can still grow
+    into a candidate map with at most ``max_corners`` corners, each once, in a fixed order."""
+    kids, stats = _children(parent, max_corners)
+    return kids, SearchStats(*stats)
 
 
 @dataclass(frozen=True)
@@ -297,9 +301,9 @@ def candidate_arrangements(max_corners: int, res: int = 0, mod: int = 1,
     """Every candidate map with at most ``max_corners`` corners, once up to isomorphism (mirror
     images identified), as its arrangement.  ``res``/``mod`` keeps the subtrees below the
     :func:`frontier` (``top``, computed when not given) whose rank is ``res`` modulo ``mod``;
-    candidates above it belong to share 0.  ``on_stats`` sees the statistics of every expanded
-    arrangement (those of the frontier only when this call computes it and ``res`` is 0, so
-    that the shares of a split search add up to one search)."""
+    candidates above it belong to share 0.  ``on_stats`` sees the statistics of the search,
+    one subtree at a time (and those of the frontier when this call computes it and ``res``
+    is 0, so that the shares of a split search add up to one search)."""
     if not 0 <= res < mod:
         raise ArrangementError("res/mod needs 0 <= res < mod")
     if top is None:
@@ -309,12 +313,14 @@ def candidate_arrangements(max_corners: int, res: int = 0, mod: int = 1,
     for rank, root in enumerate(top.roots):
         if rank % mod != res:
             continue
-        stack = [root]
+        stack, total = [root], [0] * 6
         while stack:
             node = stack.pop()
             if node.candidate:
                 yield node
-            kids, stats = children(node, max_corners)
-            if on_stats:
-                on_stats(stats)
+            kids, stats = _children(node, max_corners)
+            for i, v in enumerate(stats):
+                total[i] += v
             stack.extend(reversed(kids))
+        if on_stats:  # once a subtree
+            on_stats(SearchStats(*total))
