@@ -1,5 +1,6 @@
-"""Builds the optional compiled strip filter; without a C compiler the install still succeeds
-and the catalog falls back to the numpy filter (``--method numpy``)."""
+"""Builds the optional compiled parts of the catalog: the strip filter and the arrangement
+search.  Without a C compiler the install still succeeds: the catalog then uses the numpy
+filter (``--method numpy``), and ``--generator loops`` says it was not built."""
 
 import sys
 
@@ -12,18 +13,19 @@ class OptionalBuildExt(build_ext):
         try:
             super().run()
         except Exception as exc:  # no compiler, no Python headers
-            self._skip(exc)
+            self._skip("the compiled strip filter and arrangement search were", exc)
 
     def build_extension(self, ext: Extension) -> None:
         try:
             super().build_extension(ext)
         except Exception as exc:
-            self._skip(exc)
+            part = "strip filter" if "_strips" in ext.name else "arrangement search"
+            self._skip(f"the compiled {part} was", exc)
 
     @staticmethod
-    def _skip(exc: Exception) -> None:
-        print(f"polyloops: the compiled strip filter was not built ({exc}); "
-              "the catalog will use the numpy filter", file=sys.stderr)
+    def _skip(what: str, exc: Exception) -> None:
+        print(f"polyloops: {what} not built ({exc}); the catalog will use the numpy filter, "
+              "and only plantri's generator", file=sys.stderr)
 
 
 setup(
