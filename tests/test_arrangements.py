@@ -215,6 +215,13 @@ def test_catalog_from_loops_is_plantris(tmp_path):
     assert sorted(json.loads(r)["signature"] for r in records) == sorted(key)
 
 
+@pytest.mark.parametrize("mode", ["labelled", "rotation"])
+def test_catalog_from_loops_is_plantris_in_every_mode(tmp_path, mode):
+    build_catalog(tmp_path / "p", 20, symmetry=mode)
+    build_catalog(tmp_path / "l", 20, symmetry=mode, generator="loops")
+    assert _files(tmp_path / "p") == _files(tmp_path / "l")
+
+
 def test_catalog_resumes_loops_shares(tmp_path):
     built = build_catalog(tmp_path / "c", 18, generator="loops", workers=2)
     parts = sorted((tmp_path / "c" / "parts").glob("loops-*.json"))
@@ -238,7 +245,9 @@ def test_loops_generator_needs_its_compiled_search(tmp_path, monkeypatch):
 def test_catalog_from_loops_through_28_is_the_shipped_one(tmp_path):
     from polyloops.enumerate.census import default_catalog
 
-    build_catalog(tmp_path / "c", 28, generator="loops", workers=2)
+    built = build_catalog(tmp_path / "c", 28, generator="loops", workers=2)
     shipped = [line for line in (default_catalog() / "catalog.jsonl").read_text().splitlines()
                if json.loads(line)["corners"] <= 28]
     assert (tmp_path / "c" / "catalog.jsonl").read_text().splitlines() == shipped
+    counts = json.loads((default_catalog() / "summary.json").read_text())["counts"]
+    assert built.summary["counts"] == {n: c for n, c in counts.items() if int(n) <= 28}
