@@ -44,7 +44,7 @@ class ArrangementError(PolyloopsError, ValueError):
 def compiled_generator_available() -> bool:
     """Whether the install built the compiled arrangement search (it needs a C compiler)."""
     try:
-        from polyloops.enumerate import _arrangements  # noqa: F401
+        import polyloops.enumerate._arrangements  # noqa: F401
     except ImportError:
         return False
     return True
@@ -52,7 +52,7 @@ def compiled_generator_available() -> bool:
 
 def _module():
     try:
-        from polyloops.enumerate import _arrangements
+        import polyloops.enumerate._arrangements as _arrangements
     except ImportError:
         raise ArrangementError("the compiled arrangement search was not built (a C compiler and the "
                                "Python headers are needed at install time): reinstall with them, "
@@ -153,7 +153,8 @@ class Arrangement:
         for d in range(len(twin)):
             if d in seen:
                 continue
-            darts, e = [], d
+            darts: list[int] = []
+            e = d
             while e not in seen:
                 seen.update((e, twin[e]))
                 darts.extend((e, twin[e]))

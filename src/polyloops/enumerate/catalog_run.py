@@ -166,7 +166,7 @@ SEARCH_FIELDS = ("curves", "closed", "over_bound", "not_canonical", "arrangement
 def per_corner(results: list[dict[str, Any]]) -> list[dict[str, Any]]:
     """Results by corner count, whichever generator made them: each with ``n``, ``records``,
     ``candidates``, and plantri's ``quadrangulations`` and ``simple_strips`` (``None`` for loops)."""
-    out = []
+    out: list[dict[str, Any]] = []
     for r in results:
         if r.get("generator") == "loops":
             out.extend({"n": int(n), "quadrangulations": None, "simple_strips": None, **entry}
