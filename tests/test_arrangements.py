@@ -251,3 +251,17 @@ def test_catalog_from_loops_through_28_is_the_shipped_one(tmp_path):
     assert (tmp_path / "c" / "catalog.jsonl").read_text().splitlines() == shipped
     counts = json.loads((default_catalog() / "summary.json").read_text())["counts"]
     assert built.summary["counts"] == {n: c for n, c in counts.items() if int(n) <= 28}
+
+
+def test_cli_generator_flag(tmp_path, capsys):
+    from polyloops.cli.main import main
+
+    assert main(["catalog", "--max-corners", "16", "--generator", "loops", "-o", str(tmp_path / "c"),
+                 "--json"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert summary["generator"] == "loops" and summary["counts"]["16"]["full"] == 2
+    with pytest.raises(SystemExit) as exit_info:  # argparse's usage error
+        main(["catalog", "--max-corners", "16", "--generator", "nope", "-o", str(tmp_path / "d")])
+    assert exit_info.value.code == 2
+    err = capsys.readouterr().err
+    assert "invalid choice: 'nope'" in err and len(err.strip().splitlines()) == 1

@@ -152,10 +152,12 @@ def test_slices_and_workers_agree(tmp_path):
     assert (whole / "catalog.jsonl").read_text() == (w / "catalog.jsonl").read_text()
 
 
-def test_dask_local(tmp_path):
+@pytest.mark.parametrize("generator", ["plantri", "loops"])
+def test_dask_local(tmp_path, generator):
     pytest.importorskip("distributed")
     out, ref = tmp_path / "d", tmp_path / "r"
-    assert main(["catalog", "--max-corners", "16", "--dask", "local", "-o", str(out)]) == 0
+    assert main(["catalog", "--max-corners", "16", "--dask", "local", "--generator", generator,
+                 "-o", str(out)]) == 0
     assert main(["catalog", "--max-corners", "16", "-o", str(ref)]) == 0
     assert (out / "catalog.jsonl").read_text() == (ref / "catalog.jsonl").read_text()
 
