@@ -131,22 +131,10 @@ class Arrangement:
 
     def loops(self) -> list[list[int]]:
         """Each loop as the crossings it passes, in order."""
-        rot, twin = self.rot, self.twin
-        seen: set[int] = set()
-        out = []
-        for d in range(len(twin)):
-            if d in seen:
-                continue
-            loop, e = [], d
-            while e not in seen:
-                seen.update((e, twin[e]))
-                loop.append(e // 4)
-                e = rot[rot[twin[e]]]
-            out.append(loop)
-        return out
+        return [[d // 4 for d in darts[::2]] for darts in self.loop_darts()]
 
     def loop_darts(self) -> list[list[int]]:
-        """Each loop's darts (both directions), in the order of :meth:`loops`."""
+        """Each loop's darts, along it: each dart followed by its twin (the way back)."""
         rot, twin = self.rot, self.twin
         seen: set[int] = set()
         out = []
