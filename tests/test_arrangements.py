@@ -20,11 +20,18 @@ from polyloops.enumerate.arrangements import (
     SearchStats,
     candidate_arrangements,
     children,
+    compiled_generator_available,
     frontier,
 )
 from polyloops.enumerate.catalog_run import CatalogRunError, build_catalog
 from polyloops.enumerate.quadrangulations import candidate_maps, find_plantri
 from strategies import arrangements
+
+
+# Like the strip filter's tests: without a C compiler at install time there is nothing to test
+# (the install says so, and --generator loops stops with a one-line message).
+pytestmark = pytest.mark.skipif(not compiled_generator_available(),
+                                reason="the compiled arrangement search was not built (no C compiler)")
 
 
 def whole_tree(max_corners: int) -> list[Arrangement]:
