@@ -27,7 +27,6 @@ from polyloops.enumerate.catalog_run import CatalogRunError, build_catalog
 from polyloops.enumerate.quadrangulations import candidate_maps, find_plantri
 from strategies import arrangements
 
-
 # Like the strip filter's tests: without a C compiler at install time there is nothing to test
 # (the install says so, and --generator loops stops with a one-line message).
 pytestmark = pytest.mark.skipif(not compiled_generator_available(),
