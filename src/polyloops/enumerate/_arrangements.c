@@ -81,7 +81,6 @@ static void subdivide(Ctx *c, int e, int *e1, int *e2)
 static void unsubdivide(Ctx *c, int e, int e1)
 {
     int te = c->T[e1 + 1];
-    (void)e1;
     c->T[e] = te; c->T[te] = e;
     c->n -= 2; c->nv--;
 }
@@ -110,7 +109,7 @@ static inline int is_marker(const Ctx *c, int d) { return c->O[d] < c->nv0 && c-
 typedef struct {
     int D;
     int R[MAXD], IR[MAXD], T[MAXD];
-    int face[MAXD], fdeg[MAXD], loop[MAXD], vert[MAXD];
+    int face[MAXD], fdeg[MAXD], loop[MAXD];
     int nf, nl;
     int lcross[MAXL];
     uint64_t adj[MAXL];
@@ -259,7 +258,7 @@ static PyObject *code_bytes(const Child *h)
     return PyBytes_FromStringAndSize((const char *)buf, (Py_ssize_t)(2 * h->D));
 }
 
-static __attribute__((noinline)) void emit(Ctx *c, int newdart)
+static void emit(Ctx *c, int newdart)
 {
     Child *h = &child;
     int id[MAXD];

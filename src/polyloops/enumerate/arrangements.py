@@ -30,7 +30,7 @@ from __future__ import annotations
 
 import array
 from collections.abc import Callable, Iterator
-from dataclasses import dataclass, field
+from dataclasses import asdict, astuple, dataclass, field
 from functools import cached_property
 
 from polyloops.core.errors import PolyloopsError
@@ -213,12 +213,11 @@ class SearchStats:
     candidates: int = 0
 
     def __add__(self, other: SearchStats) -> SearchStats:
-        return SearchStats(*(a + b for a, b in zip(self.astuple(), other.astuple(), strict=True)))
+        return SearchStats(*(a + b for a, b in zip(astuple(self), astuple(other), strict=True)))
 
-    def astuple(self) -> tuple[int, ...]:
-        """The six counts in order."""
-        return (self.curves, self.closed, self.over_bound, self.not_canonical, self.arrangements,
-                self.candidates)
+    def as_dict(self) -> dict[str, int]:
+        """The counts by name (as ``summary.json`` stores them; ``SearchStats(**d)`` reads them)."""
+        return asdict(self)
 
 
 SINGLE_LOOP = (_pack([1, 0]), _pack([1, 0]))  # one loop, one marker vertex on it

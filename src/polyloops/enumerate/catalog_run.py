@@ -104,23 +104,19 @@ def run_loops_job(job: Job, top: Any = None, top_search: dict[str, int] | None =
 
     start = time.perf_counter()
     low = job.low if job.low is not None else job.n
-    stats = [SearchStats(*(top_search or {}).values())] if job.res == 0 else [SearchStats()]
-
-    def seen(s: SearchStats) -> None:
-        stats[0] = stats[0] + s
-
+    stats = [SearchStats(**top_search)] if job.res == 0 and top_search else []
     per_n: dict[str, dict[str, Any]] = {
         str(n): {"candidates": 0, "records": {mode: [] for mode in MODES}} for n in range(low, job.n + 1)}
     # a given ``top`` is this share's part of the frontier (share_of): all of it is ours
     res, mod = (0, 1) if top is not None else (job.res, job.mod)
-    for a in candidate_arrangements(job.n, res, mod, on_stats=seen, top=top):
+    for a in candidate_arrangements(job.n, res, mod, on_stats=stats.append, top=top):
         if a.corners < low:
             continue
         entry = per_n[str(a.corners)]
         entry["candidates"] += 1
         for mode, recs in map_classes(a.quad_mesh()).items():
             entry["records"][mode].extend(r.to_json() for r in recs)
-    search = dict(zip(SEARCH_FIELDS, stats[0].astuple(), strict=True))
+    search = sum(stats, SearchStats()).as_dict()
     return {"version": SCHEMA_VERSION, "generator": "loops", "n": job.n, "low": low, "res": job.res,
             "mod": job.mod, "per_n": per_n, "search": search, "seconds": time.perf_counter() - start}
 
@@ -137,10 +133,7 @@ def loops_frontier(max_n: int, workers: int = 1, dask: str | None = None) -> tup
     on): a rerun computes it again (5 s at 28 corners) and then skips the shares already done."""
     from polyloops.enumerate.arrangements import SearchStats, frontier
 
-    stats = [SearchStats()]
-
-    def seen(s: SearchStats) -> None:
-        stats[0] = stats[0] + s
+    stats: list[SearchStats] = []
 
     def spread(nodes: list[Any], max_corners: int) -> list[Any]:
         size = max(1, -(-len(nodes) // (4 * workers)))
@@ -148,8 +141,8 @@ def loops_frontier(max_n: int, workers: int = 1, dask: str | None = None) -> tup
         parts = run_jobs(_expand_chunk, chunks, workers, dask, ordered=True)
         return [pair for part in parts for pair in part]
 
-    top = frontier(max_n, on_stats=seen, expander=spread)
-    return top, dict(zip(SEARCH_FIELDS, stats[0].astuple(), strict=True))
+    top = frontier(max_n, on_stats=stats.append, expander=spread)
+    return top, sum(stats, SearchStats()).as_dict()
 
 
 def share_of(top: Any, res: int, mod: int) -> Any:
@@ -158,9 +151,6 @@ def share_of(top: Any, res: int, mod: int) -> Any:
     from polyloops.enumerate.arrangements import Frontier
 
     return Frontier(top.loops, top.roots[res::mod], top.shallow if res == 0 else ())
-
-
-SEARCH_FIELDS = ("curves", "closed", "over_bound", "not_canonical", "arrangements", "candidates")
 
 
 def per_corner(results: list[dict[str, Any]]) -> list[dict[str, Any]]:
@@ -294,7 +284,9 @@ def summarize(results: list[dict[str, Any]], min_n: int, max_n: int, partial: bo
                            "simple_strips": simple}
     if loops:
         out["generator"] = "loops"
-        out["search"] = {k: sum(r["search"][k] for r in loops) for k in SEARCH_FIELDS}
+        from polyloops.enumerate.arrangements import SearchStats
+
+        out["search"] = sum((SearchStats(**r["search"]) for r in loops), SearchStats()).as_dict()
     if partial:
         out["partial"] = (f"only the {'share of the search' if loops else 'plantri slice'} res/mod "
                           "given on the command line")
