@@ -2,8 +2,8 @@
 or inside a function (read from the source, so a lazy import counts too), so there is no import
 cycle between subpackages; and no module imports one that imports it back.
 
-The layers, lowest first: ``core`` (the kernel), ``verify``, ``solvers``, ``enumerate``,
-``segmentation``, ``render``, ``cli``."""
+The layers, lowest first: ``core`` (the kernel), ``io`` (files and formats), ``verify``,
+``solvers``, ``enumerate``, ``segmentation``, ``render``, ``cli``."""
 
 import ast
 import subprocess
@@ -12,7 +12,7 @@ from pathlib import Path
 
 PACKAGE = Path(__file__).resolve().parent.parent / "src" / "polyloops"
 CORE = PACKAGE / "core"
-ABOVE = ("verify", "solvers", "enumerate", "segmentation", "render", "cli")
+ABOVE = ("io", "verify", "solvers", "enumerate", "segmentation", "render", "cli")
 LAYERS = ("core", *ABOVE)
 
 

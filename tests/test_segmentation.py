@@ -23,11 +23,11 @@ from polyloops.core.labelled_mesh import (
     labelled_mesh_from_polycube,
     labels_text,
     triangle_obj_text,
-    write_triangle_mesh,
 )
 from polyloops.core.polycube import Polycube
 from polyloops.core.voxels import VoxelError, polycube_from_voxels
 from polyloops.enumerate.corners import OCTANT_CELLS, chart_corners
+from polyloops.io.meshes import write_triangle_mesh
 from polyloops.segmentation import check_segmentation, segment
 from polyloops.segmentation.levels import chart_angles, check_global, corner_rule, corner_zones
 from polyloops.verify import check_polycube

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import sys
 from collections.abc import Callable
 from typing import Any
 
@@ -31,8 +32,10 @@ class Parser(argparse.ArgumentParser):
 
 
 def emit(args: argparse.Namespace, data: Any, text: str) -> None:
-    """JSON for scripts with ``--json``, else the text."""
-    print(json.dumps(data, indent=2) if getattr(args, "json", False) else text)
+    """JSON for scripts with ``--json``, else the text; on standard error when the command's
+    output file is standard output (``-o -``), so the two never mix."""
+    out = sys.stderr if getattr(args, "output", None) == "-" else sys.stdout
+    print(json.dumps(data, indent=2) if getattr(args, "json", False) else text, file=out)
 
 
 def stream(args: argparse.Namespace, line: str) -> None:

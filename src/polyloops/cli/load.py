@@ -7,13 +7,11 @@ one-line message that names the file.
 from __future__ import annotations
 
 import os
-import stat
 import sys
 from pathlib import Path
 
 from polyloops.core.examples import EXAMPLES, example_text
 from polyloops.core.exchange import apg_text, parse_apg, parse_obj
-from polyloops.core.files import write_atomic
 from polyloops.core.formats import (
     Document,
     FormatError,
@@ -26,9 +24,17 @@ from polyloops.core.halfedge import FaceListError, MapError
 from polyloops.core.loops import OddFaceError
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LabelError, LoopStructure
+from polyloops.io.files import (
+    MAX_FILE_BYTES,
+    InputError,
+    OutputError,
+    check_regular,
+    read_bytes,
+    resolve_output,
+    write_atomic,
+)
 
 EXIT_OK, EXIT_INVALID, EXIT_USAGE = 0, 1, 2
-MAX_FILE_BYTES = 512 * 2**20
 
 
 class CliError(Exception):
@@ -100,39 +106,37 @@ def format_of(path: str, given: str | None = None) -> str:
 
 
 def read_text_file(arg: str, limit: int = MAX_FILE_BYTES) -> str:
-    """The text of a regular file of at most ``limit`` bytes.  A FIFO, a device such as
-    ``/dev/zero`` or a directory is refused rather than read (it could block or never end)."""
+    """The text of a regular file of at most ``limit`` bytes (``-``: standard input).  A FIFO,
+    a device such as ``/dev/zero`` or a directory is refused rather than read (it could block
+    or never end)."""
     data = read_bytes_file(arg, limit)
     try:
-        return data.decode("utf-8")
+        return data.decode("utf-8-sig")
     except UnicodeDecodeError as err:
         raise CliError(f"{arg}: cannot read: not UTF-8 text ({err.reason} at byte {err.start})") from None
 
 
+_STDIN: list[bytes] = []  # standard input, once read: a command may look at its FILE twice
+
+
 def read_bytes_file(arg: str, limit: int = MAX_FILE_BYTES) -> bytes:
     """The bytes of a regular file of at most ``limit`` bytes (see :func:`read_text_file`)."""
-    return _open_regular(arg, limit, read=True)
-
-
-def check_readable_file(arg: str, limit: int = MAX_FILE_BYTES) -> None:
-    """What :func:`read_bytes_file` checks, without reading: for files a library reads."""
-    _open_regular(arg, limit, read=False)
-
-
-def _open_regular(arg: str, limit: int, read: bool) -> bytes:
     try:
-        # O_NONBLOCK: opening a FIFO with no writer must not wait; regular files ignore it.
-        fd = os.open(arg, os.O_RDONLY | os.O_NONBLOCK)
-        with os.fdopen(fd, "rb") as fh:
-            info = os.fstat(fd)
-            if not stat.S_ISREG(info.st_mode):
-                raise CliError(f"{arg}: not a regular file")
-            data = fh.read(limit + 1) if read else b""
-    except OSError as err:
-        raise CliError(f"{arg}: cannot read: {err.strerror or err}") from None
-    if len(data) > limit or info.st_size > limit:
-        raise CliError(f"{arg}: larger than {limit // 2**20} MiB; polyloops reads files up to that size")
-    return data
+        if arg == "-":
+            if not _STDIN:
+                _STDIN.append(read_bytes(arg, limit))
+            return _STDIN[0]
+        return read_bytes(arg, limit)
+    except InputError as err:
+        raise CliError(str(err)) from None
+
+
+def check_readable_file(arg: str, limit: int | None = MAX_FILE_BYTES) -> None:
+    """What :func:`read_bytes_file` checks, without reading: for files a library reads."""
+    try:
+        check_regular(arg, limit)
+    except InputError as err:
+        raise CliError(str(err)) from None
 
 
 def build(arg: str, doc: Document) -> Structure:
@@ -211,11 +215,36 @@ def write_output(path: str | None, obj: Structure, given: str | None = None) -> 
 
 
 def write_text(path: str, text: str | bytes) -> None:
-    """Write atomically; a failure becomes a one-line :class:`CliError`."""
+    """Write through the shared writer (:mod:`polyloops.io.files`: ``-`` is standard output,
+    a link is followed, a device or FIFO written into); a failure becomes a one-line
+    :class:`CliError`."""
     try:
         write_atomic(path, text)
-    except OSError as err:
-        raise CliError(f"{path}: cannot write: {err.strerror or err}") from None
+    except OutputError as err:
+        raise CliError(str(err)) from None
+
+
+def write_error(path: object, err: OSError) -> CliError:
+    """A failed write as a one-line error: the shared writer's own message, which names the
+    file, or the system's reason."""
+    if isinstance(err, (OutputError, InputError)):
+        return CliError(str(err))
+    reason = "no space left on device" if err.errno == 28 else err.strerror or str(err)
+    return CliError(f"{path}: cannot write: {reason}")
+
+
+def say(output: str | None, text: str) -> None:
+    """A line about what was written: on standard output, or on standard error when the
+    output itself went to standard output (``-o -``)."""
+    print(text, file=sys.stderr if output == "-" else sys.stdout)
+
+
+def check_output(path: str) -> None:
+    """Refuse an output that cannot be written before any work is done (exit 2)."""
+    try:
+        resolve_output(path)
+    except OutputError as err:
+        raise CliError(str(err)) from None
 
 
 def output_dir(text: str) -> Path:

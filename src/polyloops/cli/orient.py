@@ -7,7 +7,15 @@ import json
 from typing import Any
 
 from polyloops.cli.args import AddCommand, emit
-from polyloops.cli.load import EXIT_INVALID, EXIT_OK, CliError, read_loop_structure, write_output, write_text
+from polyloops.cli.load import (
+    EXIT_INVALID,
+    EXIT_OK,
+    CliError,
+    read_loop_structure,
+    say,
+    write_output,
+    write_text,
+)
 from polyloops.core.formats import to_data
 
 
@@ -52,7 +60,8 @@ def cmd_orient(args: argparse.Namespace) -> int:
             if not lines:
                 return fail()
             write_text(args.output, "\n".join(lines) + "\n")
-            print(f"{summary}\nwrote {len(lines)} orientations to {args.output} (one JSON per line)")
+            say(args.output, f"{summary}\nwrote {len(lines)} orientations to {args.output} "
+                "(one JSON per line)")
             return EXIT_OK
         n = 0
         if args.json:
@@ -77,8 +86,10 @@ def cmd_orient(args: argparse.Namespace) -> int:
             write_output(args.output, oriented)
         return EXIT_OK
     text = write_output(args.output, oriented)
-    print(text if text is not None else f"{summary}\nwrote an orientation to {args.output}",
-          end="" if text is not None else "\n")
+    if text is not None:
+        print(text, end="")
+    else:
+        say(args.output, f"{summary}\nwrote an orientation to {args.output}")
     return EXIT_OK
 
 

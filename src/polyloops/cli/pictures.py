@@ -8,16 +8,30 @@ from pathlib import Path
 from typing import Any
 
 from polyloops.cli.args import FILE_HELP, AddCommand, count_arg
-from polyloops.cli.load import EXIT_INVALID, EXIT_OK, CliError, output_dir, read_structure
+from polyloops.cli.load import (
+    EXIT_INVALID,
+    EXIT_OK,
+    CliError,
+    check_output,
+    output_dir,
+    read_structure,
+    say,
+    write_error,
+)
 from polyloops.core.directions import Axis
 from polyloops.core.duality import DualityError
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LoopStructure
 
 
-def _picture_path(path: str) -> str:
-    if Path(path).suffix.lower() not in (".png", ".svg"):  # ".png" alone has no suffix
-        raise CliError(f"{path}: pictures are written as NAME.png or NAME.svg")
+def _picture_path(path: str, suffixes: tuple[str, ...] = (".png", ".svg")) -> str:
+    """An output for a picture: ``-`` (standard output, as PNG or HTML) or a name with one of
+    ``suffixes``, that may be written (checked before the work)."""
+    if path != "-" and Path(path).suffix.lower() not in suffixes:  # ".png" alone has no suffix
+        names = " or ".join(f"NAME{s}" for s in suffixes)
+        what = "pictures are" if ".png" in suffixes else "the viewer is"
+        raise CliError(f"{path}: {what} written as {names}")
+    check_output(path)
     return path
 
 
@@ -52,7 +66,7 @@ def cmd_render(args: argparse.Namespace) -> int:
     except PictureError as err:
         raise CliError(f"{args.file}: {err}") from None
     except OSError as err:
-        raise CliError(f"{out}: cannot write: {err.strerror or err}") from None
+        raise write_error(out, err) from None
     return EXIT_OK
 
 
@@ -60,8 +74,7 @@ def cmd_view(args: argparse.Namespace) -> int:
     from polyloops.render.polycube import PictureError
     from polyloops.render.viewer import write_viewer
 
-    if Path(args.output).suffix.lower() not in (".html", ".htm"):
-        raise CliError(f"{args.output}: the viewer is written as NAME.html")
+    _picture_path(args.output, (".html", ".htm"))
     obj = read_structure(args.file)
     if isinstance(obj, LoopStructure) and not obj.oriented:
         raise CliError(f"{args.file}: is a labelled loop structure without sides; orient it first")
@@ -72,8 +85,8 @@ def cmd_view(args: argparse.Namespace) -> int:
     except PictureError as err:
         raise CliError(f"{args.file}: {err}") from None
     except OSError as err:
-        raise CliError(f"{args.output}: cannot write: {err.strerror or err}") from None
-    print(f"wrote {args.output}: open it in a browser (no network needed)")
+        raise write_error(args.output, err) from None
+    say(args.output, f"wrote {args.output}: open it in a browser (no network needed)")
     return EXIT_OK
 
 
@@ -95,7 +108,7 @@ def cmd_gallery(args: argparse.Namespace) -> int:
     except ValueError as err:  # a record whose signature does not decode
         raise CliError(f"{census.directory}: {err}") from None
     except OSError as err:
-        raise CliError(f"{out}: cannot write: {err.strerror or err}") from None
+        raise write_error(out, err) from None
     finally:
         bar.close()
     print(f"wrote {built.classes} classes to {out / 'index.html'} (open it in a browser; no network needed)")
@@ -161,8 +174,8 @@ def cmd_sheet(args: argparse.Namespace) -> int:
     except PictureError as err:
         raise CliError(f"cannot draw: {err}") from None
     except OSError as err:
-        raise CliError(f"{out}: cannot write: {err.strerror or err}") from None
-    print(f"drew {len(items)} polycubes to {out}")
+        raise write_error(out, err) from None
+    say(out, f"drew {len(items)} polycubes to {out}")
     return EXIT_OK
 
 

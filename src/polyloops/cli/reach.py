@@ -35,8 +35,8 @@ def _kinds(text: str):
 def cmd_reach(args: argparse.Namespace) -> int:
     from tqdm import tqdm
 
-    from polyloops.core.files import write_atomic
     from polyloops.enumerate.reach import ReachError, explore
+    from polyloops.io.files import write_atomic
 
     start = read_valid_structure(args.start)
     kinds = _kinds(args.moves)

@@ -14,6 +14,7 @@ from polyloops.cli.load import (
     CliError,
     check_readable_file,
     read_text_file,
+    write_error,
     write_output,
 )
 from polyloops.core.formats import FormatError
@@ -106,7 +107,7 @@ def cmd_segmentation(args: argparse.Namespace) -> int:
         try:
             render_segmentation(report, args.png)
         except OSError as err:
-            raise CliError(f"{args.png}: cannot write: {err.strerror or err}") from None
+            raise write_error(args.png, err) from None
     source = args.mesh if args.labels is None else f"{args.mesh} + {os.path.basename(args.labels)}"
     print(json.dumps(report.to_json(), indent=2) if args.json else format_report(source, report))
     return EXIT_INVALID if report.valid is False else EXIT_OK

@@ -17,6 +17,7 @@ from polyloops.cli.load import (
     read_loop_structure,
     read_structure,
     read_text_file,
+    say,
     write_output,
 )
 from polyloops.core.examples import EXAMPLES
@@ -116,8 +117,8 @@ def cmd_from_voxels(args: argparse.Namespace) -> int:
     if text is not None:
         print(text, end="")
     else:
-        print(f"{len(cells)} cubes: a polycube with {q.map.num_corners} corners and {q.map.num_faces} faces, "
-              f"genus {q.genus}, written to {args.output}")
+        say(args.output, f"{len(cells)} cubes: a polycube with {q.map.num_corners} corners and "
+            f"{q.map.num_faces} faces, genus {q.genus}, written to {args.output}")
     return EXIT_OK
 
 

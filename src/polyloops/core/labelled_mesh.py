@@ -29,7 +29,7 @@ from polyloops.core.formats import FormatError
 from polyloops.core.polycube import Polycube
 
 __all__ = ["LabelledMesh", "LabelledMeshError", "labelled_mesh_from_polycube", "labels_text",
-           "parse_labels", "read_triangle_mesh", "triangle_obj_text", "write_triangle_mesh"]
+           "parse_labels", "read_triangle_mesh", "triangle_obj_text"]
 
 Point = tuple[float, float, float]
 Triangle = tuple[int, int, int]
@@ -166,36 +166,6 @@ def triangle_obj_text(mesh: LabelledMesh) -> str:
     lines = [f"v {x:g} {y:g} {z:g}" for x, y, z in mesh.points]
     lines += [f"f {a + 1} {b + 1} {c + 1}" for a, b, c in mesh.triangles]
     return "\n".join(lines) + "\n"
-
-
-def write_triangle_mesh(path: str | os.PathLike[str], mesh: LabelledMesh) -> None:
-    """Write the triangles (format by extension: OBJ, STL or ``.mesh``) through a temporary
-    file, so a failure leaves nothing half-written."""
-    import tempfile
-
-    from polyloops.core.files import replace_atomic, write_atomic
-
-    target = os.fspath(path)
-    suffix = os.path.splitext(target)[1].lower()
-    if suffix == ".obj":
-        write_atomic(target, triangle_obj_text(mesh))
-        return
-    import meshio
-    import numpy as np
-
-    fd, tmp = tempfile.mkstemp(dir=os.path.dirname(target) or ".", suffix=suffix)
-    os.close(fd)
-    try:
-        out = meshio.Mesh(np.asarray(mesh.points, dtype=float), [("triangle", np.asarray(mesh.triangles))])
-        if suffix == ".stl":
-            meshio.write(tmp, out, binary=False)
-        else:
-            meshio.write(tmp, out)
-        replace_atomic(tmp, target)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
 
 
 def labelled_mesh_from_polycube(q: Polycube, labels: Sequence[Direction] | None = None) -> LabelledMesh:

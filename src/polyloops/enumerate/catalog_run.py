@@ -14,9 +14,7 @@ in every mode), each written through a temporary file and a rename.
 from __future__ import annotations
 
 import json
-import os
 import sqlite3
-import tempfile
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -25,11 +23,11 @@ from typing import Any
 
 from polyloops.core.corners import CATEGORIES
 from polyloops.core.errors import PolyloopsError
-from polyloops.core.files import replace_atomic, write_atomic
 from polyloops.core.symmetry import Symmetry
 from polyloops.enumerate.catalog import MODES, map_classes
 from polyloops.enumerate.parallel import run_jobs
 from polyloops.enumerate.quadrangulations import FilteredBatch, candidate_maps, resolve_method
+from polyloops.io.files import write_atomic, writing
 
 GENERATORS = ("plantri", "loops")
 
@@ -330,10 +328,8 @@ def write_catalog(out: Path, results: list[dict[str, Any]], symmetry: Symmetry |
     records = [{"name": name, **rec} for name, rec in zip(names, records, strict=True)]
     lines = [json.dumps({**rec, "symmetry": str(symmetry)}, separators=(",", ":")) for rec in records]
     write_atomic(out / "catalog.jsonl", "\n".join(lines) + ("\n" if lines else ""))
-    fd, tmp = tempfile.mkstemp(dir=out, prefix=".catalog.sqlite.", suffix=".tmp")
-    os.close(fd)
-    try:
-        con = sqlite3.connect(tmp)
+    with writing(out / "catalog.sqlite") as pending:
+        con = sqlite3.connect(pending.path)
         cols = ", ".join(f"{c} {'TEXT' if c in ('name', 'signature') else 'INTEGER'}" for c in COLUMNS)
         con.execute(f"CREATE TABLE polycubes ({cols}, PRIMARY KEY (signature))")
         con.execute("CREATE UNIQUE INDEX by_name ON polycubes (name)")
@@ -344,10 +340,6 @@ def write_catalog(out: Path, results: list[dict[str, Any]], symmetry: Symmetry |
         con.execute("CREATE INDEX by_corners ON polycubes (corners)")
         con.commit()
         con.close()
-        replace_atomic(tmp, out / "catalog.sqlite")
-    finally:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
     write_atomic(out / "summary.json", json.dumps(summary, indent=1) + "\n")
     return len(records)
 

@@ -26,8 +26,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from polyloops.core.corners import CATEGORIES
-from polyloops.core.files import write_atomic
 from polyloops.enumerate.census import CatalogEntry, Census
+from polyloops.io.files import write_atomic
 
 
 @dataclass(frozen=True)

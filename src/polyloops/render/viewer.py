@@ -20,9 +20,9 @@ from typing import Any
 
 from polyloops.core.corners import classify
 from polyloops.core.directions import Axis
-from polyloops.core.files import write_atomic
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LoopStructure
+from polyloops.io.files import write_atomic
 from polyloops.render.colors import AXIS_COLOR, LIGHT_COLOR
 from polyloops.render.polycube import FACE_SHADE, OFFSET, as_polycube
 
