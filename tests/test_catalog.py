@@ -89,7 +89,7 @@ def brute_counts(n):
 def small_catalog(tmp_path_factory):
     out = tmp_path_factory.mktemp("cat") / "c"
     assert main(["catalog", "--min-corners", "8", "--max-corners", "20", "-o", str(out), "--symmetry",
-                 "rotation"]) == 0
+                 "rotation", "--generator", "plantri"]) == 0
     return out
 
 
@@ -167,7 +167,7 @@ def test_dask_local(tmp_path, generator):
 def test_shipped_catalog_regenerates(tmp_path):
     shipped = json.loads((SHIPPED / "summary.json").read_text())
     out = tmp_path / "c"
-    assert main(["catalog", "--max-corners", "20", "-o", str(out)]) == 0
+    assert main(["catalog", "--max-corners", "20", "--generator", "plantri", "-o", str(out)]) == 0
     mine = json.loads((out / "summary.json").read_text())
     for n in range(8, 21):
         assert mine["counts"][str(n)] == shipped["counts"][str(n)]
@@ -289,7 +289,8 @@ def test_odd_counts_are_not_generated(tmp_path):
     from polyloops.enumerate.catalog_run import plan_jobs
 
     assert {j.n for j in plan_jobs(8, 21, None, None, 2)} == {8, 10, 12, 14, 16, 18, 20}
-    assert main(["catalog", "--min-corners", "9", "--max-corners", "11", "-o", str(tmp_path / "c")]) == 0
+    assert main(["catalog", "--min-corners", "9", "--max-corners", "11", "--generator", "plantri",
+                 "-o", str(tmp_path / "c")]) == 0
     summary = json.loads((tmp_path / "c" / "summary.json").read_text())
     assert summary["quadrangulations"] == {"9": None, "10": 1, "11": None}
     assert summary["simple_strips"] == {"9": 0, "10": 0, "11": 0}
@@ -379,7 +380,8 @@ def test_compiled_and_numpy_filters_agree_on_large_counts(n):
 def test_shipped_catalog_regenerates_through_28(tmp_path):
     """About 4 minutes with two workers."""
     out = tmp_path / "c"
-    assert main(["catalog", "--max-corners", "28", "--workers", "2", "-o", str(out)]) == 0
+    assert main(["catalog", "--max-corners", "28", "--workers", "2", "--generator", "plantri",
+                 "-o", str(out)]) == 0
     shipped = json.loads((SHIPPED / "summary.json").read_text())
     mine = json.loads((out / "summary.json").read_text())
     for table in ("counts", "quadrangulations", "simple_strips"):

@@ -243,7 +243,7 @@ def test_cli_outputs_into_devices_links_and_dirs(capsys, tmp_path):
                  ["render", "example:cube", "-o", str(full.with_name("full.png"))]):
         if argv[0] == "render":
             full.with_name("full.png").symlink_to(full)
-        status, out, err = run(capsys, *argv)
+        status, _, err = run(capsys, *argv)
         assert status == 2 and "no space left on device" in err and "Traceback" not in err
         assert err.count("\n") == 1 and stat.S_ISCHR(full.lstat().st_mode)
     real = tmp_path / "real.json"

@@ -38,6 +38,15 @@ def emit(args: argparse.Namespace, data: Any, text: str) -> None:
     print(json.dumps(data, indent=2) if getattr(args, "json", False) else text, file=out)
 
 
+def plural(n: int, word: str, many: str | None = None) -> str:
+    """``1 problem``, ``2 problems`` (``many`` for irregular plurals).
+
+    >>> plural(1, "arc"), plural(3, "arc"), plural(0, "vertex", "vertices")
+    ('1 arc', '3 arcs', '0 vertices')
+    """
+    return f"{n} {word if n == 1 else many or word + 's'}"
+
+
 def stream(args: argparse.Namespace, line: str) -> None:
     """Text output goes out as it is found (flushed), so a long listing shows progress."""
     if not getattr(args, "json", False):

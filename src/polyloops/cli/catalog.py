@@ -23,8 +23,20 @@ def cmd_catalog(args: argparse.Namespace) -> int:
         raise CliError(f"the following arguments are required: {', '.join(missing)} (see --help)")
     from tqdm import tqdm
 
-    from polyloops.enumerate.catalog_run import CatalogRunError, build_catalog
+    from polyloops.enumerate.catalog_run import (
+        CatalogRunError,
+        WouldLoseResultsError,
+        build_catalog,
+        choose_generator,
+    )
     from polyloops.enumerate.quadrangulations import PlantriError
+
+    try:
+        generator, note = choose_generator(args.generator, args.method, args.plantri)
+    except CatalogRunError as err:
+        raise CliError(f"--generator {args.generator}: {err}") from None
+    if note:
+        print(f"polyloops catalog: note: {note}", file=sys.stderr)
 
     bar = tqdm(unit="job", desc="catalog", disable=None, file=sys.stderr)
     maps = [0]
@@ -41,8 +53,10 @@ def cmd_catalog(args: argparse.Namespace) -> int:
     try:
         built = build_catalog(args.output, args.max_corners, args.min_corners, args.symmetry,
                               workers=args.workers, res=args.res, mod=args.mod, dask=args.dask,
-                              plantri=args.plantri, method=args.method, generator=args.generator,
-                              progress=progress, on_plan=planned)
+                              plantri=args.plantri, method=args.method, generator=generator,
+                              progress=progress, on_plan=planned, overwrite=args.overwrite)
+    except WouldLoseResultsError as err:
+        raise CliError(f"{err}; pass --overwrite to replace it, or build into another directory") from None
     except (CatalogRunError, PlantriError) as err:
         raise CliError(str(err)) from None
     finally:
@@ -117,10 +131,11 @@ def add_commands(command: AddCommand, hidden: AddCommand) -> None:
     p.add_argument("--symmetry", choices=SYMMETRIES, default="full",
                    help="which classes the records list (summary.json counts all three); default full")
     p.add_argument("--workers", type=count_arg(1), default=1, metavar="K", help="local worker processes")
-    p.add_argument("--generator", choices=("plantri", "loops"), default="plantri",
-                   help="where candidate maps come from: plantri (every quadrangulation, filtered; "
-                   "the default) or loops (arrangements built one loop at a time, compiled at "
-                   "install); same records either way")
+    p.add_argument("--generator", choices=("plantri", "loops"), default=None,
+                   help="where candidate maps come from: loops (arrangements built one loop at a "
+                   "time, compiled at install; the default where it was built) or plantri (every "
+                   "quadrangulation, filtered; the default otherwise, and when --method or "
+                   "--plantri is given); same records either way")
     p.add_argument("--res", type=count_arg(0), metavar="R", help="only slice R of M (with --mod)")
     p.add_argument("--mod", type=count_arg(1), metavar="M")
     p.add_argument("--dask", metavar="ADDRESS", help="run the jobs on a Dask cluster (an address, or local)")
@@ -130,6 +145,9 @@ def add_commands(command: AddCommand, hidden: AddCommand) -> None:
                    help="the strip filter: compiled (built at install when a C compiler is there), "
                    "numpy (the reference twin), or auto (compiled when built); same output either way")
     p.add_argument("-o", "--output", metavar="DIR", help="catalog directory (resumable); required to build")
+    p.add_argument("--overwrite", action="store_true", help="replace a catalog in DIR that covers more "
+                   "(more corners, another --symmetry, the whole search where this is one share); "
+                   "without it such a build is refused, and a smaller catalog is resumed or extended")
     actions = p.add_subparsers(dest="action", metavar="[query|export]", parser_class=Parser)
     q = actions.add_parser("query", help=QUERY_HELP, description=QUERY_HELP)
     _query_arguments(q)

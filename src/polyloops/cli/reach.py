@@ -9,11 +9,12 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from polyloops.cli.args import FILE_HELP, SYMMETRIES, AddCommand, Parser, count_arg, emit
+from polyloops.cli.args import FILE_HELP, SYMMETRIES, AddCommand, Parser, count_arg, emit, plural
 from polyloops.cli.load import (
     EXIT_INVALID,
     EXIT_OK,
     CliError,
+    check_output,
     format_of,
     output_dir,
     read_text_file,
@@ -35,7 +36,7 @@ def _kinds(text: str):
 def cmd_reach(args: argparse.Namespace) -> int:
     from tqdm import tqdm
 
-    from polyloops.enumerate.reach import ReachError, explore
+    from polyloops.enumerate.reach import ReachError, WouldReplaceSearchError, explore
     from polyloops.io.files import write_atomic
 
     start = read_valid_structure(args.start)
@@ -51,8 +52,12 @@ def cmd_reach(args: argparse.Namespace) -> int:
 
     try:
         result = explore(start, args.max_corners, args.max_depth, kinds, args.symmetry, out,
-                         args.workers, args.dask, progress)
-    except (ReachError, ValueError) as err:
+                         args.workers, args.dask, progress, overwrite=args.overwrite)
+    except WouldReplaceSearchError as err:
+        raise CliError(f"{err}; pass --overwrite to replace it, or use another directory") from None
+    except ReachError as err:
+        raise CliError(str(err)) from None
+    except ValueError as err:
         raise CliError(f"{args.start}: {err}") from None
     except RuntimeError as err:  # dask missing
         raise CliError(str(err)) from None
@@ -133,20 +138,33 @@ def read_path_file(source: str) -> dict[str, Any] | None:
 def cmd_conjecture_genus0(args: argparse.Namespace) -> int:
     from tqdm import tqdm
 
-    from polyloops.enumerate.census import CatalogError
-    from polyloops.enumerate.conjecture import catalog_signatures, certificate_lines, settle_catalog
+    from polyloops.enumerate.census import CatalogError, read_catalog
+    from polyloops.enumerate.conjecture import (
+        ConjectureError,
+        catalog_signatures,
+        certificate_lines,
+        complete_range,
+        settle_catalog,
+    )
 
-    catalog = Path(args.catalog)
+    check_output(args.output)
     try:
-        total = len(catalog_signatures(catalog, args.max_corners))
-    except CatalogError as err:
+        census = read_catalog(Path(args.catalog))
+        covered = complete_range(census)
+        total = len(catalog_signatures(census, args.max_corners))
+    except (CatalogError, ConjectureError) as err:
         raise CliError(str(err)) from None
+    if args.max_corners > covered:
+        raise CliError(f"--max-corners {args.max_corners}: the catalog {args.catalog} holds every class "
+                       f"only through {covered} corners; extend it first (polyloops catalog)")
     if args.slack < 2:
         raise CliError("--slack must be at least 2")
     bar = tqdm(total=total, desc="genus0", unit="class", disable=None, file=sys.stderr)
     try:
-        result = settle_catalog(catalog, args.max_corners, args.slack, args.workers, args.dask,
+        result = settle_catalog(census.directory, args.max_corners, args.slack, args.workers, args.dask,
                                 progress=lambda _: bar.update(1))
+    except (CatalogError, ConjectureError) as err:
+        raise CliError(str(err)) from None
     finally:
         bar.close()
     write_text(args.output, "\n".join(certificate_lines(result)) + "\n")
@@ -167,22 +185,29 @@ def cmd_conjecture_genus0(args: argparse.Namespace) -> int:
 
 def cmd_conjecture_check(args: argparse.Namespace) -> int:
     from polyloops.enumerate.census import CatalogError
-    from polyloops.enumerate.conjecture import check_certificate
+    from polyloops.enumerate.conjecture import ConjectureError, check_certificate
 
     text = read_text_file(args.certificate)
     try:
-        header, problems = check_certificate(text.splitlines(), Path(args.catalog))
+        check = check_certificate(text.splitlines(), Path(args.catalog))
+    except ConjectureError as err:  # not a certificate at all: bad input, not a failed check
+        raise CliError(f"{args.certificate}: {err}") from None
     except CatalogError as err:
         raise CliError(str(err)) from None
-    if not header:  # not a certificate at all: bad input, not a failed check
-        raise CliError(f"{args.certificate}: {problems[0].message}")
-    data = {"valid": not problems, "max_corners": header.get("max_corners"),
-            "problems": [str(p) for p in problems]}
+    problems = check.problems
+    data = {"valid": check.valid, "max_corners": check.header["max_corners"],
+            "checked_corners": check.checked_corners, "catalog_corners": check.catalog_corners,
+            "records": check.records, "problems": [str(p) for p in problems]}
+    checked = (f"checked every class of {args.catalog} through {check.checked_corners} corners "
+               f"(the header claims {check.header['max_corners']}, the catalog is complete through "
+               f"{check.catalog_corners})")
     if problems:
-        text = f"{args.certificate}: INVALID: {len(problems)} problems; first: {problems[0]}"
+        text = (f"{args.certificate}: INVALID: {plural(len(problems), 'problem')}; first: {problems[0]}\n"
+                f"  {checked}")
     else:
-        text = (f"{args.certificate}: valid: every class through {header['max_corners']} corners "
-                "is reachable from the cube (each record replayed with the Definition-4 checker)")
+        text = (f"{args.certificate}: valid: every genus-0 class through {check.checked_corners} corners "
+                f"is reachable from the cube\n  {checked}; each record replayed with the Definition-4 "
+                "checker")
     emit(args, data, text)
     return EXIT_INVALID if problems else EXIT_OK
 
@@ -200,6 +225,8 @@ def add_commands(command: AddCommand) -> None:
                    help="states up to renumbering (labelled, default), rotations, or all 48 symmetries")
     p.add_argument("-o", "--output", metavar="DIR", help="store the states in DIR/reach.sqlite "
                    "(resumable level by level) and the counts in DIR/summary.json")
+    p.add_argument("--overwrite", action="store_true", help="replace a search of other parameters "
+                   "stored in DIR (without it, refused; the same search is resumed)")
     p.add_argument("--workers", type=count_arg(1), default=1, metavar="K", help="local worker processes")
     p.add_argument("--dask", metavar="ADDRESS", help="expand levels on a Dask cluster (an address, or local)")
     p = command("path", cmd_path, "a shortest sequence of loop additions and removals from SOURCE "

@@ -27,9 +27,42 @@ from polyloops.core.symmetry import Symmetry
 from polyloops.enumerate.catalog import MODES, map_classes
 from polyloops.enumerate.parallel import run_jobs
 from polyloops.enumerate.quadrangulations import FilteredBatch, candidate_maps, resolve_method
-from polyloops.io.files import write_atomic, writing
+from polyloops.io.files import InputError, read_text, write_atomic, writing
 
 GENERATORS = ("plantri", "loops")
+
+
+def choose_generator(generator: str | None, method: str = "auto",
+                     plantri: str | None = None) -> tuple[str, str | None]:
+    """The generator a build uses, and a note when the choice was not the one asked for.
+
+    ``None`` asks for the best one built: ``loops`` (arrangements of loops, cheaper from 26
+    corners on) when its compiled search was built, else ``plantri`` with a note saying so.
+    A strip-filter ``method`` or a ``plantri`` binary belongs to the plantri generator: given
+    with ``None`` it chooses plantri, and with ``loops`` it is an error.
+
+    >>> choose_generator(None, method="numpy")
+    ('plantri', None)
+    >>> choose_generator("loops", method="numpy")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    polyloops.enumerate.catalog_run.CatalogRunError: the strip filter method and plantri's binary ...
+    """
+    from polyloops.enumerate.arrangements import compiled_generator_available
+
+    plantri_options = method != "auto" or plantri is not None
+    if generator == "loops" and plantri_options:
+        raise CatalogRunError("the strip filter method and plantri's binary are options of the plantri "
+                              "generator; the loops generator builds arrangements and reads no "
+                              "quadrangulations")
+    if generator is not None:
+        return generator, None
+    if plantri_options:
+        return "plantri", None
+    if compiled_generator_available():
+        return "loops", None
+    return "plantri", ("the compiled arrangement search was not built (a C compiler is needed at "
+                       "install time); using plantri's generator, which gives the same records")
 
 # Version 2: chirality and loops per axis fixed; version 3: removable loops, irreducible,
 # versioned signatures; version 4: the number of maps whose strips are all simple.  Parts of
@@ -40,6 +73,65 @@ SCHEMA_VERSION = 4
 class CatalogRunError(PolyloopsError, ValueError):
     """A catalog run that cannot start or finish: bad arguments, an output that is no
     directory, a worker that failed; the message names the problem."""
+
+
+class WouldLoseResultsError(CatalogRunError):
+    """A build whose catalog would hold less than the one already in its directory (fewer
+    corner counts, another symmetry mode, a share of a complete run): it is replaced only when
+    asked (``overwrite``)."""
+
+
+@dataclass(frozen=True)
+class Extent:
+    """What a catalog covers: its corner counts, the mode its records list, and the share of
+    the search it holds (``None``: all of it)."""
+
+    min_corners: int
+    max_corners: int
+    symmetry: Symmetry
+    share: tuple[int, int] | None = None
+
+    def covers(self, other: Extent) -> bool:
+        """Whether a catalog of this extent holds everything one of ``other`` holds."""
+        return (self.min_corners <= other.min_corners and self.max_corners >= other.max_corners
+                and self.symmetry == other.symmetry
+                and (self.share is None or self.share == other.share))
+
+    def describe(self) -> str:
+        share = "" if self.share is None else f", share {self.share[0]} of {self.share[1]}"
+        return f"{self.min_corners} to {self.max_corners} corners ({self.symmetry}{share})"
+
+
+CATALOG_FILES = ("catalog.jsonl", "catalog.sqlite", "summary.json")
+
+
+def existing_extent(out: Path) -> Extent | None:
+    """The extent of the catalog already in ``out``, or ``None`` when it holds none (no
+    directory, or only the ``parts/`` of an interrupted run).
+
+    Raises
+    ------
+    CatalogRunError
+        When catalog files are there but cannot be read as one (the message names the file).
+    """
+    present = [name for name in CATALOG_FILES if (out / name).exists() or (out / name).is_symlink()]
+    if not present:
+        return None
+    path = out / "summary.json"
+    try:
+        summary = json.loads(read_text(path, stdin=False))
+        counts = [int(n) for n in summary["counts"]]
+        first = read_text(out / "catalog.jsonl", stdin=False).partition("\n")[0]
+        symmetry = Symmetry.parse(json.loads(first)["symmetry"]) if first else Symmetry.FULL
+        share = summary.get("share")
+        share = (int(share[0]), int(share[1])) if share is not None else \
+            ((-1, -1) if "partial" in summary else None)
+        return Extent(min(counts), max(counts), symmetry, share)
+    except InputError as err:
+        raise CatalogRunError(f"{out}: holds a catalog that cannot be read ({err})") from None
+    except (ValueError, KeyError, TypeError, IndexError, AttributeError) as err:
+        raise CatalogRunError(f"{out}: holds catalog files that are not a catalog polyloops wrote "
+                              f"({path.name}: {err!r})") from None
 
 
 @dataclass(frozen=True)
@@ -257,7 +349,8 @@ def _run_job_star(args: tuple[Job, str, str, Any, Any]) -> dict[str, Any]:
 
 # -- merging and storage ---------------------------------------------------------------------
 
-def summarize(results: list[dict[str, Any]], min_n: int, max_n: int, partial: bool) -> dict[str, Any]:
+def summarize(results: list[dict[str, Any]], min_n: int, max_n: int,
+              partial: tuple[int, int] | None = None) -> dict[str, Any]:
     """The counts of a run by corners, in all three modes, with the numbers of maps seen
     (plantri) or the statistics of the search (loops: ``generator`` and ``search`` are added,
     and the counts of quadrangulations, which that search does not visit, are ``None``)."""
@@ -285,9 +378,10 @@ def summarize(results: list[dict[str, Any]], min_n: int, max_n: int, partial: bo
         from polyloops.enumerate.arrangements import SearchStats
 
         out["search"] = sum((SearchStats(**r["search"]) for r in loops), SearchStats()).as_dict()
-    if partial:
+    if partial is not None:
         out["partial"] = (f"only the {'share of the search' if loops else 'plantri slice'} res/mod "
                           "given on the command line")
+        out["share"] = list(partial)
     return out
 
 
@@ -358,9 +452,10 @@ class CatalogBuild:
 def build_catalog(out: Path | str, max_corners: int, min_corners: int = 8,
                   symmetry: Symmetry | str = Symmetry.FULL, *, workers: int = 1,
                   res: int | None = None, mod: int | None = None, dask: str | None = None,
-                  plantri: str | None = None, method: str = "auto", generator: str = "plantri",
+                  plantri: str | None = None, method: str = "auto", generator: str | None = None,
                   progress: Callable[[dict[str, Any]], None] | None = None,
-                  on_plan: Callable[[list[Job]], None] | None = None) -> CatalogBuild:
+                  on_plan: Callable[[list[Job]], None] | None = None,
+                  overwrite: bool = False) -> CatalogBuild:
     """Build (or resume) the genus-0 catalog in directory ``out``.
 
     Parameters
@@ -378,12 +473,17 @@ def build_catalog(out: Path | str, max_corners: int, min_corners: int = 8,
     generator:
         ``plantri`` (filter every quadrangulation) or ``loops`` (build arrangements of loops,
         :mod:`polyloops.enumerate.arrangements`); the records and their counts are the same,
-        ``summary.json`` says which maps each visited.
+        ``summary.json`` says which maps each visited.  ``None``: the best one built
+        (:func:`choose_generator`).
     plantri, method:
         Which plantri binary and which strip filter (see
         :func:`polyloops.enumerate.quadrangulations.filtered_batches`), for ``plantri``.
     progress, on_plan:
         Called with each finished job's result, and once with the list of jobs.
+    overwrite:
+        Replace a catalog in ``out`` that covers more than this build (more corner counts,
+        another mode, the whole search where this is a share); without it such a build is
+        refused before any work.  A catalog this build covers is resumed or extended.
 
     Returns
     -------
@@ -394,6 +494,8 @@ def build_catalog(out: Path | str, max_corners: int, min_corners: int = 8,
     CatalogRunError
         For arguments that do not fit together, an output that is not a directory, or the
         ``loops`` generator without its compiled search.
+    WouldLoseResultsError
+        When ``out`` holds a catalog this build would replace with less (without ``overwrite``).
     PlantriError
         When plantri cannot be found or fails.
 
@@ -413,6 +515,7 @@ def build_catalog(out: Path | str, max_corners: int, min_corners: int = 8,
     if workers < 1:
         raise CatalogRunError("--workers must be at least 1")
     symmetry = Symmetry.parse(symmetry)
+    generator, _ = choose_generator(generator, method, plantri)
     if generator not in GENERATORS:
         raise CatalogRunError(f"unknown generator {generator!r}: choose one of {', '.join(GENERATORS)}")
     if generator == "loops":
@@ -429,6 +532,11 @@ def build_catalog(out: Path | str, max_corners: int, min_corners: int = 8,
         raise CatalogRunError(f"{out}: exists and is not a directory")
     if not out.absolute().parent.is_dir():  # like every other output: the directory above must exist
         raise CatalogRunError(f"{out}: the directory {out.absolute().parent} does not exist")
+    old = existing_extent(out)
+    new = Extent(min_corners, max_corners, symmetry, None if mod is None else (res or 0, mod))
+    if old is not None and not overwrite and not new.covers(old):
+        raise WouldLoseResultsError(f"{out}: holds a catalog of {old.describe()}; this build of "
+                                    f"{new.describe()} would replace it with less")
     jobs = plan_jobs(min_corners, max_corners, res, mod, workers, generator)
     if on_plan:
         on_plan(jobs)
@@ -436,6 +544,6 @@ def build_catalog(out: Path | str, max_corners: int, min_corners: int = 8,
         results = execute(jobs, out, binary, workers, dask, progress, method=method)
     except (RuntimeError, OSError) as err:
         raise CatalogRunError(f"{out}: {err}") from None
-    summary = summarize(results, min_corners, max_corners, partial=mod is not None)
+    summary = summarize(results, min_corners, max_corners, None if mod is None else (res or 0, mod))
     written = write_catalog(out, results, symmetry, summary)
     return CatalogBuild(out, symmetry, summary, written)

@@ -24,6 +24,7 @@ from polyloops.core.corners import CATEGORIES
 from polyloops.core.errors import PolyloopsError
 from polyloops.core.symmetry import Symmetry
 from polyloops.enumerate.catalog import CatalogRecord
+from polyloops.io.files import InputError, check_regular, read_only_uri, read_text
 
 
 class CatalogError(PolyloopsError, ValueError):
@@ -109,18 +110,25 @@ class Census:
         return {e.signature: e for e in self.entries}
 
 
-def default_catalog() -> Path:
-    """``catalogs/genus0`` of the source tree this package was installed from."""
-    return Path(__file__).resolve().parents[3] / "catalogs" / "genus0"
+def default_catalog(genus: int = 0) -> Path:
+    """The shipped catalog of ``genus``, installed with the package (``polyloops/catalogs``,
+    package data; in the source tree also reached as ``catalogs/``).
+
+    >>> (default_catalog() / "catalog.jsonl").is_file()
+    True
+    """
+    from importlib.resources import files
+
+    return Path(str(files("polyloops") / "catalogs" / f"genus{genus}"))
 
 
 def _read_text(path: Path) -> str:
+    """A catalog file's text: a regular file only (a FIFO or ``/dev/zero`` in its place is
+    refused, not read)."""
     try:
-        return path.read_text(encoding="utf-8")
-    except OSError as err:
-        raise CatalogError(f"{path}: cannot read: {err.strerror or err}") from None
-    except UnicodeDecodeError as err:
-        raise CatalogError(f"{path}: cannot read: not UTF-8 text ({err.reason})") from None
+        return read_text(path, stdin=False)
+    except InputError as err:
+        raise CatalogError(str(err)) from None
 
 
 def read_entries(directory: Path) -> list[CatalogEntry]:
@@ -165,9 +173,29 @@ def read_catalog(directory: Path | None = None) -> Census:
         summary = json.loads(_read_text(path))
     except ValueError as err:
         raise CatalogError(f"{path}: not JSON ({err})") from None
-    if not isinstance(summary, dict) or not isinstance(summary.get("counts", {}), dict):
-        raise CatalogError(f"{path}: not a catalog summary")
+    problem = summary_problem(summary)
+    if problem:
+        raise CatalogError(f"{path}: not a catalog summary ({problem})")
     return Census(directory, tuple(entries), summary)
+
+
+def summary_problem(summary: Any) -> str | None:
+    """What makes ``summary`` (parsed ``summary.json``) not a catalog summary, or ``None``:
+    counts by corner counts (decimal integer keys) of non-negative integers in each mode."""
+    if not isinstance(summary, dict):
+        return "not a JSON object"
+    counts = summary.get("counts", {})
+    if not isinstance(counts, dict):
+        return "counts is not an object"
+    for key, row in counts.items():
+        if not (key.isascii() and key.isdigit()):
+            return f"corner count {key!r} is not an integer"
+        if not isinstance(row, dict) or not all(type(v) is int and v >= 0 for v in row.values()):
+            return f"the counts of {key} corners are not non-negative integers"
+    genus = summary.get("genus", 0)
+    if type(genus) is not int or genus < 0:
+        return f"genus {genus!r} is not a non-negative integer"
+    return None
 
 
 def query(out: Path, where: str) -> tuple[list[str], list[tuple[Any, ...]]]:
@@ -180,10 +208,20 @@ def query(out: Path, where: str) -> tuple[list[str], list[tuple[Any, ...]]]:
     (['name', 'signature', 'corners'], ['P16.1', 'P16.2'])
     """
     path = Path(out) / "catalog.sqlite"
-    if not path.is_file():
+    if not (path.exists() or path.is_symlink()):
         raise CatalogError(f"{path}: no catalog here")
-    con = sqlite3.connect(f"file:{path}?mode=ro", uri=True)
     try:
+        check_regular(path, limit=None)
+    except InputError as err:
+        raise CatalogError(str(err)) from None
+    con = sqlite3.connect(read_only_uri(path), uri=True)
+    try:
+        try:
+            tables = {name for (name,) in con.execute("SELECT name FROM sqlite_master WHERE type = 'table'")}
+        except sqlite3.DatabaseError as err:
+            raise CatalogError(f"{path}: not a catalog database ({err})") from None
+        if "polycubes" not in tables:
+            raise CatalogError(f"{path}: not a catalog database (no table polycubes)")
         cur = con.execute(f"SELECT * FROM polycubes WHERE {where} ORDER BY corners, signature")
         return [d[0] for d in cur.description], cur.fetchall()
     except sqlite3.Error as err:

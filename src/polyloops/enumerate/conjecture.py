@@ -25,9 +25,10 @@ from pathlib import Path
 from typing import Any
 
 from polyloops.core.canonical import canonical_form, from_signature
+from polyloops.core.errors import PolyloopsError
 from polyloops.core.moves import check_removal
 from polyloops.core.structure import LoopStructure
-from polyloops.enumerate.census import read_entries
+from polyloops.enumerate.census import Census, read_catalog
 from polyloops.enumerate.reach import Move, neighbours
 
 CERTIFICATE_KIND = "genus0-reachability-certificate"
@@ -181,19 +182,64 @@ class ConjectureResult:
                 "by_corners": [row.to_json() for row in self.table()]}
 
 
-def catalog_signatures(directory: Path, max_corners: int) -> list[tuple[str, int]]:
+class ConjectureError(PolyloopsError, ValueError):
+    """A request the catalog's evidence cannot support (a range beyond it, a partial catalog),
+    or a certificate that is not one; the message names both sides."""
+
+
+def complete_range(census: Census) -> int:
+    """The largest ``N`` such that the catalog holds every genus-0 class with at most ``N``
+    corners: its counts start at the cube's 8 and it is not one share of a split run.
+
+    Raises
+    ------
+    ConjectureError
+        For a partial catalog, one of another genus, or one that starts above 8 corners.
+
+    >>> from polyloops.enumerate.census import read_catalog
+    >>> complete_range(read_catalog()) >= 28
+    True
+    """
+    where = census.directory
+    if census.genus != 0:
+        raise ConjectureError(f"{where}: a catalog of genus {census.genus}, not 0")
+    if "partial" in census.summary or "share" in census.summary:
+        raise ConjectureError(f"{where}: a partial catalog (one share of a split run): it does not "
+                              "hold every class")
+    counts = sorted(int(n) for n in census.summary.get("counts", {}))
+    if not counts or counts[0] > CUBE_CORNERS:
+        start = counts[0] if counts else "nothing"
+        raise ConjectureError(f"{where}: the catalog's counts start at {start}, not at the cube's "
+                              f"{CUBE_CORNERS} corners")
+    return counts[-1]
+
+
+def catalog_signatures(directory: Path | Census, max_corners: int) -> list[tuple[str, int]]:
     """``(signature, corners)`` of every record of a catalog directory with at most
     ``max_corners`` corners (the catalog of one symmetry mode)."""
-    return [(e.signature, e.corners) for e in read_entries(directory) if e.corners <= max_corners]
+    census = directory if isinstance(directory, Census) else read_catalog(directory)
+    return [(e.signature, e.corners) for e in census.entries if e.corners <= max_corners]
 
 
 def settle_catalog(directory: Path, max_corners: int, slack: int, workers: int = 1,
                    dask: str | None = None,
                    progress: Callable[[ClassRecord], None] | None = None) -> ConjectureResult:
-    """Settle every class of the catalog with at most ``max_corners`` corners."""
+    """Settle every class of the catalog with at most ``max_corners`` corners.
+
+    Raises
+    ------
+    ConjectureError
+        When ``max_corners`` goes beyond the catalog's complete range (:func:`complete_range`):
+        classes the catalog does not hold cannot be settled.
+    """
     from polyloops.enumerate.parallel import run_jobs
 
-    tasks = [(sig, slack) for sig, _ in catalog_signatures(directory, max_corners)]
+    census = read_catalog(directory)
+    covered = complete_range(census)
+    if max_corners > covered:
+        raise ConjectureError(f"{census.directory}: the catalog holds every class only through {covered} "
+                              f"corners, not through {max_corners}")
+    tasks = [(sig, slack) for sig, _ in catalog_signatures(census, max_corners)]
     result = ConjectureResult(max_corners, slack)
     for record in run_jobs(_settle_job, tasks, workers, dask):
         result.records.append(record)
@@ -214,14 +260,19 @@ def certificate_lines(result: ConjectureResult) -> Iterator[str]:
 
 @dataclass(frozen=True)
 class CertificateProblem:
-    """A line of a certificate that does not check, and why."""
+    """A line of a certificate that does not check, and why (``line`` 0: a catalog class with
+    no record, named by ``name``)."""
 
     line: int
     signature: str
     message: str
+    name: str = ""
 
     def __str__(self) -> str:
-        return f"line {self.line} ({self.signature[:24]}...): {self.message}"
+        if self.line == 0:
+            return f"{self.name or self.signature[:24] + '...'}: {self.message}"
+        who = f" ({self.name})" if self.name else f" ({self.signature[:24]}...)" if self.signature else ""
+        return f"line {self.line}{who}: {self.message}"
 
 
 def _valid(ls: LoopStructure) -> bool:
@@ -230,83 +281,182 @@ def _valid(ls: LoopStructure) -> bool:
     return ls.oriented and check_polycube_loop_structure(ls).valid
 
 
-def check_record(data: Any, corners_bound: int) -> str | None:
-    """Replay one record with the Definition-4 checker; the problem, or ``None``."""
+def _is_count(value: Any) -> bool:
+    """A JSON integer (not a boolean, not a float such as ``1e999``)."""
+    return type(value) is int
+
+
+def check_record(data: Any, corners_bound: int, slack_bound: int | None = None) -> str | None:
+    """Replay one record with the Definition-4 checker, and check every field it states
+    against what the replay shows; the problem, or ``None``."""
+    if not isinstance(data, dict):
+        return "not a certificate record (a JSON object)"
+    sig, n = data.get("signature"), data.get("corners")
+    if not isinstance(sig, str):
+        return "not a certificate record: the signature is not text"
+    if not _is_count(n):
+        return f"not a certificate record: corners {n!r} is not an integer"
     try:
-        sig, n = data["signature"], data["corners"]
         ls = from_signature(sig)
-    except (KeyError, TypeError, ValueError) as err:
+    except ValueError as err:
         return f"not a certificate record: {err}"
-    if ls.map.num_corners != n or n > corners_bound:
+    if ls.map.num_corners != n:
         return f"claims {n} corners; the signature has {ls.map.num_corners}"
+    if n > corners_bound:
+        return f"has {n} corners, beyond the header's {corners_bound}"
     if not _valid(ls):
         return "the class itself is not a polycube loop structure"
+    kinds = [k for k in ("base", "removable", "detour", "unsettled") if k in data]
+    if len(kinds) > 1:
+        return f"states more than one way of being settled ({', '.join(kinds)})"
     if n == CUBE_CORNERS:
         if data.get("base") is not True:
             return "the cube is the base of the induction and must be marked so"
         return None
+    if "base" in data:
+        return "only the cube is the base of the induction"
     if "removable" in data:
         from polyloops.core.moves import try_remove
 
         loop = data["removable"]
-        if type(loop) is not int or not 0 <= loop < len(ls.loops):
+        if not _is_count(loop) or not 0 <= loop < len(ls.loops):
             return f"no loop {loop!r}"
         smaller = try_remove(ls, loop)
         if smaller is None or not _valid(smaller) or smaller.map.num_corners >= n:
             return f"removing loop {loop} does not give a smaller polycube loop structure"
         return None
     if "detour" in data:
-        detour = data["detour"]
-        try:
-            bound = int(detour["max_corners"])
-            moves = [Move.from_json(m) for m in detour["moves"]]
-        except (KeyError, TypeError, ValueError) as err:
-            return f"bad detour: {err}"
-        for step, move in enumerate(moves):
-            try:
-                ls = move.apply(ls)
-            except (KeyError, IndexError, ValueError) as err:
-                return f"detour step {step} ({move}) cannot be applied: {err}"
-            if not _valid(ls):
-                return f"detour step {step} ({move}) does not give a polycube loop structure"
-            if ls.map.num_corners > bound:
-                return f"detour step {step} has {ls.map.num_corners} corners, above {bound}"
-        if ls.map.num_corners >= n:
-            return "the detour does not end below the class's corners"
-        return None
+        return _check_detour(ls, n, data["detour"], slack_bound)
     return "unsettled"
 
 
-def check_certificate(lines: Iterable[str],
-                      directory: Path) -> tuple[dict[str, Any], list[CertificateProblem]]:
-    """Check a certificate against a catalog: a record for every class with at most the
-    header's corners, each replayed by :func:`check_record`.  Returns the header and the
-    problems (empty when the certificate holds)."""
-    it = iter(enumerate(lines, 1))
+def _check_detour(ls: LoopStructure, n: int, detour: Any, slack_bound: int | None) -> str | None:
+    if not isinstance(detour, dict) or not isinstance(detour.get("moves"), list):
+        return "bad detour: not an object with a list of moves"
+    bound, slack = detour.get("max_corners"), detour.get("slack")
+    if not _is_count(bound) or not _is_count(slack):
+        return f"bad detour: max_corners {bound!r} and slack {slack!r} must be integers"
+    if slack != bound - n:
+        return f"bad detour: slack {slack} is not max_corners {bound} minus the class's {n} corners"
+    if slack_bound is not None and slack > slack_bound:
+        return f"bad detour: slack {slack} is above the header's {slack_bound}"
     try:
-        _, first = next(it)
+        moves = [Move.from_json(m) for m in detour["moves"]]
+    except (KeyError, TypeError, ValueError) as err:
+        return f"bad detour: {err}"
+    for step, move in enumerate(moves):
+        try:
+            ls = move.apply(ls)
+        except (KeyError, IndexError, ValueError, TypeError) as err:
+            return f"detour step {step} ({move}) cannot be applied: {err}"
+        if not _valid(ls):
+            return f"detour step {step} ({move}) does not give a polycube loop structure"
+        if ls.map.num_corners > bound:
+            return f"detour step {step} has {ls.map.num_corners} corners, above {bound}"
+    if ls.map.num_corners >= n:
+        return "the detour does not end below the class's corners"
+    return None
+
+
+@dataclass(frozen=True)
+class CertificateCheck:
+    """What :func:`check_certificate` found: the header, the range it checked (every class of
+    the catalog through ``checked_corners``), the catalog's own complete range, and the
+    problems (none when the certificate holds)."""
+
+    header: dict[str, Any]
+    checked_corners: int
+    catalog_corners: int
+    records: int
+    problems: tuple[CertificateProblem, ...]
+
+    @property
+    def valid(self) -> bool:
+        """Whether every class through the header's range is settled, and that range is
+        within the catalog's."""
+        return not self.problems
+
+
+def read_header(first: str) -> dict[str, Any]:
+    """A certificate's header line, checked: the kind, and positive integer bounds.
+
+    Raises
+    ------
+    ConjectureError
+        Naming what is wrong.
+    """
+    try:
         header = json.loads(first)
-        if header.get("kind") != CERTIFICATE_KIND or type(header.get("max_corners")) is not int:
-            raise ValueError("not a certificate header")
-    except (StopIteration, ValueError, AttributeError) as err:
-        return {}, [CertificateProblem(1, "", f"not a reachability certificate ({err})")]
-    wanted = dict(catalog_signatures(directory, header["max_corners"]))
-    problems, covered = [], set()
+    except ValueError as err:
+        raise ConjectureError(f"not a reachability certificate (the first line is not JSON: {err})") from None
+    if not isinstance(header, dict) or header.get("kind") != CERTIFICATE_KIND:
+        raise ConjectureError("not a reachability certificate (the first line is not a "
+                              f"{CERTIFICATE_KIND} header)")
+    for key in ("max_corners", "slack"):
+        if not _is_count(header.get(key)) or header[key] < 1:
+            raise ConjectureError(f"the header's {key} {header.get(key)!r} is not a positive integer")
+    if "classes" in header and (not _is_count(header["classes"]) or header["classes"] < 0):
+        raise ConjectureError(f"the header's classes {header['classes']!r} is not a count")
+    return header
+
+
+def check_certificate(lines: Iterable[str], directory: Path | Census) -> CertificateCheck:
+    """Check a certificate against a catalog: the header's range within the catalog's complete
+    range, a record for every class through it, each replayed by :func:`check_record`, and the
+    header's counts.  A certificate proves, when it checks, that every genus-0 polycube class
+    with at most ``checked_corners`` corners is reachable from the cube (by the induction of the
+    module docstring), given that the catalog is complete through that range.
+
+    Raises
+    ------
+    ConjectureError
+        When the first line is not a certificate header (bad input, not a failed check).
+    CatalogError
+        When the catalog cannot be read.
+    """
+    census = directory if isinstance(directory, Census) else read_catalog(directory)
+    it = iter(enumerate(lines, 1))
+    first = next(it, (1, ""))[1]
+    header = read_header(first)
+    claimed, covered = header["max_corners"], complete_range(census)
+    checked = min(claimed, covered)
+    problems: list[CertificateProblem] = []
+    if claimed > covered:
+        problems.append(CertificateProblem(1, "", f"the header claims every class through {claimed} corners; "
+                                           f"the catalog holds every class only through {covered}"))
+    names = {e.signature: e.name for e in census.entries}
+    wanted = dict(catalog_signatures(census, checked))
+    covered_sigs: set[str] = set()
+    records = 0
     for number, line in it:
+        if not line.strip():
+            continue
+        records += 1
         try:
             data = json.loads(line)
-            sig = data["signature"]
-        except (ValueError, KeyError, TypeError):
-            problems.append(CertificateProblem(number, "", "not a JSON record with a signature"))
+        except (ValueError, RecursionError):
+            problems.append(CertificateProblem(number, "", "not JSON"))
+            continue
+        sig = data.get("signature") if isinstance(data, dict) else None
+        if not isinstance(sig, str):
+            problems.append(CertificateProblem(number, "", "not a JSON record with a signature (text)"))
             continue
         if sig not in wanted:
-            problems.append(CertificateProblem(number, sig, "not a class of the catalog"))
+            where = "beyond the checked range" if sig in names else "not a class of the catalog"
+            problems.append(CertificateProblem(number, sig, where, names.get(sig, "")))
             continue
-        covered.add(sig)
-        why = check_record(data, header["max_corners"])
+        if sig in covered_sigs:
+            problems.append(CertificateProblem(number, sig, "a second record for this class", names[sig]))
+            continue
+        covered_sigs.add(sig)
+        why = check_record(data, checked, header["slack"])
         if why is not None:
-            problems.append(CertificateProblem(number, sig, why))
+            problems.append(CertificateProblem(number, sig, why, names[sig]))
+    if "classes" in header and header["classes"] != records:
+        problems.append(CertificateProblem(1, "", f"the header counts {header['classes']} classes; "
+                                           f"the certificate has {records} records"))
     for sig in wanted:
-        if sig not in covered:
-            problems.append(CertificateProblem(0, sig, "catalog class missing from the certificate"))
-    return header, problems
+        if sig not in covered_sigs:
+            problems.append(CertificateProblem(0, sig, "catalog class missing from the certificate",
+                                               names[sig]))
+    return CertificateCheck(header, checked, covered, records, tuple(problems))

@@ -45,6 +45,7 @@ from polyloops.core.moves import (
 from polyloops.core.structure import LoopStructure
 from polyloops.core.symmetry import Symmetry
 from polyloops.enumerate.parallel import run_jobs
+from polyloops.io.files import InputError, check_regular, read_only_uri
 
 MODES = tuple(Symmetry)
 
@@ -178,6 +179,38 @@ class ReachError(PolyloopsError, ValueError):
     """A reach directory that does not belong to this search, or bad parameters."""
 
 
+class WouldReplaceSearchError(ReachError):
+    """A reach directory that holds another search, or files that are not a search: it is
+    replaced only when asked (``overwrite``)."""
+
+
+def _open_store(path: Path) -> sqlite3.Connection:
+    """The reach database at ``path``, created when missing; anything that is not one (a
+    FIFO, a damaged file, another program's database) is refused untouched."""
+    if path.exists() or path.is_symlink():
+        try:
+            check_regular(path, limit=None)
+        except InputError as err:
+            raise ReachError(str(err)) from None
+    try:
+        con = sqlite3.connect(path)
+        tables = {name for (name,) in con.execute("SELECT name FROM sqlite_master WHERE type = 'table'")}
+    except sqlite3.DatabaseError as err:
+        raise ReachError(f"{path}: not a reach database ({err})") from None
+    if tables and not {"states", "meta"} <= tables:
+        con.close()
+        raise ReachError(f"{path}: a database of another kind (tables {', '.join(sorted(tables))}), "
+                         "not a reach search")
+    try:
+        con.executescript(SCHEMA)
+        if tables:  # a stored search knows its last complete level
+            int(con.execute("SELECT value FROM meta WHERE key = 'level'").fetchone()[0])
+    except (sqlite3.DatabaseError, TypeError, ValueError) as err:
+        con.close()
+        raise ReachError(f"{path}: not a reach database ({err})") from None
+    return con
+
+
 @dataclass(frozen=True)
 class State:
     """A state of the search: its signature, corners, distance from the start, and how it was reached."""
@@ -194,20 +227,31 @@ class ReachStore:
     and the last level written.  Each level is written in one transaction, so an interrupted
     run loses at most the level it was computing."""
 
-    def __init__(self, directory: Path, params: dict[str, Any]):
-        directory.mkdir(exist_ok=True)
+    def __init__(self, directory: Path, params: dict[str, Any], overwrite: bool = False):
         self.path = directory / "reach.sqlite"
-        self.con = sqlite3.connect(self.path)
-        self.con.executescript(SCHEMA)
+        foreign = [name for name in ("catalog.jsonl", "catalog.sqlite") if (directory / name).exists()]
+        if foreign:
+            raise ReachError(f"{directory}: holds a catalog ({', '.join(foreign)}); a search would "
+                             "replace its summary.json: use another directory")
+        if not overwrite and (directory / "summary.json").exists() and not self.path.exists():
+            raise WouldReplaceSearchError(f"{directory}: holds a summary.json but no reach.sqlite; a "
+                                          "search would replace it")
+        directory.mkdir(exist_ok=True)
+        self.con = _open_store(self.path)
         stored = dict(self.con.execute("SELECT key, value FROM meta"))
         wanted = {k: json.dumps(v) for k, v in params.items()}
         if stored:
             differ = [k for k in wanted if stored.get(k) != wanted[k]]
-            if differ:
+            if differ and not overwrite:
                 self.con.close()
-                raise ReachError(f"{self.path}: a search with other parameters ({', '.join(differ)}) "
-                                 "is stored here; use another directory")
-        else:
+                raise WouldReplaceSearchError(f"{self.path}: a search with other parameters "
+                                              f"({', '.join(differ)}) is stored here")
+            if differ:  # replace it: start afresh in the same file
+                with self.con:
+                    self.con.execute("DELETE FROM states")
+                    self.con.execute("DELETE FROM meta")
+                stored = {}
+        if not stored:
             with self.con:
                 self.con.executemany("INSERT INTO meta VALUES (?, ?)", [*wanted.items(), ("level", "-1")])
 
@@ -247,7 +291,7 @@ def _state(row: tuple[Any, ...]) -> State:
 def path_to(store_dir: Path, signature: str) -> list[State]:
     """The stored states from the start to ``signature``, following parents; each state's
     move applies to ``from_signature`` of the state before it."""
-    con = sqlite3.connect(f"file:{store_dir / 'reach.sqlite'}?mode=ro", uri=True)
+    con = sqlite3.connect(read_only_uri(store_dir / "reach.sqlite"), uri=True)
     try:
         out = []
         sig: str | None = signature
@@ -301,7 +345,8 @@ class ReachResult:
 def explore(start: LoopStructure, max_corners: int, max_depth: int | None = None,
             kinds: Sequence[MoveKind] = BOTH, mode: Symmetry | str = Symmetry.LABELLED,
             directory: Path | None = None, workers: int = 1, dask: str | None = None,
-            progress: Callable[[dict[str, Any]], None] | None = None) -> ReachResult:
+            progress: Callable[[dict[str, Any]], None] | None = None,
+            overwrite: bool = False) -> ReachResult:
     """Breadth-first search of the move graph from ``start``: every state within ``max_corners``
     reachable by loop additions and removals (see the module docstring).
 
@@ -327,6 +372,8 @@ def explore(start: LoopStructure, max_corners: int, max_depth: int | None = None
         Local worker processes, or a Dask scheduler address (``local`` for a local cluster).
     progress:
         Called after each level with its counts.
+    overwrite:
+        Replace a search of other parameters stored in ``directory`` (without it, refused).
 
     Returns
     -------
@@ -338,7 +385,9 @@ def explore(start: LoopStructure, max_corners: int, max_depth: int | None = None
     ValueError
         When ``start`` has no sides or the mode is unknown.
     ReachError
-        When ``directory`` holds another search.
+        When ``directory`` holds a catalog or a damaged or foreign database.
+    WouldReplaceSearchError
+        When ``directory`` holds another search (without ``overwrite``).
 
     >>> from polyloops.core.examples import load_example
     >>> result = explore(load_example("cube").dualize(), max_corners=16)
@@ -358,7 +407,7 @@ def explore(start: LoopStructure, max_corners: int, max_depth: int | None = None
     store = None
     if directory is not None:
         store = ReachStore(directory, {"start": start_sig, "mode": mode, "max_corners": max_corners,
-                                       "moves": [k.value for k in kinds]})
+                                       "moves": [k.value for k in kinds]}, overwrite)
     try:
         known: dict[str, tuple[int, int]] = store.distances() if store else {}
         level = store.level if store else -1

@@ -258,7 +258,8 @@ def _open_regular(name: str, limit: int | None, read: bool) -> bytes:
         info = os.fstat(fd)
         if not stat.S_ISREG(info.st_mode):
             os.close(fd)
-            raise InputError(f"{name}: {'is a directory' if stat.S_ISDIR(info.st_mode) else 'not a regular file'}")
+            kind = "is a directory" if stat.S_ISDIR(info.st_mode) else "not a regular file"
+            raise InputError(f"{name}: {kind}")
         with os.fdopen(fd, "rb") as fh:
             if limit is not None and info.st_size > limit:
                 raise _too_large(name, limit)
@@ -272,6 +273,18 @@ def _open_regular(name: str, limit: int | None, read: bool) -> bytes:
     return data
 
 
+def read_only_uri(path: str | os.PathLike[str]) -> str:
+    """An SQLite URI that opens ``path`` read-only and never creates it, whatever characters
+    (``#``, ``%``, ``?``) its name holds.
+
+    >>> read_only_uri("/tmp/a#b/c?.sqlite")
+    'file:///tmp/a%23b/c%3F.sqlite?mode=ro'
+    """
+    from pathlib import Path
+
+    return Path(os.path.abspath(path)).as_uri() + "?mode=ro"
+
+
 def is_regular(path: str | os.PathLike[str]) -> bool:
     """Whether ``path`` (links followed) is a regular file."""
     try:
@@ -281,5 +294,5 @@ def is_regular(path: str | os.PathLike[str]) -> bool:
 
 
 __all__ = ["MAX_FILE_BYTES", "STDIO", "InputError", "Output", "OutputError", "Pending", "Sink",
-           "check_regular", "is_regular", "read_bytes", "read_text", "resolve_output", "write_atomic",
-           "writing"]
+           "check_regular", "is_regular", "read_bytes", "read_only_uri", "read_text", "resolve_output",
+           "write_atomic", "writing"]
