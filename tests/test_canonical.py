@@ -191,3 +191,20 @@ def test_some_random_polycubes_are_chiral():
 
     flags = {canonical_form(random_polycube(seed, "blob", 4), "full").achiral for seed in range(12)}
     assert flags == {True, False}
+
+
+def test_one_default_mode_everywhere(capsys, tmp_path):
+    """A signature printed by the command finds the class in the catalog's table."""
+    import json
+
+    import polyloops as pl
+    from polyloops.enumerate.census import default_catalog
+
+    assert main(["signature", "example:l-shape", "--json"]) == 0
+    printed = json.loads(capsys.readouterr().out)
+    assert printed["symmetry"] == "full"
+    assert printed["signature"] == pl.signature(load_example("l-shape"))
+    assert main(["catalog", "query", str(default_catalog()), f"signature = '{printed['signature']}'",
+                 "--json"]) == 0
+    rows = json.loads(capsys.readouterr().out)
+    assert [r["name"] for r in rows] == [pl.identify(load_example("l-shape")).name]

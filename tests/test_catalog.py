@@ -407,3 +407,91 @@ def test_orbit_stabiliser_ties_the_three_columns_of_the_shipped_catalog():
     for entry in census.entries:
         aut_r = canonical_form(entry.structure(), "rotation").automorphisms
         assert entry.record.chiral == (aut_r == entry.record.automorphisms)
+
+
+# -- nothing is overwritten with less ------------------------------------------------------------
+
+def test_a_smaller_build_refuses_to_replace_a_larger_catalog(tmp_path, capsys):
+    out = tmp_path / "c"
+    assert main(["catalog", "--max-corners", "18", "--generator", "plantri", "-o", str(out)]) == 0
+    before = {p.name: p.read_bytes() for p in out.iterdir() if p.is_file()}
+    capsys.readouterr()
+    for extra in (["--max-corners", "14"], ["--max-corners", "18", "--min-corners", "12"],
+                  ["--max-corners", "18", "--symmetry", "rotation"],
+                  ["--max-corners", "18", "--res", "0", "--mod", "2"]):
+        assert main(["catalog", *extra, "--generator", "plantri", "-o", str(out)]) == 2
+        err = capsys.readouterr().err
+        assert "--overwrite" in err and "8 to 18 corners" in err and err.count("\n") == 1
+        assert {p.name: p.read_bytes() for p in out.iterdir() if p.is_file()} == before
+    # a larger build extends it; --overwrite replaces it with less when asked
+    assert main(["catalog", "--max-corners", "20", "--generator", "plantri", "-o", str(out)]) == 0
+    assert "20" in json.loads((out / "summary.json").read_text())["counts"]
+    assert main(["catalog", "--max-corners", "14", "--generator", "plantri", "--overwrite",
+                 "-o", str(out)]) == 0
+    assert max(map(int, json.loads((out / "summary.json").read_text())["counts"])) == 14
+
+
+def test_a_share_and_an_unreadable_catalog(tmp_path, capsys):
+    out = tmp_path / "c"
+    assert main(["catalog", "--max-corners", "16", "--res", "0", "--mod", "2", "--generator", "plantri",
+                 "-o", str(out)]) == 0
+    assert json.loads((out / "summary.json").read_text())["share"] == [0, 2]
+    assert main(["catalog", "--max-corners", "16", "--res", "0", "--mod", "2", "--generator", "plantri",
+                 "-o", str(out)]) == 0  # the same share resumes
+    assert main(["catalog", "--max-corners", "16", "--res", "1", "--mod", "2", "--generator", "plantri",
+                 "-o", str(out)]) == 2  # another share would replace it
+    # the whole search covers the share
+    assert main(["catalog", "--max-corners", "16", "--generator", "plantri", "-o", str(out)]) == 0
+    (out / "summary.json").write_text("{not json")
+    capsys.readouterr()
+    assert main(["catalog", "--max-corners", "20", "--generator", "plantri", "-o", str(out)]) == 2
+    assert "summary.json" in capsys.readouterr().err
+
+
+def test_generator_default_and_plantri_options(capsys, tmp_path):
+    from polyloops.enumerate.arrangements import compiled_generator_available
+    from polyloops.enumerate.catalog_run import choose_generator
+
+    assert choose_generator(None) == ("loops", None) if compiled_generator_available() else \
+        choose_generator(None)[0] == "plantri"
+    assert choose_generator(None, plantri="/usr/bin/plantri") == ("plantri", None)
+    assert main(["catalog", "--max-corners", "12", "--generator", "loops", "--method", "numpy",
+                 "-o", str(tmp_path / "x")]) == 2
+    assert "plantri generator" in capsys.readouterr().err and not (tmp_path / "x").exists()
+
+
+def test_catalog_readers_refuse_fifos_and_odd_summaries(tmp_path, capsys):
+    import os
+    import shutil
+
+    cat = tmp_path / "cat"
+    shutil.copytree(SHIPPED, cat)
+    (cat / "catalog.jsonl").unlink()
+    os.mkfifo(cat / "catalog.jsonl")
+    cert = str(SHIPPED / "reachability-certificate.jsonl")
+    for argv in (["identify", "example:l-shape", "--catalog", str(cat)],
+                 ["gallery", str(cat), "-o", str(tmp_path / "site")],
+                 ["conjecture", "check", cert, "--catalog", str(cat)]):
+        assert main(argv) == 2, argv  # refused at once, not read (a FIFO would block)
+        assert "not a regular file" in capsys.readouterr().err
+    (cat / "catalog.jsonl").unlink()
+    shutil.copy(SHIPPED / "catalog.jsonl", cat / "catalog.jsonl")
+    summary = json.loads((cat / "summary.json").read_text())
+    summary["counts"]["x"] = summary["counts"]["8"]
+    (cat / "summary.json").write_text(json.dumps(summary))
+    assert main(["conjecture", "check", cert, "--catalog", str(cat)]) == 2
+    assert "not an integer" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("name", ["a#b", "100%", "what?", "x y"])
+def test_catalog_query_in_strange_directory_names(tmp_path, capsys, name):
+    import shutil
+
+    cat = tmp_path / name
+    shutil.copytree(SHIPPED, cat)
+    assert main(["catalog", "query", str(cat), "corners = 16", "--json"]) == 0
+    assert [r["name"] for r in json.loads(capsys.readouterr().out)] == ["P16.1", "P16.2"]
+    empty = tmp_path / f"empty-{name}"
+    empty.mkdir()
+    assert main(["catalog", "query", str(empty), "corners = 16"]) == 2
+    assert list(empty.iterdir()) == []  # no stray database left behind

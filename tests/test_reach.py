@@ -283,3 +283,48 @@ def test_not_a_certificate_is_bad_input(tmp_path, capsys):
     (tmp_path / "g.jsonl").write_text("garbage\n")
     assert main(["conjecture", "check", str(tmp_path / "g.jsonl"), "--catalog", str(CATALOG)]) == 2
     assert "not a reachability certificate" in capsys.readouterr().err
+
+
+# -- reach directories: nothing replaced without --overwrite, nothing foreign read ---------------
+
+def test_reach_refuses_another_search_without_overwrite(tmp_path, capsys):
+    out = tmp_path / "r"
+    assert main(["reach", "--max-corners", "16", "-o", str(out)]) == 0
+    before = rows(out)
+    capsys.readouterr()
+    assert main(["reach", "--max-corners", "12", "-o", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert "--overwrite" in err and err.count("\n") == 1 and rows(out) == before
+    assert main(["reach", "--max-corners", "16", "-o", str(out)]) == 0  # the same search resumes
+    assert rows(out) == before
+    assert main(["reach", "--max-corners", "12", "--overwrite", "-o", str(out)]) == 0
+    assert json.loads((out / "summary.json").read_text())["max_corners"] == 12
+
+
+@pytest.mark.parametrize("content", ["fifo", "garbage", "foreign", "catalog"])
+def test_reach_refuses_what_is_not_a_search(tmp_path, capsys, content):
+    import os
+    import shutil
+    import sqlite3
+
+    out = tmp_path / "r"
+    out.mkdir()
+    db = out / "reach.sqlite"
+    if content == "fifo":
+        os.mkfifo(db)
+    elif content == "garbage":
+        db.write_bytes(b"SQLite format 3\x00" + bytes(range(256)) * 8)
+    elif content == "foreign":
+        con = sqlite3.connect(db)
+        con.execute("CREATE TABLE other (x)")
+        con.commit()
+        con.close()
+    else:
+        out.rmdir()
+        shutil.copytree(CATALOG, out)
+    before = {p.name: p.read_bytes() for p in out.iterdir() if p.is_file()}
+    for overwrite in ([], ["--overwrite"]):
+        assert main(["reach", "--max-corners", "12", "-o", str(out), *overwrite]) == 2
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1 and "internal error" not in err
+    assert {p.name: p.read_bytes() for p in out.iterdir() if p.is_file()} == before

@@ -11,15 +11,7 @@ import sys
 from pathlib import Path
 
 from polyloops.core.examples import EXAMPLES, example_text
-from polyloops.core.exchange import apg_text, parse_apg, parse_obj
-from polyloops.core.formats import (
-    Document,
-    FormatError,
-    Structure,
-    dumps,
-    parse_document,
-    to_obj,
-)
+from polyloops.core.formats import Document, FormatError, Structure, dumps, parse_document
 from polyloops.core.halfedge import FaceListError, MapError
 from polyloops.core.loops import OddFaceError
 from polyloops.core.polycube import Polycube
@@ -33,6 +25,7 @@ from polyloops.io.files import (
     resolve_output,
     write_atomic,
 )
+from polyloops.io.registry import BY_NAME, BY_SUFFIX, format_for, parse_bytes, sniff, write_structure
 
 EXIT_OK, EXIT_INVALID, EXIT_USAGE = 0, 1, 2
 
@@ -44,9 +37,9 @@ class CliError(Exception):
 
 
 def read_document(arg: str, given: str | None = None) -> Document:
-    """Parse a FILE argument: a path (polyloops JSON, an Abstract Polycube Graph ``.graph`` or
-    ``.apg``, an OBJ quad mesh or plantri's planar code ``.pc``, by extension or by
-    ``given``), ``example:NAME`` or ``sig:SIGNATURE``."""
+    """Parse a FILE argument: a path (any format :mod:`polyloops.io.registry` reads, by
+    ``given``, extension or content; ``-`` is standard input), ``example:NAME`` or
+    ``sig:SIGNATURE``.  The file is read once."""
     if arg.startswith("sig:"):
         from polyloops.core.canonical import SignatureError, from_signature
 
@@ -58,51 +51,45 @@ def read_document(arg: str, given: str | None = None) -> Document:
         name = arg.removeprefix("example:")
         if name not in EXAMPLES:
             raise CliError(f"{arg}: unknown example; 'polyloops examples' lists them")
-        text = example_text(name)
-        fmt = "json"
+        doc = parse_document(example_text(name))
     else:
-        fmt = format_of(arg, given)
-        text = "" if fmt == "planar" else read_text_file(arg)
-    try:
-        doc = _planar_document(arg) if fmt == "planar" else READERS[fmt](text)
-    except FormatError as err:
-        raise CliError(f"{arg}: {err}") from None
+        data = read_bytes_file(arg)
+        try:
+            fmt = format_for(arg, given)
+            if given is None and os.path.splitext(arg)[1].lower() not in BY_SUFFIX:
+                fmt = sniff(data) or fmt
+            doc = parse_bytes(data, fmt)
+        except FormatError as err:
+            raise CliError(f"{arg}: {err}" if not str(err).startswith(f"{arg}:") else str(err)) from None
+    if doc.kind == "map":
+        doc = _map_document(arg, doc)
     for note in doc.notes:
         print(f"{arg}: note: {note}", file=sys.stderr)
     return doc
 
 
-def _planar_document(arg: str) -> Document:
-    """A planar-code file of one map, read as the map's only polycube loop structure."""
-    from polyloops.core.planar_code import read_planar_code
+def _map_document(arg: str, doc: Document) -> Document:
+    """A map without labels (planar code), read as its only polycube loop structure."""
+    from polyloops.core.halfedge import HalfEdgeMap
     from polyloops.enumerate.catalog import MapStructureError, only_structure_on
 
-    maps = read_planar_code(read_bytes_file(arg))
-    if len(maps) != 1:
-        raise CliError(f"{arg}: holds {len(maps)} maps; polyloops reads one map per file")
     try:
-        ls = only_structure_on(maps[0])
+        ls = only_structure_on(HalfEdgeMap.from_faces(doc.faces))
     except MapStructureError as err:
         raise CliError(f"{arg}: {err}", EXIT_INVALID if err.count == 0 else EXIT_USAGE) from None
     return Document.of(ls, notes=("planar code has no axis labels; read the map's only polycube "
                                   "loop structure (up to symmetry)",))
 
 
-# File formats by name and by extension; anything else is read as polyloops JSON.  Planar
-# code is binary and is read by _planar_document.
-READERS = {"json": parse_document, "apg": parse_apg, "obj": parse_obj}
-FORMATS = (*READERS, "planar")
-SUFFIXES = {".json": "json", ".graph": "apg", ".apg": "apg", ".obj": "obj",
-            ".pc": "planar", ".plc": "planar", ".planarcode": "planar"}
+FORMATS = tuple(BY_NAME)
 
 
-def format_of(path: str, given: str | None = None) -> str:
+def format_of(path: str, given: str | None = None, writing: bool = False) -> str:
     """The format named by ``given`` (``--from``/``--to``), else by the file's extension."""
-    if given is not None:
-        if given not in FORMATS:
-            raise CliError(f"{path}: unknown format {given!r} (choose from {', '.join(FORMATS)})")
-        return given
-    return SUFFIXES.get(os.path.splitext(path)[1].lower(), "json")
+    try:
+        return format_for(path, given, writing=writing).name
+    except FormatError as err:
+        raise CliError(str(err)) from None
 
 
 def read_text_file(arg: str, limit: int = MAX_FILE_BYTES) -> str:
@@ -189,28 +176,10 @@ def write_output(path: str | None, obj: Structure, given: str | None = None) -> 
     the JSON text."""
     if path is None:
         return dumps(obj)
-    fmt = format_of(path, given)
-    text: str | bytes
-    if fmt == "obj":
-        if not isinstance(obj, Polycube):
-            raise CliError(f"{path}: only a polycube can be written as OBJ (make one with "
-                           "'polyloops primalize')")
-        text = to_obj(obj)
-    elif fmt == "apg":
-        try:
-            text = apg_text(obj)
-        except ValueError as err:
-            raise CliError(f"{path}: {err}") from None
-    elif fmt == "planar":
-        from polyloops.core.planar_code import planar_code
-
-        try:
-            text = planar_code([obj.map])
-        except ValueError as err:
-            raise CliError(f"{path}: {err}") from None
-    else:
-        text = dumps(obj)
-    write_text(path, text)
+    try:
+        write_structure(obj, path, given)
+    except (OutputError, FormatError) as err:
+        raise CliError(str(err)) from None
     return None
 
 

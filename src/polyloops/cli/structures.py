@@ -187,11 +187,12 @@ def add_commands(command: AddCommand) -> None:
                    "default: JSON on standard output")
     p = command("signature", cmd_signature, "a canonical name: equal exactly for isomorphic "
                 "structures (mirror images of the surface identified); use it as sig:NAME anywhere")
-    p.add_argument("--symmetry", choices=SYMMETRIES, default="labelled",
-                   help="labelled: axes fixed (order-equivalence); rotation: up to the 24 rotations; "
-                   "full: up to all 48 signed permutations")
+    p.add_argument("--symmetry", choices=SYMMETRIES, default="full",
+                   help="full (the default, as in pl.signature and the catalog's signature column): up "
+                   "to all 48 signed permutations of the axes; rotation: up to the 24 rotations; "
+                   "labelled: axes fixed (order-equivalence)")
     p = command("identify", cmd_identify, "the catalog name of a polycube or loop structure (any "
                 "numbering, position or mirror image); exit 1 when it is not in the catalog")
-    p.add_argument("--catalog", metavar="DIR", help="a catalog directory (default: catalogs/genus0 "
-                   "of this source tree)")
+    p.add_argument("--catalog", metavar="DIR", help="a catalog directory (default: the shipped "
+                   "genus-0 catalog, installed with the package)")
     command("info", cmd_info, "corners, faces, loops, genus, zones, level graphs and corner degrees")

@@ -207,11 +207,20 @@ def obj_polygons(text: str) -> tuple[list[tuple[float, float, float]], list[tupl
 def parse_obj(text: str) -> Document:
     """Read a Wavefront OBJ quad mesh as a polycube; see the module docstring."""
     vertices, raw_faces = obj_polygons(text)
+    return quad_mesh_document(vertices, raw_faces)
+
+
+def quad_mesh_document(vertices: list[tuple[float, float, float]],
+                       raw_faces: list[tuple[int, list[int]]], where: str = "line") -> Document:
+    """A polycube document from a quad mesh: vertices, and faces with the line (or face
+    number, ``where``) that names them in errors.  Coordinates are snapped to their ranks on
+    each axis (values closer than ``1e-9`` of the mesh's extent are one value), so the
+    polycube's corners are integers however the mesh was scaled or moved."""
     for number, ids in raw_faces:
         if len(ids) != 4:
-            raise ExchangeError(f"line {number}: a face must be a quad, not a {len(ids)}-gon")
+            raise ExchangeError(f"{where} {number}: a face must be a quad, not a {len(ids)}-gon")
     if not raw_faces:
-        raise ExchangeError("no faces ('f' lines)")
+        raise ExchangeError("no faces" + (" ('f' lines)" if where == "line" else ""))
     used = sorted({i for _, ids in raw_faces for i in ids})
     index = {old: new for new, old in enumerate(used)}
     ranks = _ranks([vertices[i] for i in used])
@@ -221,16 +230,21 @@ def parse_obj(text: str) -> Document:
         for a, b in zip(face, face[1:] + face[:1], strict=True):
             moved = sum(1 for k in range(3) if ranks[a][k] != ranks[b][k])
             if moved != 1:
-                raise ExchangeError(f"line {number}: the edge from vertex {used[a] + 1} to {used[b] + 1} is "
-                                    + ("of zero length" if moved == 0 else "not parallel to an axis"))
+                what = "of zero length" if moved == 0 else "not parallel to an axis"
+                raise ExchangeError(f"{where} {number}: the edge from vertex {used[a] + 1} to {used[b] + 1} "
+                                    f"is {what}")
         faces.append(face)
     return Document("polycube", faces, positions=ranks)
 
 
 def _ranks(points: list[tuple[float, float, float]]) -> list[tuple[int, int, int]]:
-    """Each coordinate replaced by its rank among the distinct values on its axis."""
+    """Each coordinate replaced by its rank among the distinct values on its axis; values
+    closer than ``1e-9`` of the extent (the largest spread on any axis) count as one, so the
+    tolerance scales with the mesh (a polycube drawn at 1e-10 or at 1e100 reads the same)."""
     extent = max((max(p[k] for p in points) - min(p[k] for p in points) for k in range(3)), default=0.0)
-    tol = 1e-9 * max(extent, 1.0)
+    if not math.isfinite(extent):
+        raise ExchangeError("the coordinates span more than a floating-point number holds")
+    tol = 1e-9 * extent
     out = [[0, 0, 0] for _ in points]
     for k in range(3):
         order = sorted(range(len(points)), key=lambda i: points[i][k])

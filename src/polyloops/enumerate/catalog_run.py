@@ -98,6 +98,7 @@ class Extent:
                 and (self.share is None or self.share == other.share))
 
     def describe(self) -> str:
+        """The extent in words, as error messages give it."""
         share = "" if self.share is None else f", share {self.share[0]} of {self.share[1]}"
         return f"{self.min_corners} to {self.max_corners} corners ({self.symmetry}{share})"
 

@@ -22,7 +22,7 @@ import json
 from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, TypeGuard
 
 from polyloops.core.canonical import canonical_form, from_signature
 from polyloops.core.errors import PolyloopsError
@@ -281,7 +281,7 @@ def _valid(ls: LoopStructure) -> bool:
     return ls.oriented and check_polycube_loop_structure(ls).valid
 
 
-def _is_count(value: Any) -> bool:
+def _is_count(value: Any) -> TypeGuard[int]:
     """A JSON integer (not a boolean, not a float such as ``1e999``)."""
     return type(value) is int
 

@@ -128,14 +128,16 @@ def _install(tmp: str, out: Output) -> None:
 def _stream_into(out: Output, data: bytes | None = None, source: str | None = None) -> None:
     """Write ``data`` or the file ``source`` into a device, FIFO or standard output."""
     if out.sink is Sink.STDOUT:
-        sys.stdout.flush()
-        fh = sys.stdout.buffer
         if source is not None:
             with open(source, "rb") as src:
-                shutil.copyfileobj(src, fh)
+                data = src.read()
+        sys.stdout.flush()
+        fh = getattr(sys.stdout, "buffer", None)
+        if fh is None:  # a text stream standing in for stdout (a notebook, a doctest)
+            sys.stdout.write((data or b"").decode("utf-8", "replace"))
         else:
             fh.write(data or b"")
-        fh.flush()
+            fh.flush()
         return
     with open(out.target, "wb") as fh:  # truncation means nothing to a device or FIFO
         if source is not None:

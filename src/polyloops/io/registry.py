@@ -1,0 +1,240 @@
+"""The file formats polyloops reads and writes, by name, extension and content: one registry
+that every command and :func:`polyloops.read` / :func:`polyloops.write` go through.
+
+========== ============================== ======================================== =====
+format     extensions                     what                                     reads
+========== ============================== ======================================== =====
+json       .json                          polyloops JSON (polycube or structure)   yes
+apg        .graph .apg                    DualCube's Abstract Polycube Graph       yes
+obj        .obj                           Wavefront OBJ quad mesh (a polycube)     yes
+planar     .pc .plc .planarcode           plantri's planar code (one map)          yes
+ply off    .ply .off .vtk .vtu .mesh .msh polycube meshes through meshio           yes
+vtk ...
+stl        .stl                           triangles through meshio (two a quad)    no
+========== ============================== ======================================== =====
+
+A name without a known extension (standard input ``-`` among them) is read by its content;
+an output name must have a known extension, or its format must be given.
+
+>>> format_for("shape.graph").name, format_for("-", writing=True).name
+('apg', 'json')
+>>> format_for("ring.xyz", writing=True)  # doctest: +ELLIPSIS
+Traceback (most recent call last):
+...
+polyloops.io.registry.FormatChoiceError: ring.xyz: polyloops does not write .xyz files; it writes .json, ...
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+
+from polyloops.core.exchange import apg_text, parse_apg, parse_obj
+from polyloops.core.formats import Document, FormatError, Structure, dumps, parse_document, to_obj
+from polyloops.core.polycube import Polycube
+from polyloops.io.files import OutputError, Sink, read_bytes, resolve_output, write_atomic
+
+__all__ = ["FORMATS", "FileFormat", "FormatChoiceError", "format_for", "parse_bytes", "read_document",
+           "sniff", "write_structure"]
+
+
+class FormatChoiceError(FormatError):
+    """A format name or extension polyloops does not read or write; the message lists those it does."""
+
+
+@dataclass(frozen=True)
+class FileFormat:
+    """One file format: its name, extensions, whether polyloops reads it, and what it writes
+    (``polycube``: only polycubes; ``any``: polycubes and loop structures)."""
+
+    name: str
+    suffixes: tuple[str, ...]
+    reads: bool
+    writes: str  # "any" or "polycube"
+    mesh: bool = False  # written (and read) through meshio
+
+
+FORMATS: tuple[FileFormat, ...] = (
+    FileFormat("json", (".json",), True, "any"),
+    FileFormat("apg", (".graph", ".apg"), True, "any"),
+    FileFormat("obj", (".obj",), True, "polycube"),
+    FileFormat("planar", (".pc", ".plc", ".planarcode"), True, "any"),
+    FileFormat("ply", (".ply",), True, "polycube", mesh=True),
+    FileFormat("off", (".off",), True, "polycube", mesh=True),
+    FileFormat("vtk", (".vtk",), True, "polycube", mesh=True),
+    FileFormat("vtu", (".vtu",), True, "polycube", mesh=True),
+    FileFormat("medit", (".mesh",), True, "polycube", mesh=True),
+    FileFormat("gmsh", (".msh",), True, "polycube", mesh=True),
+    FileFormat("stl", (".stl",), False, "polycube", mesh=True),
+)
+BY_NAME = {f.name: f for f in FORMATS}
+BY_SUFFIX = {s: f for f in FORMATS for s in f.suffixes}
+
+
+def _listing(writing: bool) -> str:
+    return ", ".join(s for f in FORMATS if writing or f.reads for s in f.suffixes)
+
+
+def format_for(path: str | os.PathLike[str], given: str | None = None, *,
+               writing: bool = False) -> FileFormat:
+    """The format of ``path``: ``given`` by name, else by extension.  Reading a name with no
+    known extension gives ``json`` here and is decided by content in :func:`read_document`;
+    writing one is refused, except ``-`` (standard output), which is JSON.
+
+    Raises
+    ------
+    FormatChoiceError
+        For an unknown format name, an output extension polyloops does not write, or a
+        format it does not read.
+    """
+    name = os.fspath(path)
+    if given is not None:
+        fmt = BY_NAME.get(given)
+        if fmt is None:
+            raise FormatChoiceError(f"{name}: unknown format {given!r} (choose from {', '.join(BY_NAME)})")
+    else:
+        suffix = os.path.splitext(name)[1].lower()
+        fmt = BY_SUFFIX.get(suffix)
+        if fmt is None:
+            if writing and not _is_stream(name):
+                shown = f"{suffix} files" if suffix else "files without an extension"
+                raise FormatChoiceError(f"{name}: polyloops does not write {shown}; it writes "
+                                        f"{_listing(True)}")
+            return BY_NAME["json"]
+    if not writing and not fmt.reads:
+        raise FormatChoiceError(f"{name}: polyloops writes {fmt.name.upper()} but does not read it "
+                                f"(it holds triangles); it reads {_listing(False)}")
+    return fmt
+
+
+def _is_stream(name: str) -> bool:
+    """Whether an output goes to standard output, a device or a FIFO (written as JSON when its
+    name has no extension, like ``/dev/null``)."""
+    try:
+        return resolve_output(name).sink is not Sink.REPLACE
+    except OutputError:
+        return False
+
+
+def sniff(data: bytes) -> FileFormat | None:
+    """The format some bytes look like, for names without a known extension; ``None`` when
+    they look like none.
+
+    >>> sniff(b'  {"polyloops": 1}').name, sniff(b">>planar_code<<").name, sniff(b"ply\\n").name
+    ('json', 'planar', 'ply')
+    """
+    head = data[:4096].lstrip()
+    if head.startswith(b"\xef\xbb\xbf"):
+        head = head[3:].lstrip()
+    if head.startswith((b"{", b"[")):
+        return BY_NAME["json"]
+    if head.startswith(b">>planar_code"):
+        return BY_NAME["planar"]
+    if head.startswith(b"ply"):
+        return BY_NAME["ply"]
+    if head.startswith((b"OFF", b"COFF", b"NOFF")):
+        return BY_NAME["off"]
+    if head.startswith(b"# vtk DataFile"):
+        return BY_NAME["vtk"]
+    lines = [line.split() for line in head.decode("utf-8", "replace").splitlines()
+             if line.strip() and not line.lstrip().startswith(("#", "/"))]
+    if lines and lines[0][0] in ("v", "f", "o", "g", "mtllib", "usemtl", "vn", "vt"):
+        return BY_NAME["obj"]
+    if lines and len(lines[0]) == 3 and all(w.isdigit() for w in lines[0]):
+        return BY_NAME["apg"]
+    return None
+
+
+def parse_bytes(data: bytes, fmt: FileFormat, where: str = "") -> Document:
+    """A document from a file's bytes in format ``fmt``.  Planar code gives a document of kind
+    ``map`` (faces only): it has no axis labels, and finding the map's polycube loop structure
+    is a search (:func:`polyloops.enumerate.catalog.only_structure_on`).
+
+    Raises
+    ------
+    FormatError
+        For bytes that do not follow the format (the message says where).
+    """
+    if fmt.name == "planar":
+        from polyloops.core.planar_code import read_planar_code
+
+        maps = read_planar_code(data)
+        if len(maps) != 1:
+            raise FormatError(f"holds {len(maps)} maps; polyloops reads one map per file")
+        return Document("map", [list(f) for f in maps[0].faces])
+    if fmt.mesh:
+        from polyloops.io.meshes import read_polycube_mesh
+
+        return read_polycube_mesh(data, fmt.name)
+    try:
+        text = data.decode("utf-8-sig")
+    except UnicodeDecodeError as err:
+        raise FormatError(f"not UTF-8 text ({err.reason} at byte {err.start})") from None
+    reader = {"json": parse_document, "apg": parse_apg, "obj": parse_obj}[fmt.name]
+    return reader(text)
+
+
+def read_document(path: str | os.PathLike[str], given: str | None = None) -> Document:
+    """Read a file once and parse it: the format ``given``, else by extension, else by
+    content (see :func:`sniff`).
+
+    Raises
+    ------
+    InputError
+        When the file cannot be read (not a regular file, too large, missing).
+    FormatError
+        For content that is not in the format (the message does not repeat the file name).
+    """
+    name = os.fspath(path)
+    data = read_bytes(name)
+    fmt = format_for(name, given)
+    if given is None and os.path.splitext(name)[1].lower() not in BY_SUFFIX:
+        fmt = sniff(data) or fmt
+    return parse_bytes(data, fmt)
+
+
+def serialize(obj: Structure, fmt: FileFormat, where: str = "") -> str | bytes:
+    """The text or bytes of ``obj`` in a format polyloops writes without meshio."""
+    if fmt.name == "obj":
+        return to_obj(obj)  # type: ignore[arg-type]
+    if fmt.name == "apg":
+        return apg_text(obj)
+    if fmt.name == "planar":
+        from polyloops.core.planar_code import planar_code
+
+        return planar_code([obj.map])
+    return dumps(obj)
+
+
+def write_structure(obj: Structure, path: str | os.PathLike[str], given: str | None = None) -> FileFormat:
+    """Write ``obj`` to ``path`` in the format ``given`` or its extension names, through the
+    shared writer; returns the format.
+
+    Raises
+    ------
+    FormatChoiceError
+        For an output extension polyloops does not write, or a loop structure in a format
+        that holds polycubes only.
+    FormatError
+        When the structure cannot be written in that format (a map planar code cannot hold).
+    OutputError
+        When the output cannot be written.
+    """
+    name = os.fspath(path)
+    fmt = format_for(name, given, writing=True)
+    if fmt.writes == "polycube" and not isinstance(obj, Polycube):
+        raise FormatChoiceError(f"{name}: only a polycube can be written as {fmt.name.upper()} (make one "
+                                "with primalize)")
+    if fmt.mesh:
+        from polyloops.io.meshes import write_polycube_mesh
+
+        write_polycube_mesh(obj, name, fmt.name)  # type: ignore[arg-type]
+        return fmt
+    try:
+        data = serialize(obj, fmt, name)
+    except FormatError:
+        raise
+    except ValueError as err:
+        raise FormatError(f"{name}: {err}") from None
+    write_atomic(name, data)
+    return fmt

@@ -1,0 +1,178 @@
+"""A certificate claims only what was checked: `conjecture check` compares the header with the
+catalog's complete range, checks every field it prints, and reports bad records by line."""
+
+import json
+import shutil
+
+import pytest
+
+from polyloops.cli import main
+from polyloops.enumerate.catalog_run import build_catalog
+from polyloops.enumerate.census import default_catalog
+from polyloops.enumerate.conjecture import (
+    ConjectureError,
+    certificate_lines,
+    check_certificate,
+    settle_catalog,
+)
+
+SHIPPED = default_catalog()
+CERT = SHIPPED / "reachability-certificate.jsonl"
+
+
+def shipped_lines() -> list[str]:
+    return CERT.read_text().splitlines()
+
+
+def with_header(lines: list[str], **changes) -> list[str]:
+    header = json.loads(lines[0])
+    header.update(changes)
+    return [json.dumps(header), *lines[1:]]
+
+
+def run(capsys, *argv):
+    status = main(list(argv))
+    out, err = capsys.readouterr()
+    return status, out, err
+
+
+def write(tmp_path, lines: list[str]) -> str:
+    path = tmp_path / "cert.jsonl"
+    path.write_text("\n".join(lines) + "\n")
+    return str(path)
+
+
+@pytest.mark.parametrize("claim", [31, 10**12])
+def test_a_header_claiming_more_than_the_catalog_fails(tmp_path, capsys, claim):
+    top = json.loads(shipped_lines()[0])["max_corners"]
+    cert = write(tmp_path, with_header(shipped_lines(), max_corners=claim))
+    status, out, _ = run(capsys, "conjecture", "check", cert, "--catalog", str(SHIPPED))
+    assert status == 1
+    assert f"through {claim} corners" in out and f"only through {top}" in out
+    assert f"through {top} corners" in out  # the range actually checked is printed
+    assert "valid: every" not in out
+
+
+@pytest.mark.parametrize("claim", [-5, 0, 30.0, "30", True, None, "1e999"])
+def test_non_positive_or_non_integer_bounds_are_bad_input(tmp_path, capsys, claim):
+    value = float("inf") if claim == "1e999" else claim
+    lines = with_header(shipped_lines(), max_corners=value)
+    if claim == "1e999":
+        lines[0] = lines[0].replace("Infinity", "1e999")
+    status, out, err = run(capsys, "conjecture", "check", write(tmp_path, lines), "--catalog", str(SHIPPED))
+    assert status == 2 and "max_corners" in err and err.count("\n") == 1 and out == ""
+
+
+def test_the_shipped_certificate_states_its_range(capsys):
+    status, out, _ = run(capsys, "conjecture", "check", str(CERT), "--catalog", str(SHIPPED), "--json")
+    data = json.loads(out)
+    top = max(int(n) for n in json.loads((SHIPPED / "summary.json").read_text())["counts"])
+    assert status == 0 and data["valid"]
+    assert data["checked_corners"] == data["catalog_corners"] == data["max_corners"] == top
+
+
+def test_a_smaller_claim_checks_only_its_range():
+    lines = shipped_lines()
+    cut = [lines[0]] + [line for line in lines[1:] if json.loads(line)["corners"] <= 20]
+    check = check_certificate(with_header(cut, max_corners=20, classes=len(cut) - 1), SHIPPED)
+    assert check.valid and check.checked_corners == 20
+
+
+def detour_index(lines: list[str]) -> int:
+    return next(i for i, line in enumerate(lines) if '"detour"' in line)
+
+
+@pytest.mark.parametrize("field,value,words", [
+    ("slack", 6, "slack 6 is not max_corners"),
+    ("max_corners", 36, "slack 8 is not max_corners 36"),
+    ("max_corners", float("inf"), "must be integers"),
+    ("slack", 12, "slack 12"),
+])
+def test_every_detour_field_is_checked(field, value, words):
+    lines = shipped_lines()
+    i = detour_index(lines)
+    record = json.loads(lines[i])
+    record["detour"][field] = value
+    if field == "slack" and value == 12:
+        record["detour"]["max_corners"] = record["corners"] + 12
+    lines[i] = json.dumps(record)
+    problems = check_certificate(lines, SHIPPED).problems
+    assert [p.line for p in problems] == [i + 1] and words in problems[0].message, problems
+
+
+@pytest.mark.parametrize("signature", [["a", "list"], {"an": "object"}, 17, None])
+def test_records_with_a_strange_signature_are_bad_records(tmp_path, capsys, signature):
+    lines = shipped_lines()
+    record = json.loads(lines[2])
+    record["signature"] = signature
+    lines[2] = json.dumps(record)
+    status, out, err = run(capsys, "conjecture", "check", write(tmp_path, lines), "--catalog", str(SHIPPED))
+    assert status == 1 and "line 3" in out and "internal error" not in err
+
+
+def test_records_with_huge_or_odd_numbers_are_bad_records(tmp_path, capsys):
+    lines = shipped_lines()
+    for i, (key, value) in enumerate([("corners", "1e999"), ("removable", "1e999"), ("corners", "true")]):
+        record = json.loads(lines[2 + i])
+        text = json.dumps({**record, key: "X"}).replace('"X"', value)
+        lines[2 + i] = text
+    status, out, err = run(capsys, "conjecture", "check", write(tmp_path, lines), "--catalog", str(SHIPPED),
+                           "--json")
+    data = json.loads(out)
+    assert status == 1 and "internal error" not in err
+    assert [p.split(" ")[1] for p in data["problems"][:3]] == ["3", "4", "5"]
+
+
+def test_missing_classes_are_named(tmp_path):
+    lines = shipped_lines()
+    i = detour_index(lines)
+    check = check_certificate([*lines[:i], *lines[i + 1:]], SHIPPED)
+    missing = [p for p in check.problems if p.line == 0]
+    assert [str(p).split(":")[0] for p in missing] == ["P26.20"]
+
+
+def test_not_a_certificate_is_bad_input(tmp_path, capsys):
+    with pytest.raises(ConjectureError):
+        check_certificate(['{"kind": "something else", "max_corners": 8, "slack": 2}'], SHIPPED)
+    cert = write(tmp_path, ["not json"])
+    status, _, err = run(capsys, "conjecture", "check", cert, "--catalog", str(SHIPPED))
+    assert status == 2 and err.count("\n") == 1
+
+
+def test_genus0_beyond_the_catalog_is_refused(tmp_path, capsys):
+    top = max(int(n) for n in json.loads((SHIPPED / "summary.json").read_text())["counts"])
+    status, _, err = run(capsys, "conjecture", "genus0", "--catalog", str(SHIPPED), "--max-corners",
+                         str(top + 2), "-o", str(tmp_path / "c.jsonl"))
+    assert status == 2 and f"only through {top}" in err and not (tmp_path / "c.jsonl").exists()
+    with pytest.raises(ConjectureError):
+        settle_catalog(SHIPPED, top + 2, 4)
+
+
+def test_a_partial_catalog_proves_nothing(tmp_path):
+    part = tmp_path / "part"
+    build_catalog(part, 16, res=0, mod=2, generator="plantri")
+    with pytest.raises(ConjectureError, match="partial"):
+        settle_catalog(part, 16, 4)
+    whole = tmp_path / "whole"
+    build_catalog(whole, 16, generator="plantri")
+    lines = list(certificate_lines(settle_catalog(whole, 16, 4)))
+    assert check_certificate(lines, whole).valid
+    with pytest.raises(ConjectureError, match="partial"):
+        check_certificate(lines, part)
+
+
+def test_a_catalog_starting_above_the_cube_proves_nothing(tmp_path):
+    cat = tmp_path / "c"
+    build_catalog(cat, 16, min_corners=12, generator="plantri")
+    with pytest.raises(ConjectureError, match="start"):
+        settle_catalog(cat, 16, 4)
+
+
+def test_a_copy_of_the_shipped_catalog_cut_short_fails_the_shipped_certificate(tmp_path, capsys):
+    cat = tmp_path / "cat"
+    shutil.copytree(SHIPPED, cat)
+    summary = json.loads((cat / "summary.json").read_text())
+    summary["counts"] = {k: v for k, v in summary["counts"].items() if int(k) <= 24}
+    (cat / "summary.json").write_text(json.dumps(summary))
+    status, out, _ = run(capsys, "conjecture", "check", str(CERT), "--catalog", str(cat))
+    assert status == 1 and "only through 24" in out
