@@ -208,6 +208,17 @@ def say(output: str | None, text: str) -> None:
     print(text, file=sys.stderr if output == "-" else sys.stdout)
 
 
+def picture_output(path: str, suffixes: tuple[str, ...] = (".png", ".svg")) -> str:
+    """An output for a picture: ``-`` (standard output, as PNG or HTML) or a name with one of
+    ``suffixes``, that may be written; checked before the work (exit 2)."""
+    if path != "-" and Path(path).suffix.lower() not in suffixes:  # ".png" alone has no suffix
+        names = " or ".join(f"NAME{s}" for s in suffixes)
+        what = "pictures are" if ".png" in suffixes else "the viewer is"
+        raise CliError(f"{path}: {what} written as {names}")
+    check_output(path)
+    return path
+
+
 def check_output(path: str) -> None:
     """Refuse an output that cannot be written before any work is done (exit 2)."""
     try:

@@ -59,7 +59,9 @@ def build_parser() -> argparse.ArgumentParser:
 def main(argv: Sequence[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(list(sys.argv[1:] if argv is None else argv))
-    name = args.command.replace("-", " ") + (f" {args.action}" if getattr(args, "action", None) else "")
+    # 'catalog-query' is an older spelling of 'catalog query'; other names keep their hyphen
+    command = args.command.replace("-", " ") if args.command.startswith("catalog-") else args.command
+    name = command + (f" {args.action}" if getattr(args, "action", None) else "")
     previous = _terminate_cleanly()
     try:
         return args.func(args)

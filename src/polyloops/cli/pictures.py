@@ -12,8 +12,8 @@ from polyloops.cli.load import (
     EXIT_INVALID,
     EXIT_OK,
     CliError,
-    check_output,
     output_dir,
+    picture_output,
     read_structure,
     say,
     write_error,
@@ -24,24 +24,13 @@ from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LoopStructure
 
 
-def _picture_path(path: str, suffixes: tuple[str, ...] = (".png", ".svg")) -> str:
-    """An output for a picture: ``-`` (standard output, as PNG or HTML) or a name with one of
-    ``suffixes``, that may be written (checked before the work)."""
-    if path != "-" and Path(path).suffix.lower() not in suffixes:  # ".png" alone has no suffix
-        names = " or ".join(f"NAME{s}" for s in suffixes)
-        what = "pictures are" if ".png" in suffixes else "the viewer is"
-        raise CliError(f"{path}: {what} written as {names}")
-    check_output(path)
-    return path
-
-
 def cmd_render(args: argparse.Namespace) -> int:
     from polyloops.core.duality import dualize
     from polyloops.render.level_graphs import render_level_graphs
     from polyloops.render.polycube import PictureError, render_polycube
     from polyloops.verify import verify
 
-    out = _picture_path(args.output)
+    out = picture_output(args.output)
     args.level_graphs_beside = bool(args.zones and args.level_graphs)
     obj = read_structure(args.file)
     report = verify(obj)
@@ -74,7 +63,7 @@ def cmd_view(args: argparse.Namespace) -> int:
     from polyloops.render.polycube import PictureError
     from polyloops.render.viewer import write_viewer
 
-    _picture_path(args.output, (".html", ".htm"))
+    picture_output(args.output, (".html", ".htm"))
     obj = read_structure(args.file)
     if isinstance(obj, LoopStructure) and not obj.oriented:
         raise CliError(f"{args.file}: is a labelled loop structure without sides; orient it first")
@@ -143,7 +132,7 @@ def cmd_sheet(args: argparse.Namespace) -> int:
     from polyloops.render.polycube import PictureError
     from polyloops.render.sheet import render_sheet
 
-    out = _picture_path(args.output)
+    out = picture_output(args.output)
     items = []
     for source in args.sources:
         path = Path(source)

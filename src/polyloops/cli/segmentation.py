@@ -12,7 +12,9 @@ from polyloops.cli.load import (
     EXIT_INVALID,
     EXIT_OK,
     CliError,
+    check_output,
     check_readable_file,
+    picture_output,
     read_text_file,
     write_error,
     write_output,
@@ -90,6 +92,10 @@ def format_report(source: str, report) -> str:
 def cmd_segmentation(args: argparse.Namespace) -> int:
     from polyloops.segmentation import check_segmentation
 
+    if args.png:
+        picture_output(args.png)
+    if args.output:
+        check_output(args.output)
     mesh = read_labelled_mesh(args.mesh, args.labels)
     try:
         report = check_segmentation(mesh)

@@ -84,6 +84,11 @@ def parse_apg(text: str) -> Document:
         if any(not 0 <= c < n_corners for c in ids):
             raise ExchangeError(f"line {number}: corner ids run from 0 to {n_corners - 1}")
         faces.append(ids[::-1])  # clockwise there, counter-clockwise here
+    # Every allocation below is sized by what the file holds, never by the header alone.
+    used = len({c for face in faces for c in face})
+    if used != n_corners:
+        raise ExchangeError(f"line {lines[0][0]}: the header announces {n_corners} corners, but the faces "
+                            f"use {used}")
     labels: dict[tuple[int, int], Direction | Axis] = {}
     lengths: dict[tuple[int, int], float] = {}
     for number, words in lines[1 + n_faces:]:

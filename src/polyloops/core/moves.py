@@ -372,16 +372,11 @@ def count_additions_within(ls: LoopStructure, axes: Sequence[Axis] = tuple(Axis)
     >>> count_additions_within(load_example("cube").dualize(), limit=1)
     AdditionCount(counts={'X': 1, 'Y': 1, 'Z': 1}, complete={'X': False, 'Y': False, 'Z': False})
     """
-    deadline = None if seconds is None else time.monotonic() + seconds
-
-    def expired() -> bool:
-        return deadline is not None and time.monotonic() > deadline
-
+    budget = TimeShares(seconds, len(axes))
     counts = dict.fromkeys((a.name for a in axes), 0)
     complete = dict.fromkeys(counts, False)
     for a in axes:
-        if expired():
-            break
+        expired = budget.next_share()
         found = 0
         try:
             for _ in _valid_additions(ls, a, None, expired):
@@ -398,6 +393,30 @@ def count_additions_within(ls: LoopStructure, axes: Sequence[Axis] = tuple(Axis)
         if progress is not None:
             progress(a.name, found)
     return AdditionCount(counts, complete)
+
+
+class TimeShares:
+    """A time budget shared by ``parts`` searches done one after another: each gets an equal
+    share of what is left when it starts, so time a quick search leaves over goes to the later
+    ones and no search is starved by an earlier one (``seconds=None``: no bound).
+
+    >>> shares = TimeShares(None, 3)
+    >>> shares.next_share()()
+    False
+    """
+
+    def __init__(self, seconds: float | None, parts: int):
+        self.end = None if seconds is None else time.monotonic() + seconds
+        self.left = max(parts, 1)
+
+    def next_share(self) -> Callable[[], bool]:
+        """The ``expired()`` test of the next search's share."""
+        if self.end is None:
+            return lambda: False
+        now = time.monotonic()
+        deadline = now + max(self.end - now, 0.0) / self.left
+        self.left = max(self.left - 1, 1)
+        return lambda: time.monotonic() > deadline
 
 
 def shortest_additions(ls: LoopStructure, axis: Axis, k: int,
@@ -425,13 +444,18 @@ def shortest_additions(ls: LoopStructure, axis: Axis, k: int,
     return found[:k]
 
 
+SATURATED = 200  # walks in a row that find nothing new: the sample stops
+
+
 def sample_additions(ls: LoopStructure, axis: Axis, n: int, seed: int = 0,
-                     attempts: int | None = None) -> list[Addition]:
+                     attempts: int | None = None, stop: Callable[[], bool] | None = None) -> list[Addition]:
     """Up to ``n`` different valid ``axis``-additions found by random self-avoiding walks in the
     addition graph (closing the loop as soon as it can): reproducible for a seed, quick on
     large structures, but not uniformly distributed (short loops are favoured).  Stops after
-    ``attempts`` walks (default ``200 * n``); each result is an addition that
-    :func:`additions` also lists, named the same way (its cycle starts at its lowest corner).
+    ``attempts`` walks (default ``200 * n``), after 200 walks in a row that find nothing new
+    (a structure with fewer valid loops than asked), or when ``stop()`` says so; each result
+    is an addition that :func:`additions` also lists, named the same way (its cycle starts at
+    its lowest corner).
 
     >>> from polyloops.core.examples import load_example
     >>> box = load_example("box-2x1x1").dualize()
@@ -446,9 +470,11 @@ def sample_additions(ls: LoopStructure, axis: Axis, n: int, seed: int = 0,
     m = ls.map
     darts = [d for d in range(m.num_darts) if g.succ.get(d)]
     found: dict[tuple[int, ...], Addition] = {}
+    fruitless = 0
     for _ in range(200 * n if attempts is None else attempts):
-        if len(found) >= n or not darts:
+        if len(found) >= n or not darts or fruitless >= SATURATED or (stop is not None and stop()):
             break
+        fruitless += 1
         first = rng.choice(darts)
         start = m.origin(first)
         path, on_path = [first], {start, m.target(first)}
@@ -458,6 +484,7 @@ def sample_additions(ls: LoopStructure, axis: Axis, n: int, seed: int = 0,
                 move = Addition(axis, canonical_cycle([start, *(m.target(d) for d in path)]))
                 if move.cycle not in found and separates_zone(ls, move):
                     found[move.cycle] = move
+                    fruitless = 0
                 break
             options = [e for e in nexts if m.target(e) not in on_path]
             if not options:
@@ -842,6 +869,10 @@ def parse_addition(ls: LoopStructure, text: str) -> Addition:
             move = Addition(Axis.parse(label.strip().upper()), parse_cycle(corners))
         except ValueError:
             raise MoveError(f"move {text!r}: {MOVE_SYNTAX}") from None
+        missing = [c for c in move.cycle if not 0 <= c < ls.map.num_corners]
+        if missing:
+            raise MoveError(f"move {text!r}: there is no corner {missing[0]} (corners are 0 to "
+                            f"{ls.map.num_corners - 1})")
         if not is_valid_addition(ls, move):
             raise InvalidMoveError(f"move {text!r} is not a valid loop addition here")
         return move
@@ -884,10 +915,7 @@ def list_additions(ls: LoopStructure, axes: Sequence[Axis] = tuple(Axis), *, lim
     """
     found: list[tuple[str, Addition]] = []
     complete = {a.name: True for a in axes}
-    deadline = None if seconds is None else time.monotonic() + seconds
-
-    def expired() -> bool:
-        return deadline is not None and time.monotonic() > deadline
+    budget = TimeShares(seconds, len(axes))
 
     def show(name: str, move: Addition) -> None:
         found.append((name, move))
@@ -896,18 +924,22 @@ def list_additions(ls: LoopStructure, axes: Sequence[Axis] = tuple(Axis), *, lim
 
     if shortest is not None or sample is not None:
         for a in axes:
+            expired = budget.next_share()
             try:
                 picked = (shortest_additions(ls, a, shortest, expired) if shortest is not None
-                          else sample_additions(ls, a, sample or 0, seed))
+                          else sample_additions(ls, a, sample or 0, seed, stop=expired))
             except SearchStopped:
                 complete[a.name] = False
                 continue
+            if expired():
+                complete[a.name] = False
             for move in picked:
                 show(f"{a.name}:" + ",".join(map(str, move.cycle)), move)
         return AdditionListing(tuple(found), complete,
                                None if all(complete.values()) else "the time limit")
     total = 0
     for a in axes:
+        expired = budget.next_share()
         i = 0
         try:
             for move in additions(ls, a, stop=expired):

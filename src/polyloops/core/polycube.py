@@ -10,6 +10,8 @@
 
 from __future__ import annotations
 
+import math
+
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
@@ -32,7 +34,8 @@ def signed_volume(faces: Sequence[Sequence[int]], positions: Sequence[Sequence[i
     ...               [(0, 0, 0), (0, 1, 0), (1, 0, 0), (0, 0, 1)])  # a tetrahedron
     0.16666666666666666
     """
-    if len(faces) >= 1024 and set(map(len, faces)) == {4}:
+    # The array path multiplies in int64: only for coordinates whose triple products stay exact.
+    if len(faces) >= 1024 and set(map(len, faces)) == {4} and _small(positions):
         from itertools import chain
 
         import numpy as np
@@ -51,7 +54,14 @@ def signed_volume(faces: Sequence[Sequence[int]], positions: Sequence[Sequence[i
             area[1] += a[2] * b[0] - a[0] * b[2]
             area[2] += a[0] * b[1] - a[1] * b[0]
         total += sum(p[0][k] * area[k] for k in range(3))
-    return total / 6
+    try:
+        return total / 6  # exact integers so far; the float keeps at least the sign
+    except OverflowError:  # integer coordinates beyond 10^100, say: only the sign is representable
+        return math.inf if total > 0 else -math.inf
+
+
+def _small(positions: Sequence[Sequence[int]], bound: int = 2**18) -> bool:
+    return all(-bound < c < bound for p in positions for c in p)
 
 
 def quad_volume(corners, points) -> float:

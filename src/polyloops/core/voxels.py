@@ -181,6 +181,14 @@ def voxels_from_npy(data: bytes) -> list[Cell]:
     import numpy as np
 
     try:
+        stream = io.BytesIO(data)
+        major, _ = np.lib.format.read_magic(stream)
+        read_header = np.lib.format.read_array_header_1_0 if major == 1 else np.lib.format.read_array_header_2_0
+        shape, _, dtype = read_header(stream)
+        need = int(np.prod(shape, dtype=object)) * dtype.itemsize
+        if need > len(data) - stream.tell():  # a header may declare far more than the file holds
+            raise ValueError(f"the header declares shape {shape} ({need} bytes), but the file holds "
+                             f"{len(data) - stream.tell()} bytes of data")
         grid = np.load(io.BytesIO(data), allow_pickle=False)
     except (ValueError, OSError, EOFError) as err:
         message = " ".join(w if len(w) <= 80 else w[:60] + "..." for w in str(err).split(" "))

@@ -147,6 +147,10 @@ def only_structure_on(m: HalfEdgeMap) -> LoopStructure:
     >>> only_structure_on(load_example("cube").map).map.num_corners
     8
     """
+    odd = next((f for f, face in enumerate(m.faces) if len(face) != 4), None)
+    if odd is not None:
+        raise MapStructureError(f"not a quadrangulation (face {odd} has {len(m.faces[odd])} sides), so it "
+                                "carries no polycube loop structure", 0)
     classes = polycube_classes_on(m)
     if len(classes) == 1:
         return classes[0]
