@@ -1,0 +1,69 @@
+"""A plain (not editable) install works outside the source tree: the shipped catalog and the
+examples are package data.  The wheel is built from the tracked files alone (what a clean clone
+holds) and installed with ``pip install --target`` into a temporary directory, so the test uses
+the dependencies already installed and downloads nothing but the build backend; it runs from a
+directory that is not the source tree."""
+
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+def tracked_files() -> list[str]:
+    try:
+        out = subprocess.run(["git", "ls-files", "-z"], cwd=ROOT, capture_output=True, check=True)
+    except (OSError, subprocess.CalledProcessError):
+        pytest.skip("not a git checkout: the tracked files are unknown")
+    return [name for name in out.stdout.decode().split("\0") if name]
+
+
+@pytest.fixture(scope="module")
+def installed(tmp_path_factory) -> Path:
+    clone = tmp_path_factory.mktemp("clone")
+    for name in tracked_files():
+        source = ROOT / name
+        target = clone / name
+        target.parent.mkdir(parents=True, exist_ok=True)
+        if source.is_symlink():
+            target.symlink_to(os.readlink(source))
+        elif source.is_file():
+            shutil.copy2(source, target)
+    wheels = tmp_path_factory.mktemp("wheels")
+    pip = [sys.executable, "-m", "pip", "--disable-pip-version-check", "-q"]
+    done = subprocess.run([*pip, "wheel", "--no-deps", str(clone), "-w", str(wheels)],
+                          capture_output=True, text=True)
+    if done.returncode != 0:
+        pytest.fail(f"pip wheel failed: {done.stderr[-2000:]}")
+    target = tmp_path_factory.mktemp("site")
+    wheel = next(wheels.glob("polyloops-*.whl"))
+    subprocess.run([*pip, "install", "--no-deps", "--target", str(target), str(wheel)], check=True,
+                   capture_output=True)
+    return target
+
+
+def run_installed(installed: Path, cwd: Path, *argv: str) -> subprocess.CompletedProcess[str]:
+    env = {**os.environ, "PYTHONPATH": str(installed)}
+    return subprocess.run([sys.executable, *argv], cwd=cwd, env=env, capture_output=True, text=True)
+
+
+def test_plain_install_has_the_census(installed, tmp_path):
+    where = run_installed(installed, tmp_path, "-c", "import polyloops; print(polyloops.__file__)")
+    assert where.stdout.strip().startswith(str(installed)), where  # the wheel, not the source tree
+    code = ("import polyloops as pl; "
+            "print(pl.identify(pl.load_example('l-shape')).name, len(pl.read_catalog().entries))")
+    done = run_installed(installed, tmp_path, "-c", code)
+    assert done.returncode == 0 and done.stdout.split()[0] == "P16.2", done.stderr
+    done = run_installed(installed, tmp_path, "-m", "polyloops", "identify", "example:l-shape")
+    assert done.returncode == 0 and "P16.2" in done.stdout, done.stderr
+    done = run_installed(installed, tmp_path, "-m", "polyloops", "gallery", "-o", "site", "--limit", "3")
+    assert done.returncode == 0 and (tmp_path / "site" / "index.html").is_file(), done.stderr
+    shipped = installed / "polyloops" / "catalogs" / "genus0"
+    done = run_installed(installed, tmp_path, "-m", "polyloops", "conjecture", "check",
+                         str(shipped / "reachability-certificate.jsonl"), "--catalog", str(shipped))
+    assert done.returncode == 0, done.stdout + done.stderr
