@@ -183,7 +183,8 @@ def voxels_from_npy(data: bytes) -> list[Cell]:
     try:
         stream = io.BytesIO(data)
         major, _ = np.lib.format.read_magic(stream)
-        read_header = np.lib.format.read_array_header_1_0 if major == 1 else np.lib.format.read_array_header_2_0
+        fmt = np.lib.format
+        read_header = fmt.read_array_header_1_0 if major == 1 else fmt.read_array_header_2_0
         shape, _, dtype = read_header(stream)
         need = int(np.prod(shape, dtype=object)) * dtype.itemsize
         if need > len(data) - stream.tell():  # a header may declare far more than the file holds
