@@ -71,6 +71,8 @@ def read_polycube_mesh(data: bytes, file_format: str) -> Document:
     """
     if file_format == "off":
         return _read_off(data)
+    if file_format == "ply":
+        _check_ply_header(data)
     import contextlib
     import io
     import tempfile
@@ -84,7 +86,9 @@ def read_polycube_mesh(data: bytes, file_format: str) -> Document:
         with open(path, "wb") as fh:
             fh.write(data)
         try:
-            with warnings.catch_warnings(), contextlib.redirect_stdout(io.StringIO()):
+            quiet = io.StringIO()
+            with (warnings.catch_warnings(), contextlib.redirect_stdout(quiet),
+                  contextlib.redirect_stderr(quiet)):
                 warnings.simplefilter("ignore")  # meshio prints and warns; the error says it all
                 mesh = meshio.read(path, file_format=file_format)
         except Exception as err:  # meshio raises many kinds (ReadError, ValueError, KeyError, ...)
@@ -146,3 +150,19 @@ def _read_off(data: bytes) -> Document:
             raise FormatError(f"line {number}: a face uses a vertex that does not exist")
         faces.append((number, ids))
     return quad_mesh_document(points, faces)
+
+
+def _check_ply_header(data: bytes) -> None:
+    """What meshio's PLY reader assumes and does not check: a header that ends (without
+    ``end_header`` it reads forever) and element counts the file can hold."""
+    end = data.find(b"end_header")
+    if not data.startswith(b"ply") or end < 0:
+        raise FormatError("not a PLY file: it must start with 'ply' and its header end with 'end_header'")
+    for line in data[:end].decode("ascii", "replace").splitlines():
+        words = line.split()
+        if len(words) == 3 and words[0] == "element":
+            if not words[2].isdigit():
+                raise FormatError(f"PLY header: the count of {words[1]!r} is not an integer")
+            if int(words[2]) > len(data):
+                raise FormatError(f"PLY header: {words[2]} {words[1]} elements in a file of "
+                                  f"{len(data)} bytes")
