@@ -182,3 +182,21 @@ def test_read_by_content_without_extension(tmp_path):
         bare = tmp_path / f"bare-{fmt}"
         bare.write_bytes(path.read_bytes())
         assert pl.identify(pl.read(bare)).name == "P16.2", fmt
+
+
+def test_labelled_meshes_with_a_bom_and_from_stdin(tmp_path):
+    import subprocess
+    import sys
+
+    from polyloops.core.labelled_mesh import labelled_mesh_from_polycube, labels_text, triangle_obj_text
+
+    mesh = labelled_mesh_from_polycube(load_example("l-shape"))
+    obj, labels = tmp_path / "m.obj", tmp_path / "m.labels"
+    obj.write_text("\ufeff" + triangle_obj_text(mesh), encoding="utf-8")
+    labels.write_text(labels_text(mesh))
+    command = [sys.executable, "-m", "polyloops", "segmentation"]
+    plain = subprocess.run([*command, str(obj), str(labels), "--json"], capture_output=True, text=True)
+    piped = subprocess.run([*command, "-", str(labels), "--json"],
+                           input=obj.read_text(encoding="utf-8"), capture_output=True, text=True)
+    assert plain.returncode == piped.returncode == 0, plain.stderr + piped.stderr
+    assert json.loads(plain.stdout)["valid"] and json.loads(plain.stdout) == json.loads(piped.stdout)

@@ -15,6 +15,7 @@ from polyloops.cli.load import (
     check_output,
     check_readable_file,
     picture_output,
+    read_bytes_file,
     read_text_file,
     write_error,
     write_output,
@@ -51,6 +52,8 @@ def read_labelled_mesh(mesh_arg: str, labels_arg: str | None) -> LabelledMesh:
             raise CliError(f"{mesh_arg}: {err.args[0]}") from None
     if labels_arg is None:
         raise CliError(f"{mesh_arg}: give the LABELS file too (one integer per triangle)")
+    if mesh_arg == "-":  # standard input: OBJ or STL text, by its first word
+        return _read_stdin_mesh(labels_arg)
     check_readable_file(mesh_arg)  # a regular file of reasonable size, or a one-line error
     try:
         points, triangles = read_triangle_mesh(mesh_arg)
@@ -58,6 +61,26 @@ def read_labelled_mesh(mesh_arg: str, labels_arg: str | None) -> LabelledMesh:
         raise CliError(f"{mesh_arg}: {err}") from None
     except OSError as err:
         raise CliError(f"{mesh_arg}: cannot read: {err.strerror or err}") from None
+    try:
+        labels = parse_labels(read_text_file(labels_arg), len(triangles))
+    except FormatError as err:
+        raise CliError(f"{labels_arg}: {err}") from None
+    return LabelledMesh(points, triangles, labels)
+
+
+def _read_stdin_mesh(labels_arg: str) -> LabelledMesh:
+    import tempfile
+
+    data = read_bytes_file("-")
+    suffix = ".stl" if data.lstrip(b"\xef\xbb\xbf \t\r\n").lower().startswith(b"solid") else ".obj"
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "mesh" + suffix)
+        with open(path, "wb") as fh:
+            fh.write(data)
+        try:
+            points, triangles = read_triangle_mesh(path)
+        except FormatError as err:
+            raise CliError(f"-: {err}") from None
     try:
         labels = parse_labels(read_text_file(labels_arg), len(triangles))
     except FormatError as err:

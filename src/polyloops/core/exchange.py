@@ -182,6 +182,7 @@ def obj_polygons(text: str) -> tuple[list[tuple[float, float, float]], list[tupl
     Wavefront OBJ text; other lines are ignored."""
     vertices: list[tuple[float, float, float]] = []
     faces: list[tuple[int, list[int]]] = []
+    text = text.removeprefix("\ufeff")  # a byte-order mark would hide the first line's keyword
     for number, words in _content_lines(text, "#"):
         if words[0] == "v":
             if len(words) < 4:

@@ -86,7 +86,7 @@ def read_triangle_mesh(path: str | os.PathLike[str]) -> tuple[tuple[Point, ...],
     the volume and line cells a ``.mesh`` file may hold are ignored.
     """
     if os.fspath(path).lower().endswith(".obj"):
-        with open(path, encoding="utf-8", errors="replace") as fh:
+        with open(path, encoding="utf-8-sig", errors="replace") as fh:  # a byte-order mark is not text
             points, faces = obj_polygons(fh.read())
         for number, ids in faces:
             if len(ids) != 3:
