@@ -17,8 +17,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from _common import markdown_table
 
-from polyloops.core.examples import load_example
 from polyloops.enumerate.reach import explore
+from polyloops.io.examples import load_example
 
 
 def cpu_seconds() -> float:

@@ -176,8 +176,8 @@ def grown_structures(draw, max_moves: int = 4, start: str = "cube") -> LoopStruc
     """A polycube loop structure reached from a bundled example by drawn loop additions: each
     move a drawn axis and a drawn index among that axis' first valid additions.  Shrinks
     towards fewer moves and earlier additions."""
-    from polyloops.core.examples import load_example
     from polyloops.core.moves import add_loop, additions
+    from polyloops.io.examples import load_example
 
     ls = load_example(start).dualize()
     for _ in range(draw(st.integers(0, max_moves))):

@@ -10,8 +10,8 @@ import pytest
 
 import polyloops as pl
 from polyloops.cli import main
-from polyloops.core.examples import load_example
-from polyloops.core.planar_code import planar_code
+from polyloops.io.examples import load_example
+from polyloops.io.planar_code import planar_code
 from polyloops.io.registry import FORMATS, FormatChoiceError
 
 
@@ -188,7 +188,7 @@ def test_labelled_meshes_with_a_bom_and_from_stdin(tmp_path):
     import subprocess
     import sys
 
-    from polyloops.core.labelled_mesh import labelled_mesh_from_polycube, labels_text, triangle_obj_text
+    from polyloops.io.labelled_mesh import labelled_mesh_from_polycube, labels_text, triangle_obj_text
 
     mesh = labelled_mesh_from_polycube(load_example("l-shape"))
     obj, labels = tmp_path / "m.obj", tmp_path / "m.labels"

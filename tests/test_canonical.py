@@ -16,9 +16,9 @@ from polyloops.core.canonical import (
     signature,
     transformed,
 )
-from polyloops.core.examples import EXAMPLES, load_example
 from polyloops.core.structure import LoopStructure
 from polyloops.core.symmetry import ROTATIONS, SIGNED_PERMUTATIONS, SYMMETRY_MODES
+from polyloops.io.examples import EXAMPLES, load_example
 from strategies import perturbed_structures, polycubes
 
 
@@ -33,7 +33,7 @@ def renumber(ls: LoopStructure, rng: random.Random) -> LoopStructure:
     rng.shuffle(faces)
     labels = {}
     for u, v, lab in ls.edge_labels():
-        from polyloops.core.formats import _label
+        from polyloops.io.formats import _label
 
         if rng.random() < 0.5:
             labels[(perm[u], perm[v])] = _label(lab, 0)
@@ -45,7 +45,7 @@ def renumber(ls: LoopStructure, rng: random.Random) -> LoopStructure:
 
 def mirror(ls: LoopStructure) -> LoopStructure:
     """The inverse: every face reversed, every direction kept."""
-    from polyloops.core.formats import _label
+    from polyloops.io.formats import _label
 
     faces = [tuple(reversed(f)) for f in ls.map.faces]
     return LoopStructure.from_edge_labels(faces, {(u, v): _label(lab, 0) for u, v, lab in ls.edge_labels()})

@@ -256,7 +256,7 @@ def test_chiral_query_in_the_readme(capsys):
 
 def test_irreducible_records_include_the_non_incremental_polycube(capsys):
     from polyloops.core.canonical import signature
-    from polyloops.core.examples import load_example
+    from polyloops.io.examples import load_example
 
     assert main(["catalog", "query", str(SHIPPED), "irreducible", "--json"]) == 0
     rows = json.loads(capsys.readouterr().out)
@@ -302,9 +302,9 @@ def test_names_and_identify_every_shipped_record(tmp_path, capsys):
     import random
 
     from polyloops.core.canonical import from_signature, transformed
-    from polyloops.core.formats import dumps
     from polyloops.core.symmetry import SIGNED_PERMUTATIONS
     from polyloops.enumerate.census import identify
+    from polyloops.io.formats import dumps
     from test_canonical import mirror, renumber
 
     rng = random.Random(7)

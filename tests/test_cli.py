@@ -7,8 +7,8 @@ import sys
 import pytest
 
 from polyloops.cli import main
-from polyloops.core.examples import EXAMPLES, load_example
-from polyloops.core.formats import dumps, loads
+from polyloops.io.examples import EXAMPLES, load_example
+from polyloops.io.formats import dumps, loads
 
 COMMANDS = ["examples", "verify", "primalize", "dualize", "info", "corners", "orient", "moves", "add",
             "remove", "signature", "catalog", "catalog-query", "render", "sheet", "convert", "reach", "path",

@@ -2,8 +2,8 @@
 
 import pytest
 
-from polyloops.core.examples import EXAMPLES, example_text
-from polyloops.core.formats import dumps
+from polyloops.io.examples import EXAMPLES, example_text
+from polyloops.io.formats import dumps
 
 
 @pytest.mark.parametrize("name", sorted(EXAMPLES))
@@ -18,7 +18,7 @@ def test_examples_named_in_the_spec_are_present():
 
 
 def test_box_has_two_x_loops_and_ring_genus_one():
-    from polyloops.core.examples import load_example
+    from polyloops.io.examples import load_example
 
     assert load_example("box-2x1x1").dualize().axes.count(0) == 2
     assert load_example("ring").genus == 1

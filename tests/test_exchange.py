@@ -8,10 +8,10 @@ from hypothesis import given, settings
 
 from polyloops.cli import main
 from polyloops.core.canonical import signature
-from polyloops.core.examples import load_example
-from polyloops.core.exchange import ExchangeError, apg_text, parse_apg, parse_obj
-from polyloops.core.formats import to_obj
 from polyloops.core.polycube import Polycube
+from polyloops.io.examples import load_example
+from polyloops.io.exchange import ExchangeError, apg_text, parse_apg, parse_obj
+from polyloops.io.formats import to_obj
 from strategies import polycubes, random_polycube
 
 FIXTURES = Path(__file__).parent / "fixtures"
@@ -110,7 +110,7 @@ def test_convert_between_all_formats(tmp_path):
     for name in steps:
         assert main(["convert", source, str(tmp_path / name)]) == 0
         source = str(tmp_path / name)
-    from polyloops.core.formats import loads
+    from polyloops.io.formats import loads
 
     assert signature(loads((tmp_path / "d.json").read_text())) == signature(q)
     assert main(["convert", str(tmp_path / "a.graph"), str(tmp_path / "e.txt"), "--to", "obj"]) == 0
@@ -166,8 +166,8 @@ def test_bad_files_name_the_problem(suffix, text, words, tmp_path, capsys):
 def test_from_voxels_text_and_npy(tmp_path, capsys):
     import numpy as np
 
-    from polyloops.core.formats import loads
     from polyloops.core.voxels import polycube_from_voxels
+    from polyloops.io.formats import loads
 
     cells = [(0, 0, 0), (1, 0, 0), (2, 0, 0), (0, 1, 0), (2, 1, 0), (0, 2, 0), (1, 2, 0), (2, 2, 0)]
     lines = "".join(f"{x} {y} {z}\n" for x, y, z in cells)

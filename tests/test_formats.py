@@ -5,10 +5,10 @@ import json
 import pytest
 from hypothesis import given
 
-from polyloops.core.examples import load_example
-from polyloops.core.formats import FormatError, dumps, loads, parse_document, to_obj
 from polyloops.core.halfedge import MapError
 from polyloops.core.structure import LabelError
+from polyloops.io.examples import load_example
+from polyloops.io.formats import FormatError, dumps, loads, parse_document, to_obj
 from strategies import perturbed_structures, polycubes
 
 

@@ -19,7 +19,7 @@ from hypothesis import strategies as st
 
 from polyloops.cli import main
 from polyloops.core.canonical import ALPHABET, signature
-from polyloops.core.examples import EXAMPLES, example_text, load_example
+from polyloops.io.examples import EXAMPLES, example_text, load_example
 
 NAMES = sorted(n for n in EXAMPLES if n != "self-intersecting")
 SIGNATURES = [signature(load_example(n)) for n in ("cube", "l-shape", "ring")]

@@ -7,7 +7,6 @@ from hypothesis import strategies as st
 
 from polyloops.cli import main
 from polyloops.core.directions import Axis
-from polyloops.core.examples import BRIDGED_RING_CUBES, load_example
 from polyloops.core.moves import (
     Addition,
     _AdditionGraph,
@@ -20,6 +19,7 @@ from polyloops.core.moves import (
     separates_zone,
 )
 from polyloops.core.voxels import polycube_from_voxels
+from polyloops.io.examples import BRIDGED_RING_CUBES, load_example
 from polyloops.verify import check_polycube, check_polycube_loop_structure
 from strategies import bridged_ring, handle_zone_polycubes
 from test_moves import brute_additions

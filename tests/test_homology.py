@@ -7,7 +7,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from polyloops.core.directions import Axis
-from polyloops.core.examples import load_example
+from polyloops.io.examples import load_example
 from polyloops.verify import check_theorem3, verify
 from polyloops.verify.homology import CellComplex, cut_zones, gf2_rank, zone_genera
 from strategies import grown_structures, handle_zone_polycubes, polycubes

@@ -8,8 +8,8 @@ from hypothesis import given
 
 from polyloops.cli import main
 from polyloops.core.canonical import from_signature, signature
-from polyloops.core.examples import load_example
-from polyloops.core.formats import dumps, loads
+from polyloops.io.examples import load_example
+from polyloops.io.formats import dumps, loads
 from polyloops.verify import check_polycube
 from strategies import polycubes
 

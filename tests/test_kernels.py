@@ -16,11 +16,11 @@ import polyloops.core.halfedge as halfedge
 import polyloops.core.structure as structure
 from polyloops.core.builders import box, torus_grid
 from polyloops.core.directions import Axis, Direction
-from polyloops.core.examples import load_example
 from polyloops.core.halfedge import FaceListError, HalfEdgeMap, MapError
 from polyloops.core.loops import _trace_loops_arrays, _trace_loops_tuples
 from polyloops.core.structure import LabelError, LoopStructure
 from polyloops.core.zones import _compute_zones_arrays, _compute_zones_tuples
+from polyloops.io.examples import load_example
 from polyloops.verify import verify
 from polyloops.verify.homology import _zone_genera_arrays, cut_zones
 from strategies import handle_zone_polycubes, perturbed_structures, polycubes
@@ -275,7 +275,7 @@ def test_removal_by_reachability_sets_equals_the_search(q):
 def test_labels_read_as_arrays_build_the_same_structure(ls):
     """A file's labels arrive as arrays (:class:`EdgeLabels`); the array kernels read them
     directly, the tuple code through the mapping interface: the same structure."""
-    from polyloops.core.formats import EdgeLabels, dumps, parse_document
+    from polyloops.io.formats import EdgeLabels, dumps, parse_document
 
     doc = parse_document(dumps(ls))
     assert isinstance(doc.labels, EdgeLabels)

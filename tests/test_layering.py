@@ -38,7 +38,7 @@ def test_core_imports_nothing_above_it():
 
 def test_pictures_still_registered_and_import_stays_light():
     """Jupyter still gets pictures, and importing polyloops does not load matplotlib."""
-    code = ("import sys, polyloops; from polyloops.core.examples import load_example; "
+    code = ("import sys, polyloops; from polyloops.io.examples import load_example; "
             "print('matplotlib' in sys.modules, hasattr(load_example('cube'), '_repr_png_'))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.split() == ["False", "True"]

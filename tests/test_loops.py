@@ -2,7 +2,7 @@
 
 from hypothesis import given
 
-from polyloops.core.examples import load_example
+from polyloops.io.examples import load_example
 from strategies import polycubes
 
 

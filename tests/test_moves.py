@@ -11,8 +11,6 @@ from hypothesis import strategies as st
 from polyloops.cli import main
 from polyloops.core.canonical import signature
 from polyloops.core.directions import Axis
-from polyloops.core.examples import load_example
-from polyloops.core.formats import loads
 from polyloops.core.moves import (
     Addition,
     add_loop,
@@ -24,6 +22,8 @@ from polyloops.core.moves import (
     remove_loop,
     try_remove,
 )
+from polyloops.io.examples import load_example
+from polyloops.io.formats import loads
 from polyloops.verify import check_polycube, check_polycube_loop_structure
 from polyloops.verify.loop_structure import cycle_violations
 from polyloops.verify.report import ReportBuilder
@@ -350,7 +350,7 @@ def test_moves_cli_on_a_large_slab(tmp_path, capsys):
     import time
 
     from polyloops.core.builders import box
-    from polyloops.core.formats import dumps
+    from polyloops.io.formats import dumps
 
     path = tmp_path / "slab.json"
     path.write_text(dumps(box(8, 8, 1)))

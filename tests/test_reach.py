@@ -14,10 +14,10 @@ import pytest
 from polyloops.cli import main
 from polyloops.core.canonical import from_signature, signature
 from polyloops.core.directions import Axis
-from polyloops.core.examples import load_example
 from polyloops.core.moves import Addition, add_loop, canonical_cycle, try_remove
 from polyloops.enumerate.conjecture import certificate_lines, check_certificate, settle_catalog
 from polyloops.enumerate.reach import MoveKind, check_path, explore, neighbours, shortest_path
+from polyloops.io.examples import load_example
 from polyloops.verify import check_polycube_loop_structure
 
 ROOT = Path(__file__).resolve().parent.parent

@@ -8,7 +8,7 @@ import pytest
 from hypothesis import given, settings
 
 from polyloops.cli import main
-from polyloops.core.examples import EXAMPLES, load_example
+from polyloops.io.examples import EXAMPLES, load_example
 from polyloops.render.colors import AXIS_COLOR, LIGHT_COLOR
 from polyloops.render.polycube import as_polycube, choose_views, face_normal
 from strategies import polycubes

@@ -4,11 +4,11 @@ import pytest
 from hypothesis import event, given
 
 from polyloops.core.duality import DualityError, primalize
-from polyloops.core.examples import EXAMPLES, load_example
 from polyloops.core.halfedge import HalfEdgeMap
 from polyloops.core.loops import OddFaceError
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LoopStructure
+from polyloops.io.examples import EXAMPLES, load_example
 from polyloops.verify import (
     check_polycube,
     check_polycube_faces,

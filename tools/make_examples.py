@@ -6,10 +6,10 @@ suite checks that the shipped files equal what this would write.
 
 from pathlib import Path
 
-from polyloops.core.examples import EXAMPLES, LABELLED_EXAMPLES
-from polyloops.core.formats import dumps
-from polyloops.core.labelled_mesh import labels_text, triangle_obj_text
+from polyloops.io.examples import EXAMPLES, LABELLED_EXAMPLES
 from polyloops.io.files import write_atomic
+from polyloops.io.formats import dumps
+from polyloops.io.labelled_mesh import labels_text, triangle_obj_text
 
 OUT = Path(__file__).resolve().parent.parent / "src" / "polyloops" / "examples"
 

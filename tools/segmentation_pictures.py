@@ -5,7 +5,7 @@ Run from the repository root: ``python tools/segmentation_pictures.py``.
 
 from pathlib import Path
 
-from polyloops.core.examples import labelled_mesh_example
+from polyloops.io.examples import labelled_mesh_example
 from polyloops.render.polycube import render_polycube
 from polyloops.render.segmentation import render_segmentation
 from polyloops.segmentation import check_segmentation

@@ -27,14 +27,14 @@ from polyloops.core.corners import classify, corner_configurations
 from polyloops.core.directions import Axis, Direction
 from polyloops.core.duality import DualityError, dualize, is_order_equivalent, primalize
 from polyloops.core.errors import PolyloopsError
-from polyloops.core.examples import EXAMPLES, load_example
-from polyloops.core.formats import dumps, loads, to_obj
 from polyloops.core.halfedge import HalfEdgeMap, MapError
 from polyloops.core.moves import add_loop, additions, removals, remove_loop
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LoopStructure
 from polyloops.core.symmetry import Symmetry
 from polyloops.core.voxels import polycube_from_voxels
+from polyloops.io.examples import EXAMPLES, load_example
+from polyloops.io.formats import dumps, loads, to_obj
 from polyloops.render.jupyter import register as _register_pictures
 from polyloops.verify import as_loop_structure, verify
 from polyloops.verify.describe import describe
@@ -75,7 +75,7 @@ def read(path: str | os.PathLike[str], format: str | None = None) -> Polycube | 
     ------
     polyloops.io.files.InputError
         When the file cannot be read.
-    polyloops.core.formats.FormatError
+    polyloops.io.formats.FormatError
         When its content is not in the format (the message names the file).
     polyloops.core.halfedge.MapError
         When the faces do not form a closed oriented surface.
@@ -86,7 +86,7 @@ def read(path: str | os.PathLike[str], format: str | None = None) -> Polycube | 
     ...     print(identify(read(os.path.join(tmp, "l.ply"))).name)
     P16.2
     """
-    from polyloops.core.formats import Document, FormatError
+    from polyloops.io.formats import Document, FormatError
     from polyloops.io.registry import read_document
 
     name = os.fspath(path)

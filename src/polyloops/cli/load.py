@@ -10,12 +10,11 @@ import os
 import sys
 from pathlib import Path
 
-from polyloops.core.examples import EXAMPLES, example_text
-from polyloops.core.formats import Document, FormatError, Structure, dumps, parse_document
 from polyloops.core.halfedge import FaceListError, MapError
 from polyloops.core.loops import OddFaceError
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LabelError, LoopStructure
+from polyloops.io.examples import EXAMPLES, example_text
 from polyloops.io.files import (
     MAX_FILE_BYTES,
     InputError,
@@ -25,6 +24,7 @@ from polyloops.io.files import (
     resolve_output,
     write_atomic,
 )
+from polyloops.io.formats import Document, FormatError, Structure, dumps, parse_document
 from polyloops.io.registry import BY_NAME, BY_SUFFIX, format_for, parse_bytes, sniff, write_structure
 
 EXIT_OK, EXIT_INVALID, EXIT_USAGE = 0, 1, 2

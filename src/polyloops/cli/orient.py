@@ -16,7 +16,7 @@ from polyloops.cli.load import (
     write_output,
     write_text,
 )
-from polyloops.core.formats import to_data
+from polyloops.io.formats import to_data
 
 
 def _components_json(problem: Any) -> dict[str, list[list[int]]]:

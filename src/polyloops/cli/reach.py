@@ -21,7 +21,7 @@ from polyloops.cli.load import (
     read_valid_structure,
     write_text,
 )
-from polyloops.core.formats import to_data
+from polyloops.io.formats import to_data
 
 
 def _kinds(text: str):
@@ -103,8 +103,8 @@ def cmd_path(args: argparse.Namespace) -> int:
 
 def verify_path_file(source: str, data: dict[str, Any], as_json: bool) -> int:
     """``polyloops verify`` on a path file: every step, then every consecutive pair."""
-    from polyloops.core.formats import FormatError
     from polyloops.enumerate.reach import check_path, path_steps
+    from polyloops.io.formats import FormatError
 
     try:
         check = check_path(path_steps(data))

@@ -20,9 +20,9 @@ from polyloops.cli.load import (
     write_error,
     write_output,
 )
-from polyloops.core.formats import FormatError
 from polyloops.core.halfedge import MapError
-from polyloops.core.labelled_mesh import LabelledMesh, parse_labels, read_triangle_mesh
+from polyloops.io.formats import FormatError
+from polyloops.io.labelled_mesh import LabelledMesh, parse_labels, read_triangle_mesh
 
 
 def add_command(command: Callable[..., argparse.ArgumentParser]) -> None:
@@ -42,7 +42,7 @@ def add_command(command: Callable[..., argparse.ArgumentParser]) -> None:
 def read_labelled_mesh(mesh_arg: str, labels_arg: str | None) -> LabelledMesh:
     """The MESH and LABELS arguments as a labelled mesh; problems name the file."""
     if mesh_arg.startswith("example:"):
-        from polyloops.core.examples import labelled_mesh_example
+        from polyloops.io.examples import labelled_mesh_example
 
         if labels_arg is not None:
             raise CliError(f"{labels_arg}: an example brings its own labels; give MESH alone")

@@ -20,9 +20,9 @@ from polyloops.cli.load import (
     say,
     write_output,
 )
-from polyloops.core.examples import EXAMPLES
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LabelError
+from polyloops.io.examples import EXAMPLES
 from polyloops.verify import Report
 
 
@@ -102,7 +102,8 @@ def cmd_convert(args: argparse.Namespace) -> int:
 
 
 def cmd_from_voxels(args: argparse.Namespace) -> int:
-    from polyloops.core.voxels import VoxelError, parse_voxel_text, polycube_from_voxels, voxels_from_npy
+    from polyloops.core.voxels import VoxelError, polycube_from_voxels
+    from polyloops.io.voxels import parse_voxel_text, voxels_from_npy
 
     try:
         cells = (voxels_from_npy(read_bytes_file(args.file)) if args.file.lower().endswith(".npy")

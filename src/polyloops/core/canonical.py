@@ -13,7 +13,7 @@ each dart's ``next``, ``twin`` and label.  Roots are restricted to darts with th
 invariant, which automorphisms preserve, so the number of (element, orientation, root)
 triples reaching the least code is the order of the automorphism group.
 
->>> from polyloops.core.examples import load_example
+>>> from polyloops.io.examples import load_example
 >>> cube = load_example("cube").dualize()
 >>> form = canonical_form(cube, "full")
 >>> form.automorphisms, form.achiral  # the 48 symmetries of the cube
@@ -352,7 +352,7 @@ def canonical_form(obj: LoopStructure | Polycube, mode: Symmetry | str = Symmetr
     DualityError
         When a polycube's faces are not axis-aligned rectangles.
 
-    >>> from polyloops.core.examples import load_example
+    >>> from polyloops.io.examples import load_example
     >>> form = canonical_form(load_example("cube"), "full")
     >>> form.automorphisms, form.achiral
     (48, True)
@@ -437,7 +437,7 @@ def signature(obj: LoopStructure | Polycube, mode: Symmetry | str = Symmetry.FUL
     ValueError
         For an unknown mode.
 
-    >>> from polyloops.core.examples import load_example
+    >>> from polyloops.io.examples import load_example
     >>> q = load_example("l-shape")
     >>> signature(q) == signature(q.inverse()), signature(q).startswith("1o")
     (True, True)
@@ -466,7 +466,7 @@ def is_isomorphic(a: LoopStructure | Polycube, b: LoopStructure | Polycube,
     ValueError
         For an unknown mode.
 
-    >>> from polyloops.core.examples import load_example
+    >>> from polyloops.io.examples import load_example
     >>> l_shape = load_example("l-shape")
     >>> is_isomorphic(l_shape, l_shape.inverse()), is_isomorphic(l_shape, load_example("cube"))
     (True, False)
@@ -647,7 +647,7 @@ def from_signature(sig: str) -> LoopStructure:
         When the text is not a signature of a version this polyloops reads (older or unknown
         versions are refused by name, not mis-read).
 
-    >>> from polyloops.core.examples import load_example
+    >>> from polyloops.io.examples import load_example
     >>> sig = signature(load_example("ring"))
     >>> signature(from_signature(sig)) == sig
     True

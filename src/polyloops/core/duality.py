@@ -2,7 +2,7 @@
 
 Both directions keep the map, so corner ids survive a round trip:
 
->>> from polyloops.core.examples import load_example
+>>> from polyloops.io.examples import load_example
 >>> q = load_example("l-shape")
 >>> ls = dualize(q)
 >>> dualize(primalize(ls)) == ls
@@ -49,7 +49,7 @@ def dualize(q: Polycube) -> LoopStructure:
         When the edges of one loop are not parallel or not consistently signed, which happens
         exactly when some face is not an axis-aligned rectangle.
 
-    >>> from polyloops.core.examples import load_example
+    >>> from polyloops.io.examples import load_example
     >>> ls = dualize(load_example("l-shape"))
     >>> ls.oriented, [ls.axes.count(a) for a in Axis]
     (True, [2, 2, 1])
@@ -144,7 +144,7 @@ def primalize(ls: LoopStructure) -> Polycube:
     DualityError
         When ``ls`` has no sides, or a level graph has a cycle (named in the message).
 
-    >>> from polyloops.core.examples import load_example
+    >>> from polyloops.io.examples import load_example
     >>> q = load_example("l-shape")
     >>> is_order_equivalent(primalize(dualize(q)), q) is not None
     True
@@ -236,7 +236,7 @@ def is_order_equivalent(p: Polycube, q: Polycube) -> list[int] | None:
     AttributeError
         When ``p`` or ``q`` is a loop structure (it has no positions to order).
 
-    >>> from polyloops.core.examples import load_example
+    >>> from polyloops.io.examples import load_example
     >>> q = load_example("box-2x1x1")
     >>> is_order_equivalent(q, q.inverse()) is not None, is_order_equivalent(q, load_example("cube"))
     (True, None)

@@ -4,7 +4,7 @@ Each error keeps the built-in base it always had (most are ``ValueError``), so e
 ``except ValueError`` code still works, and also derives from :class:`PolyloopsError`, so a
 caller can catch everything polyloops says about its input in one clause, and nothing else:
 
->>> from polyloops.core.formats import FormatError
+>>> from polyloops.io.formats import FormatError
 >>> issubclass(FormatError, PolyloopsError), issubclass(FormatError, ValueError)
 (True, True)
 """

@@ -12,7 +12,7 @@ structure reachable by moves.  They see the orientation of holes: a square ring 
 runs along Z has Z-loops around the hole and X- and Y-loops around the bar, so ``M_XZ`` and
 ``M_YZ`` have rank 1 and ``M_XY`` rank 0.
 
->>> from polyloops.core.examples import load_example
+>>> from polyloops.io.examples import load_example
 >>> print(hole_orientation(load_example("ring").dualize()))
 XY: rank 0; XZ: rank 1 (1); YZ: rank 1 (1)
 >>> hole_orientation(load_example("l-shape").dualize()).ranks

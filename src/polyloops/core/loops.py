@@ -203,7 +203,7 @@ def same_axis_meetings(m: HalfEdgeMap, axes: Sequence[int]) -> Iterator[tuple[in
     ``(l1, e1)`` to side ``(l2, e2)``).  Both the orientation solvers and the catalog's parity
     test read Condition 3 from here.
 
-    >>> from polyloops.core.examples import load_example
+    >>> from polyloops.io.examples import load_example
     >>> ls = load_example("l-shape").dualize()
     >>> sorted(set(same_axis_meetings(ls.map, ls.axes)))
     [(0, -1, 3, 1), (2, 1, 4, 1)]

@@ -24,7 +24,7 @@ keep their index and the new quads follow in walk order.  After a removal, each 
 group of corners takes the lowest id among them, faces of the loop are dropped, and ids of
 corners and faces are then renumbered consecutively in their old order.
 
->>> from polyloops.core.examples import load_example
+>>> from polyloops.io.examples import load_example
 >>> cube = load_example("cube").dualize()
 >>> sorted(count_additions(cube).items())
 [('X', 2), ('Y', 2), ('Z', 2)]
@@ -293,7 +293,7 @@ def additions(ls: LoopStructure, axis: Axis | None = None, limit: int | None = N
     ValueError
         When ``ls`` has no sides.
 
-    >>> from polyloops.core.examples import load_example
+    >>> from polyloops.io.examples import load_example
     >>> box = load_example("box-2x1x1").dualize()
     >>> [len(list(additions(box, a))) for a in Axis]
     [3, 6, 6]
@@ -331,7 +331,7 @@ def addition_at(ls: LoopStructure, index: str | int) -> Addition | None:
     a plain integer ``n``, the ``n``-th of the listing of all labels (X, then Y, then Z);
     ``None`` when there is no such addition.
 
-    >>> from polyloops.core.examples import load_example
+    >>> from polyloops.io.examples import load_example
     >>> box = load_example("box-2x1x1").dualize()
     >>> count_additions(box)
     {'X': 3, 'Y': 6, 'Z': 6}
@@ -368,7 +368,7 @@ def count_additions_within(ls: LoopStructure, axes: Sequence[Axis] = tuple(Axis)
     ``seconds`` have passed (checked inside the cycle search too, so a search that finds
     nothing for a long time still stops).  ``progress(label, count)`` is called now and then.
 
-    >>> from polyloops.core.examples import load_example
+    >>> from polyloops.io.examples import load_example
     >>> count_additions_within(load_example("cube").dualize(), limit=1)
     AdditionCount(counts={'X': 1, 'Y': 1, 'Z': 1}, complete={'X': False, 'Y': False, 'Z': False})
     """
@@ -426,7 +426,7 @@ def shortest_additions(ls: LoopStructure, axis: Axis, k: int,
     an axis has fewer than ``k`` valid loops the last searches are as long as a full listing;
     ``stop()`` is asked now and then, and :class:`SearchStopped` raised when it says so.
 
-    >>> from polyloops.core.examples import load_example
+    >>> from polyloops.io.examples import load_example
     >>> box = load_example("box-2x1x1").dualize()
     >>> [len(mv.cycle) for mv in additions(box, Axis.Y)]
     [4, 6, 4, 6, 4, 4]
@@ -457,7 +457,7 @@ def sample_additions(ls: LoopStructure, axis: Axis, n: int, seed: int = 0,
     is an addition that :func:`additions` also lists, named the same way (its cycle starts at
     its lowest corner).
 
-    >>> from polyloops.core.examples import load_example
+    >>> from polyloops.io.examples import load_example
     >>> box = load_example("box-2x1x1").dualize()
     >>> picked = sample_additions(box, Axis.Z, 3, seed=1)
     >>> len(picked), all(is_valid_addition(box, mv) for mv in picked)
@@ -535,7 +535,7 @@ def add_loop(ls: LoopStructure, move: Addition) -> LoopStructure:
     MapError, LabelError
         When the cycle does not describe a loop that can be inserted.
 
-    >>> from polyloops.core.examples import load_example
+    >>> from polyloops.io.examples import load_example
     >>> cube = load_example("cube").dualize()
     >>> bigger = add_loop(cube, next(additions(cube, Axis.X)))
     >>> bigger.map.num_corners, len(bigger.loops)
@@ -763,7 +763,7 @@ def removals(ls: LoopStructure) -> list[int]:
     ValueError
         When ``ls`` has no sides.
 
-    >>> from polyloops.core.examples import load_example
+    >>> from polyloops.io.examples import load_example
     >>> removals(load_example("cube").dualize()), removals(load_example("non-incremental").dualize())
     ([], [])
     >>> removals(load_example("box-2x1x1").dualize())
@@ -793,7 +793,7 @@ def remove_loop(ls: LoopStructure, loop: int) -> LoopStructure:
     MapError, FaceListError, LabelError
         When the result is not a loop structure at all.
 
-    >>> from polyloops.core.examples import load_example
+    >>> from polyloops.io.examples import load_example
     >>> box = load_example("box-2x1x1").dualize()
     >>> remove_loop(box, removals(box)[0]).map.num_corners
     8
@@ -854,7 +854,7 @@ def parse_addition(ls: LoopStructure, text: str) -> Addition:
     Raises :class:`MoveError` when ``text`` names no addition, and :class:`InvalidMoveError`
     when it names a loop whose addition is not valid here.
 
-    >>> from polyloops.core.examples import load_example
+    >>> from polyloops.io.examples import load_example
     >>> box = load_example("box-2x1x1").dualize()
     >>> parse_addition(box, "Y0") == addition_at(box, "Y0")
     True
@@ -905,7 +905,7 @@ def list_additions(ls: LoopStructure, axes: Sequence[Axis] = tuple(Axis), *, lim
     unknown).  ``seconds`` bounds the time; ``on_found(name, move)`` is called as each is found,
     so a caller can show a long listing as it grows.
 
-    >>> from polyloops.core.examples import load_example
+    >>> from polyloops.io.examples import load_example
     >>> box = load_example("box-2x1x1").dualize()
     >>> listing = list_additions(box, [Axis.X], limit=2)
     >>> [name for name, _ in listing.additions], listing.complete, listing.stopped_by

@@ -1,6 +1,6 @@
 """Polycubes: a quad map with an integer position per corner (Definition 1).
 
->>> from polyloops.core.examples import load_example
+>>> from polyloops.io.examples import load_example
 >>> box = load_example("box-2x1x1")
 >>> box.map.num_corners, box.map.num_faces, box.bounding_box()
 (12, 10, ((0, 0, 0), (2, 1, 1)))
@@ -122,7 +122,7 @@ class Polycube:
         """The normal of face ``f``, pointing outside when the faces are counter-clockwise seen
         from outside; ``None`` for a face that is not an axis-parallel rectangle's plane.
 
-        >>> from polyloops.core.examples import load_example
+        >>> from polyloops.io.examples import load_example
         >>> sorted(str(load_example("cube").face_normal(f)) for f in range(6))
         ['+X', '+Y', '+Z', '-X', '-Y', '-Z']
         """

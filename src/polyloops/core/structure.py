@@ -17,7 +17,7 @@ sign: ``+1`` when the loop's ``+`` side is on the right of its stored walk
 (see :mod:`polyloops.core.loops`).  A *labelled* structure has ``signs=None``;
 it is the input of the orientation solvers.
 
->>> from polyloops.core.examples import load_example
+>>> from polyloops.io.examples import load_example
 >>> cube = load_example("cube").dualize()
 >>> [str(a) for a in cube.axes], cube.genus
 (['Y', 'Z', 'X'], 0)

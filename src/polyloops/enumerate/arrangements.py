@@ -75,7 +75,7 @@ class Arrangement:
     is ``twin`` as unsigned 16-bit numbers (the identity of the arrangement: equal codes,
     isomorphic arrangements).
 
-    >>> from polyloops.core.examples import load_example
+    >>> from polyloops.io.examples import load_example
     >>> a = Arrangement.of(load_example("cube").map)
     >>> a.crossings, a.corners, sorted(a.region_sizes())
     (6, 8, [3, 3, 3, 3, 3, 3, 3, 3])
@@ -156,7 +156,7 @@ class Arrangement:
         :class:`ArrangementError` when what is left is not connected (or is a single loop,
         which has no crossing).
 
-        >>> from polyloops.core.examples import load_example
+        >>> from polyloops.io.examples import load_example
         >>> cube = Arrangement.of(load_example("cube").map)
         >>> [len(loop) for loop in cube.without_loop(0).loops()]
         [2, 2]

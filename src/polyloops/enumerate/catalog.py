@@ -11,7 +11,7 @@ Structures are then identified by signature in each symmetry mode.  plantri list
 once, mirror images identified, and signatures identify mirror images too, so structures on
 different maps never coincide: classes are counted map by map.
 
->>> from polyloops.core.examples import load_example
+>>> from polyloops.io.examples import load_example
 >>> cube = load_example("cube").map
 >>> classes = map_classes(cube)
 >>> {str(mode): len(v) for mode, v in classes.items()}
@@ -118,7 +118,7 @@ def polycube_classes_on(m: HalfEdgeMap, mode: Symmetry | str = Symmetry.FULL) ->
     """One polycube loop structure on ``m`` (in ``m``'s own numbering) per class in a
     symmetry mode, in the order :func:`polycube_structures` meets them.
 
-    >>> from polyloops.core.examples import load_example
+    >>> from polyloops.io.examples import load_example
     >>> len(polycube_classes_on(load_example("cube").map))
     1
     """
@@ -143,7 +143,7 @@ def only_structure_on(m: HalfEdgeMap) -> LoopStructure:
 
     Raises :class:`MapStructureError` when it carries none or several.
 
-    >>> from polyloops.core.examples import load_example
+    >>> from polyloops.io.examples import load_example
     >>> only_structure_on(load_example("cube").map).map.num_corners
     8
     """

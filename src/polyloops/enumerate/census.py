@@ -290,7 +290,7 @@ def identify(obj: Any, catalog: Path | Census | None = None) -> Identification:
     CatalogError
         When the catalog directory cannot be read.
 
-    >>> from polyloops.core.examples import load_example
+    >>> from polyloops.io.examples import load_example
     >>> identify(load_example("l-shape")).name
     'P16.2'
     """

@@ -140,7 +140,7 @@ def corner_rows(witnesses: bool = False) -> list[dict[str, object]]:
     (126, 'simple', 8)
     """
     from polyloops.core.corners import corner_histogram
-    from polyloops.core.examples import EXAMPLES
+    from polyloops.io.examples import EXAMPLES
 
     in_examples: dict[int, list[str]] = {c.id: [] for c in corner_configurations()}
     for name, ex in EXAMPLES.items():

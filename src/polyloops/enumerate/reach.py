@@ -13,7 +13,7 @@ recorded in that representative's numbering: the axis and corner cycle of an add
 the id of the removed loop.  So any path can be rebuilt from the stored parents without
 searching again.
 
->>> from polyloops.core.examples import load_example
+>>> from polyloops.io.examples import load_example
 >>> result = explore(load_example("cube").dualize(), max_corners=16)
 >>> result.by_corners
 {8: 1, 12: 3, 16: 15}
@@ -389,7 +389,7 @@ def explore(start: LoopStructure, max_corners: int, max_depth: int | None = None
     WouldReplaceSearchError
         When ``directory`` holds another search (without ``overwrite``).
 
-    >>> from polyloops.core.examples import load_example
+    >>> from polyloops.io.examples import load_example
     >>> result = explore(load_example("cube").dualize(), max_corners=16)
     >>> result.by_corners
     {8: 1, 12: 3, 16: 15}
@@ -473,7 +473,7 @@ def shortest_path(source: LoopStructure, target: LoopStructure, max_corners: int
     ValueError
         When a structure has no sides.
 
-    >>> from polyloops.core.examples import load_example
+    >>> from polyloops.io.examples import load_example
     >>> path = shortest_path(load_example("cube").dualize(), load_example("l-shape").dualize(), 16)
     >>> [ls.map.num_corners for ls in path]
     [8, 12, 16]
@@ -571,15 +571,15 @@ def check_path(steps: Sequence[LoopStructure]) -> PathCheck:
 def path_steps(data: dict[str, Any]) -> list[LoopStructure]:
     """The steps of a path document (``{"polyloops": 1, "kind": "path", "steps": [...]}``, as
     ``polyloops path -o`` writes it), each built as a loop structure.  Raises
-    :class:`~polyloops.core.formats.FormatError` naming the step for anything else.
+    :class:`~polyloops.io.formats.FormatError` naming the step for anything else.
 
-    >>> from polyloops.core.examples import load_example
-    >>> from polyloops.core.formats import to_data
+    >>> from polyloops.io.examples import load_example
+    >>> from polyloops.io.formats import to_data
     >>> cube = load_example("cube").dualize()
     >>> len(path_steps({"kind": "path", "steps": [to_data(cube)]}))
     1
     """
-    from polyloops.core.formats import FormatError, parse_document
+    from polyloops.io.formats import FormatError, parse_document
 
     steps = data.get("steps")
     if not isinstance(steps, list) or not steps:

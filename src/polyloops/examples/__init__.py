@@ -1,1 +1,1 @@
-"""JSON files of the bundled examples (see :mod:`polyloops.core.examples`)."""
+"""JSON files of the bundled examples (see :mod:`polyloops.io.examples`)."""

@@ -7,11 +7,11 @@ import math
 import os
 import warnings
 
-from polyloops.core.exchange import quad_mesh_document
-from polyloops.core.formats import Document, FormatError
-from polyloops.core.labelled_mesh import LabelledMesh, triangle_obj_text
 from polyloops.core.polycube import Polycube
+from polyloops.io.exchange import quad_mesh_document
 from polyloops.io.files import write_atomic, writing
+from polyloops.io.formats import Document, FormatError
+from polyloops.io.labelled_mesh import LabelledMesh, triangle_obj_text
 
 
 def write_triangle_mesh(path: str | os.PathLike[str], mesh: LabelledMesh) -> None:
@@ -62,7 +62,7 @@ def write_polycube_mesh(q: Polycube, path: str | os.PathLike[str], file_format: 
 def read_polycube_mesh(data: bytes, file_format: str) -> Document:
     """A polycube document from the bytes of a quad mesh that meshio reads (PLY, OFF, VTK,
     VTU, MEDIT, Gmsh): its quads, coordinates snapped as for OBJ
-    (:func:`polyloops.core.exchange.quad_mesh_document`).
+    (:func:`polyloops.io.exchange.quad_mesh_document`).
 
     Raises
     ------

@@ -29,10 +29,10 @@ from __future__ import annotations
 import os
 from dataclasses import dataclass
 
-from polyloops.core.exchange import apg_text, parse_apg, parse_obj
-from polyloops.core.formats import Document, FormatError, Structure, dumps, parse_document, to_obj
 from polyloops.core.polycube import Polycube
+from polyloops.io.exchange import apg_text, parse_apg, parse_obj
 from polyloops.io.files import OutputError, Sink, read_bytes, resolve_output, write_atomic
+from polyloops.io.formats import Document, FormatError, Structure, dumps, parse_document, to_obj
 
 __all__ = ["FORMATS", "FileFormat", "FormatChoiceError", "format_for", "parse_bytes", "read_document",
            "sniff", "write_structure"]
@@ -156,7 +156,7 @@ def parse_bytes(data: bytes, fmt: FileFormat, where: str = "") -> Document:
         For bytes that do not follow the format (the message says where).
     """
     if fmt.name == "planar":
-        from polyloops.core.planar_code import read_planar_code
+        from polyloops.io.planar_code import read_planar_code
 
         maps = read_planar_code(data)
         if len(maps) != 1:
@@ -200,7 +200,7 @@ def serialize(obj: Structure, fmt: FileFormat, where: str = "") -> str | bytes:
     if fmt.name == "apg":
         return apg_text(obj)
     if fmt.name == "planar":
-        from polyloops.core.planar_code import planar_code
+        from polyloops.io.planar_code import planar_code
 
         return planar_code([obj.map])
     return dumps(obj)

@@ -271,7 +271,7 @@ def render_polycube(obj: Polycube | LoopStructure, path: str | os.PathLike[str] 
     PictureError
         When the polycube is too large to draw, or zones are asked of a shape without loops.
 
-    >>> from polyloops.core.examples import load_example
+    >>> from polyloops.io.examples import load_example
     >>> fig = render_polycube(load_example("l-shape"), zones=Axis.X, level_graph=True)
     >>> len(fig.axes)
     2

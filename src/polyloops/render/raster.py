@@ -12,7 +12,7 @@ through a nearer face.
 ``tests/test_render.py`` checks the buffer against an independent oracle: rays cast through
 sampled pixels, intersected exactly (rational arithmetic) with every face.
 
->>> from polyloops.core.examples import load_example
+>>> from polyloops.io.examples import load_example
 >>> from polyloops.render.projection import View
 >>> buf = rasterize(load_example("l-shape"), View(35, 28), 64)
 >>> buf.face.shape, int((buf.face >= 0).sum()) > 1000

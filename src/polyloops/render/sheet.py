@@ -6,7 +6,7 @@ import math
 import os
 from collections.abc import Sequence
 
-from polyloops.core.formats import Structure
+from polyloops.io.formats import Structure
 from polyloops.render.figure import new_figure, save_figure
 from polyloops.render.polycube import as_polycube, choose_views, draw_polycube
 

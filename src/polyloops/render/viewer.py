@@ -7,7 +7,7 @@ hides or shows it; hovering names a face and its zones, a loop, or a corner and 
 configuration.  plotly.js is written into the page (or, for a site of many pages, once beside
 them), so it opens without a network.
 
->>> from polyloops.core.examples import load_example
+>>> from polyloops.io.examples import load_example
 >>> fig = viewer_figure(load_example("l-shape"))
 >>> sorted({t.legendgroup for t in fig.data})
 ['X-loops', 'Y-loops', 'Z-loops', 'corners', 'faces']
@@ -194,7 +194,7 @@ def write_viewer(obj: Polycube | LoopStructure, path: str | os.PathLike[str], ti
         When the file cannot be written.
 
     >>> import tempfile, pathlib
-    >>> from polyloops.core.examples import load_example
+    >>> from polyloops.io.examples import load_example
     >>> with tempfile.TemporaryDirectory() as tmp:
     ...     write_viewer(load_example("cube"), pathlib.Path(tmp) / "cube.html")
     ...     size = (pathlib.Path(tmp) / "cube.html").stat().st_size

@@ -13,8 +13,8 @@ The verdict is ``True`` when a polycube was built and checked, ``False`` when a 
 condition fails, and ``None`` (undecided) when the conditions pass but the construction
 does not succeed.
 
->>> from polyloops.core.examples import load_example
->>> from polyloops.core.labelled_mesh import labelled_mesh_from_polycube
+>>> from polyloops.io.examples import load_example
+>>> from polyloops.io.labelled_mesh import labelled_mesh_from_polycube
 >>> report = check_segmentation(labelled_mesh_from_polycube(load_example("l-shape")))
 >>> report.valid, len(report.segmentation.charts), report.polycube.map.num_corners > 0
 (True, 8, True)
@@ -24,8 +24,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from polyloops.core.labelled_mesh import LabelledMesh
 from polyloops.core.polycube import Polycube
+from polyloops.io.labelled_mesh import LabelledMesh
 from polyloops.segmentation.charts import Boundary, Chart, Corner, Segmentation, segment
 from polyloops.segmentation.levels import GlobalResult, Witness, check_global
 from polyloops.segmentation.local import LocalResult, LocalViolation, check_local

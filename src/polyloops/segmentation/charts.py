@@ -8,8 +8,8 @@ Boundaries are walked with their ``left`` chart on the left (seen from outside),
 surface orientation fixes one of their two directions.  Around a corner, ``sides`` lists the
 boundaries counter-clockwise seen from outside, each with the chart that follows it.
 
->>> from polyloops.core.examples import load_example
->>> from polyloops.core.labelled_mesh import labelled_mesh_from_polycube
+>>> from polyloops.io.examples import load_example
+>>> from polyloops.io.labelled_mesh import labelled_mesh_from_polycube
 >>> seg = segment(labelled_mesh_from_polycube(load_example("cube")))
 >>> len(seg.charts), len(seg.boundaries), len(seg.corners)
 (6, 12, 8)
@@ -23,7 +23,7 @@ from functools import cached_property
 from polyloops.core.directions import Axis, Direction
 from polyloops.core.disjoint_sets import DisjointSets
 from polyloops.core.halfedge import HalfEdgeMap
-from polyloops.core.labelled_mesh import LabelledMesh
+from polyloops.io.labelled_mesh import LabelledMesh
 
 
 @dataclass(frozen=True)

@@ -1,6 +1,6 @@
 """Orientation solvers for labelled loop structures: exhaustive, SAT and SMT, one interface.
 
->>> from polyloops.core.examples import load_example
+>>> from polyloops.io.examples import load_example
 >>> labelled = load_example("ring").dualize().forget_orientation()
 >>> result = orient(labelled, solver="sat")
 >>> result.found, result.structure is not None
@@ -88,7 +88,7 @@ def orient(ls: LoopStructure, solver: str = "sat") -> OrientResult:
     ValueError
         For an unknown solver.
 
-    >>> from polyloops.core.examples import load_example
+    >>> from polyloops.io.examples import load_example
     >>> orient(load_example("ring").dualize().forget_orientation()).found
     True
     >>> orient(load_example("torus-cycle")).explanation.condition
@@ -120,7 +120,7 @@ def all_orientations(ls: LoopStructure, solver: str = "sat") -> Iterator[LoopStr
     ValueError
         For an unknown solver.
 
-    >>> from polyloops.core.examples import load_example
+    >>> from polyloops.io.examples import load_example
     >>> len(list(all_orientations(load_example("cube").dualize())))
     8
     """
@@ -149,7 +149,7 @@ def count_orientations(ls: LoopStructure, solver: str = "sat") -> int:
     ValueError
         For an unknown solver.
 
-    >>> from polyloops.core.examples import load_example
+    >>> from polyloops.io.examples import load_example
     >>> count_orientations(load_example("l-shape").dualize())
     8
     """

@@ -81,7 +81,7 @@ def axis_flip_factor(problem: OrientationProblem) -> int:
     AttributeError
         When ``problem`` is not an :class:`OrientationProblem`.
 
-    >>> from polyloops.core.examples import load_example
+    >>> from polyloops.io.examples import load_example
     >>> axis_flip_factor(OrientationProblem(load_example("cube").dualize()))
     8
     """

@@ -2,7 +2,7 @@
 cycle of sides (Condition 3), or a set of level-graph cycles one of which closes for every
 choice of sides (Condition 5).
 
->>> from polyloops.core.examples import load_example
+>>> from polyloops.io.examples import load_example
 >>> explain(OrientationProblem(load_example("torus-cycle"))).condition
 '5'
 >>> explain(OrientationProblem(load_example("l-shape").dualize())) is None
@@ -47,7 +47,7 @@ def explain(problem: OrientationProblem) -> Explanation | None:
     ValueError
         Never for a built problem.
 
-    >>> from polyloops.core.examples import load_example
+    >>> from polyloops.io.examples import load_example
     >>> [explain(OrientationProblem(load_example(n))).condition
     ...  for n in ("self-crossing", "degree-two", "torus-cycle")]
     ['3', 'local', '5']

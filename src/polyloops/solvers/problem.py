@@ -11,7 +11,7 @@ can be met exactly when the side graph is bipartite; each of its ``k`` component
 free binary choice, ``2^k`` in all.  Condition 5 (acyclic level graphs) restricts the choices;
 at genus 0 the level graphs are trees and every choice is acyclic.
 
->>> from polyloops.core.examples import load_example
+>>> from polyloops.io.examples import load_example
 >>> p = OrientationProblem(load_example("l-shape").dualize())
 >>> p.k, [len(p.components_of(a)) for a in Axis]
 (3, [1, 1, 1])

@@ -1,6 +1,6 @@
 """Checkers for the paper's definitions; each returns a :class:`Report` of every violation.
 
->>> from polyloops.core.examples import load_example
+>>> from polyloops.io.examples import load_example
 >>> verify(load_example("ring")).valid
 True
 >>> [str(v.condition) for v in verify(load_example("degree-two")).violations][:1]
@@ -10,11 +10,11 @@ True
 from __future__ import annotations
 
 from polyloops.core.errors import PolyloopsError
-from polyloops.core.formats import Document, Structure
 from polyloops.core.halfedge import FaceListError, MapError
 from polyloops.core.loops import OddFaceError
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LoopStructure
+from polyloops.io.formats import Document, Structure
 from polyloops.verify.definition1 import POLYGONS, check_polycube, check_polycube_faces
 from polyloops.verify.loop_structure import (
     GenusBalance,
@@ -55,7 +55,7 @@ def verify(obj: Structure) -> Report:
     DualityError
         Never; a polycube whose faces are not axis-aligned rectangles is reported, not raised.
 
-    >>> from polyloops.core.examples import load_example
+    >>> from polyloops.io.examples import load_example
     >>> verify(load_example("ring")).valid
     True
     >>> [str(v.condition) for v in verify(load_example("torus-cycle")).violations]
@@ -76,7 +76,7 @@ def verify_document(doc: Document) -> Report:
     Parameters
     ----------
     doc:
-        A parsed document (:func:`polyloops.core.formats.parse_document`).
+        A parsed document (:func:`polyloops.io.formats.parse_document`).
 
     Returns
     -------
@@ -87,7 +87,7 @@ def verify_document(doc: Document) -> Report:
     LabelError
         When the edge labels do not fit the faces (a file error, not a finding).
 
-    >>> from polyloops.core.formats import parse_document
+    >>> from polyloops.io.formats import parse_document
     >>> doc = parse_document('{"polyloops": 1, "kind": "loop-structure", '
     ...                      '"faces": [[0, 1, 2, 3]], "edges": []}')
     >>> report = verify_document(doc)
@@ -150,7 +150,7 @@ def as_loop_structure(obj: Structure, *, oriented: bool = False, valid: bool = F
     NeedsSidesError
         When sides are needed and ``obj`` has none.
 
-    >>> from polyloops.core.examples import load_example
+    >>> from polyloops.io.examples import load_example
     >>> as_loop_structure(load_example("l-shape"), valid=True).map.num_corners
     16
     >>> as_loop_structure(load_example("torus-cycle"), valid=True)  # doctest: +ELLIPSIS

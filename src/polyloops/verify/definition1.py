@@ -3,7 +3,7 @@
 The conditions on positions are checked on the raw faces, so they are reported
 even when the faces do not form a closed surface.
 
->>> from polyloops.core.examples import load_example
+>>> from polyloops.io.examples import load_example
 >>> check_polycube(load_example("l-shape")).valid
 True
 """
@@ -186,7 +186,7 @@ def check_polycube(q: Polycube) -> Report:
     AttributeError
         When ``q`` is a loop structure (use :func:`polyloops.verify.verify`, which dispatches).
 
-    >>> from polyloops.core.examples import load_example
+    >>> from polyloops.io.examples import load_example
     >>> check_polycube(load_example("self-intersecting")).valid
     True
     """

@@ -1,6 +1,6 @@
 """A summary of a structure: sizes, loops, genus, zones, level graphs, corner degrees.
 
->>> from polyloops.core.examples import load_example
+>>> from polyloops.io.examples import load_example
 >>> s = describe(load_example("ring"))
 >>> s["corners"], s["faces"], s["loops"], s["genus"]
 (32, 32, {'X': 4, 'Y': 4, 'Z': 2}, 1)
@@ -14,9 +14,9 @@ from typing import Any
 from polyloops.core.corners import corner_histogram
 from polyloops.core.directions import Axis
 from polyloops.core.duality import DualityError, dualize
-from polyloops.core.formats import Structure
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LoopStructure
+from polyloops.io.formats import Structure
 from polyloops.verify.loop_structure import genus_balance
 
 
@@ -65,7 +65,7 @@ def describe(obj: Structure) -> dict[str, Any]:
     ValueError
         Never for a built structure; what cannot be computed is reported in the summary.
 
-    >>> from polyloops.core.examples import load_example
+    >>> from polyloops.io.examples import load_example
     >>> s = describe(load_example("ring"))
     >>> s["corners"], s["faces"], s["loops"], s["genus"]
     (32, 32, {'X': 4, 'Y': 4, 'Z': 2}, 1)

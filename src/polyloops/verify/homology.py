@@ -17,7 +17,7 @@ The ranks are exact: ``dim ker d1 = E - V + c`` with ``c`` the connected compone
 that touch no edge in one face, since a GF(2) 2-chain without boundary takes one value on such a
 group and 0 next to a boundary edge.  :func:`gf2_rank` is the slow twin used by the tests.
 
->>> from polyloops.core.examples import load_example
+>>> from polyloops.io.examples import load_example
 >>> from polyloops.core.directions import Axis
 >>> ls = load_example("bridged-ring").dualize()
 >>> zone_genera(ls, Axis.Z)

@@ -4,7 +4,7 @@ A :class:`~polyloops.core.structure.LoopStructure` is built on a closed
 oriented map, so some conditions hold by construction of the representation;
 the reports say so instead of skipping them.
 
->>> from polyloops.core.examples import load_example
+>>> from polyloops.io.examples import load_example
 >>> r = check_polycube_loop_structure(load_example("torus-cycle"))
 >>> r.valid, sorted({str(v.condition) for v in r.violations})
 (False, ['5'])
@@ -56,7 +56,7 @@ def check_quad_loop_structure(ls: LoopStructure) -> Report:
     ValueError
         Never for a built structure.
 
-    >>> from polyloops.core.examples import load_example
+    >>> from polyloops.io.examples import load_example
     >>> r = check_quad_loop_structure(load_example("self-crossing"))  # allowed in a quad mesh
     >>> r.valid, [str(c.condition) for c in r.checks]
     (True, ['1', '2', '3', '4'])
@@ -176,7 +176,7 @@ def check_polycube_loop_structure(ls: LoopStructure) -> Report:
     ValueError
         Never for a built structure.
 
-    >>> from polyloops.core.examples import load_example
+    >>> from polyloops.io.examples import load_example
     >>> r = check_polycube_loop_structure(load_example("double-plus-x"))
     >>> r.valid, sorted({str(v.condition) for v in r.violations})
     (False, ['3'])
@@ -262,7 +262,7 @@ def genus_balance(ls: LoopStructure, independent: bool = True,
     ValueError
         When the homology of a zone is not that of an orientable surface.
 
-    >>> from polyloops.core.examples import load_example
+    >>> from polyloops.io.examples import load_example
     >>> [(b.axis.name, b.edges, b.rhs) for b in genus_balance(load_example("bridged-ring").dualize())]
     [('X', 4, 4), ('Y', 4, 4), ('Z', 2, 2)]
     """
@@ -304,7 +304,7 @@ def check_theorem3(ls: LoopStructure) -> Report:
     ValueError
         When the homology of a zone is not that of an orientable surface.
 
-    >>> from polyloops.core.examples import load_example
+    >>> from polyloops.io.examples import load_example
     >>> check_theorem3(load_example("torus-cycle")).valid
     True
     """

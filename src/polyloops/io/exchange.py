@@ -17,11 +17,11 @@ parallel to an axis; real coordinates are replaced by their rank among the disti
 on their axis (values closer than ``1e-9`` times the mesh's extent are one value), which
 keeps the polycube's order type (Definition 2).  Vertices no face uses are dropped.
 
-Both readers return a :class:`~polyloops.core.formats.Document`, so building and its errors
+Both readers return a :class:`~polyloops.io.formats.Document`, so building and its errors
 are shared with the JSON format; problems in the text raise :class:`ExchangeError` naming
 the line.
 
->>> from polyloops.core.examples import load_example
+>>> from polyloops.io.examples import load_example
 >>> l_shape = load_example("l-shape")
 >>> parse_apg(apg_text(l_shape)).build() == l_shape
 True
@@ -35,8 +35,8 @@ import math
 from collections import deque
 
 from polyloops.core.directions import Axis, Direction
-from polyloops.core.formats import Document, FormatError, Structure, to_obj
 from polyloops.core.polycube import Polycube
+from polyloops.io.formats import Document, FormatError, Structure, to_obj
 
 __all__ = ["ExchangeError", "apg_text", "parse_apg", "parse_obj", "to_obj"]
 

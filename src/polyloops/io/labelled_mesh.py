@@ -7,7 +7,7 @@ encoding of the LIHPC ``labeling.txt`` and DualCube ``.flag`` files, and of
 :class:`~polyloops.core.directions.Direction`).  Triangles are counter-clockwise seen from
 outside.
 
->>> from polyloops.core.examples import load_example
+>>> from polyloops.io.examples import load_example
 >>> mesh = labelled_mesh_from_polycube(load_example("cube"))
 >>> len(mesh.triangles), sorted({str(d) for d in mesh.labels})
 (12, ['+X', '+Y', '+Z', '-X', '-Y', '-Z'])
@@ -24,9 +24,9 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 from polyloops.core.directions import Direction
-from polyloops.core.exchange import obj_polygons
-from polyloops.core.formats import FormatError
 from polyloops.core.polycube import Polycube
+from polyloops.io.exchange import obj_polygons
+from polyloops.io.formats import FormatError
 
 __all__ = ["LabelledMesh", "LabelledMeshError", "labelled_mesh_from_polycube", "labels_text",
            "parse_labels", "read_triangle_mesh", "triangle_obj_text"]

@@ -12,7 +12,7 @@ Faces are traced with plantri's convention: arriving at ``v`` from ``u``, leave 
 clockwise successor of ``u`` around ``v``; this keeps each face on the left, so faces come
 out counter-clockwise seen from outside, as polyloops stores them.
 
->>> from polyloops.core.examples import load_example
+>>> from polyloops.io.examples import load_example
 >>> cube = load_example("cube").map
 >>> data = planar_code([cube])
 >>> data[:15], len(data)
@@ -25,8 +25,8 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 
-from polyloops.core.formats import FormatError
 from polyloops.core.halfedge import FaceListError, HalfEdgeMap, MapError, faces_from_next
+from polyloops.io.formats import FormatError
 
 __all__ = ["PlanarCodeError", "planar_code", "read_planar_code"]
 

@@ -14,10 +14,10 @@ from importlib import resources
 
 from polyloops.core import builders
 from polyloops.core.directions import Direction
-from polyloops.core.formats import Structure, loads
-from polyloops.core.labelled_mesh import LabelledMesh, labelled_mesh_from_polycube
 from polyloops.core.polycube import Polycube
 from polyloops.core.voxels import polycube_from_voxels
+from polyloops.io.formats import Structure, loads
+from polyloops.io.labelled_mesh import LabelledMesh, labelled_mesh_from_polycube
 
 
 @dataclass(frozen=True)
@@ -153,7 +153,7 @@ def load_example(name: str) -> Structure:
 def labelled_mesh_example(name: str) -> LabelledMesh:
     """A bundled labelled mesh (shipped as ``NAME.obj`` and ``NAME.labels``), or a bundled
     polycube's quads cut into triangles and labelled by their normals."""
-    from polyloops.core.labelled_mesh import parse_labels, read_triangle_mesh
+    from polyloops.io.labelled_mesh import parse_labels, read_triangle_mesh
 
     if name in LABELLED_EXAMPLES:
         folder = resources.files("polyloops.examples")

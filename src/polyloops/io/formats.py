@@ -17,7 +17,7 @@ Faces are counter-clockwise seen from outside.  Reading checks the format
 :class:`~polyloops.core.halfedge.MapError` (not a closed oriented surface) or
 :class:`~polyloops.core.structure.LabelError`.
 
->>> from polyloops.core.examples import load_example
+>>> from polyloops.io.examples import load_example
 >>> text = dumps(load_example("cube"))
 >>> loads(text) == load_example("cube")
 True
@@ -62,7 +62,7 @@ class Document:
         """The document of a structure already built (what reading its JSON would give),
         without writing and parsing text.
 
-        >>> from polyloops.core.examples import load_example
+        >>> from polyloops.io.examples import load_example
         >>> ls = load_example("l-shape").dualize()
         >>> doc = Document.of(ls)
         >>> doc.kind, doc.build().edge_labels() == ls.edge_labels()
@@ -220,7 +220,7 @@ def loads(text: str) -> Structure:
     MapError, LabelError, FaceListError
         When the faces are not a closed oriented surface, or the labels do not fit it.
 
-    >>> from polyloops.core.examples import load_example
+    >>> from polyloops.io.examples import load_example
     >>> q = load_example("l-shape")
     >>> loads(dumps(q)).positions == q.positions
     True
@@ -257,7 +257,7 @@ def dumps(obj: Structure) -> str:
     ValueError
         Never for a built structure (every structure has a JSON form).
 
-    >>> from polyloops.core.examples import load_example
+    >>> from polyloops.io.examples import load_example
     >>> dumps(load_example("cube")).splitlines()[2].strip()
     '"kind": "polycube",'
     """
@@ -288,7 +288,7 @@ def to_obj(q: Polycube) -> str:
     AttributeError
         When ``q`` is a loop structure (it has no positions; primalize it first).
 
-    >>> from polyloops.core.examples import load_example
+    >>> from polyloops.io.examples import load_example
     >>> lines = to_obj(load_example("cube")).splitlines()
     >>> sum(line.startswith("v ") for line in lines), sum(line.startswith("f ") for line in lines)
     (8, 6)
