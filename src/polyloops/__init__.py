@@ -17,7 +17,6 @@ below are the public API; the heavier ones (solvers, catalogs, reachability) loa
 from __future__ import annotations
 
 import importlib
-import os
 from typing import Any
 
 __version__ = "0.1.0"
@@ -50,91 +49,9 @@ _LAZY = {
     "build_catalog": "polyloops.enumerate.catalog_run",
     "explore": "polyloops.enumerate.reach",
     "shortest_path": "polyloops.enumerate.reach",
+    "read": "polyloops.io.registry",
+    "write": "polyloops.io.registry",
 }
-
-
-def read(path: str | os.PathLike[str], format: str | None = None) -> Polycube | LoopStructure:
-    """Read a polycube or loop structure from a file in any format polyloops reads
-    (:mod:`polyloops.io.registry`: JSON, DualCube's ``.graph``, OBJ, planar code, PLY, OFF, VTK,
-    ...), by ``format``, extension or content.  Planar code, which has no axis labels, gives
-    the map's only polycube loop structure.
-
-    Parameters
-    ----------
-    path:
-        The file; ``-`` is standard input.
-    format:
-        A format name of :data:`polyloops.io.registry.FORMATS` (``json``, ``apg``, ``obj``,
-        ``planar``, ``ply``, ...), when the extension does not say it.
-
-    Returns
-    -------
-    Polycube or LoopStructure
-
-    Raises
-    ------
-    polyloops.io.files.InputError
-        When the file cannot be read.
-    polyloops.io.formats.FormatError
-        When its content is not in the format (the message names the file).
-    polyloops.core.halfedge.MapError
-        When the faces do not form a closed oriented surface.
-
-    >>> import tempfile, os
-    >>> with tempfile.TemporaryDirectory() as tmp:
-    ...     write(load_example("l-shape"), os.path.join(tmp, "l.ply"))
-    ...     print(identify(read(os.path.join(tmp, "l.ply"))).name)
-    P16.2
-    """
-    from polyloops.io.formats import Document, FormatError
-    from polyloops.io.registry import read_document
-
-    name = os.fspath(path)
-    try:
-        doc = read_document(name, format)
-        if doc.kind == "map":
-            from polyloops.enumerate.catalog import only_structure_on
-
-            doc = Document.of(only_structure_on(HalfEdgeMap.from_faces(doc.faces)))
-    except FormatError as err:
-        raise type(err)(f"{name}: {err}") from None
-    return doc.build()
-
-
-def write(obj: Polycube | LoopStructure, path: str | os.PathLike[str], format: str | None = None) -> None:
-    """Write a polycube or loop structure in the format ``format`` or the extension names
-    (JSON, ``.graph``, OBJ, planar code, and polycube meshes through meshio: PLY, OFF, VTK,
-    VTU, MEDIT, Gmsh, STL), through the shared writer: ``-`` is standard output, a link is
-    followed, nothing is left half-written.
-
-    Parameters
-    ----------
-    obj:
-        What to write (the mesh formats and OBJ take polycubes only).
-    path:
-        The output; ``-`` is standard output (JSON unless ``format`` says otherwise).
-    format:
-        A format name, when the extension does not say it.
-
-    Returns
-    -------
-    None
-
-    Raises
-    ------
-    polyloops.io.registry.FormatChoiceError
-        For an extension polyloops does not write, or a loop structure in a mesh format.
-    polyloops.io.files.OutputError
-        When the output cannot be written.
-
-    >>> write(load_example("cube"), "-", "apg")  # doctest: +ELLIPSIS
-    / written by polyloops: ...
-    6 12 8
-    ...
-    """
-    from polyloops.io.registry import write_structure
-
-    write_structure(obj, path, format)
 
 
 def __getattr__(name: str) -> Any:

@@ -6,7 +6,6 @@ one-line message that names the file.
 
 from __future__ import annotations
 
-import os
 import sys
 from pathlib import Path
 
@@ -14,7 +13,6 @@ from polyloops.core.halfedge import FaceListError, MapError
 from polyloops.core.loops import OddFaceError
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LabelError, LoopStructure
-from polyloops.io.examples import EXAMPLES, example_text
 from polyloops.io.files import (
     MAX_FILE_BYTES,
     InputError,
@@ -24,8 +22,16 @@ from polyloops.io.files import (
     resolve_output,
     write_atomic,
 )
-from polyloops.io.formats import Document, FormatError, Structure, dumps, parse_document
-from polyloops.io.registry import BY_NAME, BY_SUFFIX, format_for, parse_bytes, sniff, write_structure
+from polyloops.io.formats import Document, FormatError, Structure, dumps
+from polyloops.io.registry import (
+    BY_NAME,
+    Source,
+    UnknownExampleError,
+    format_for,
+    open_source,
+    sniff,
+    write_structure,
+)
 
 EXIT_OK, EXIT_INVALID, EXIT_USAGE = 0, 1, 2
 
@@ -36,31 +42,34 @@ class CliError(Exception):
         self.status = status
 
 
-def read_document(arg: str, given: str | None = None) -> Document:
+def open_input(arg: str, given: str | None = None) -> Source:
+    r"""A FILE argument, read once (:func:`polyloops.io.registry.open_source`); problems become
+    one-line :class:`CliError`\ s naming it."""
+    from polyloops.core.canonical import SignatureError
+
+    if arg == "-":  # standard input can be read once: keep it for a second look
+        arg_data = read_bytes_file("-")
+        fmt = format_for("-", given)
+        return Source("-", arg_data, sniff(arg_data) or fmt if given is None else fmt)
+    try:
+        return open_source(arg, given)
+    except UnknownExampleError as err:
+        raise CliError(f"{arg}: {err}; 'polyloops examples' lists them") from None
+    except (InputError, SignatureError) as err:
+        raise CliError(str(err) if isinstance(err, InputError) else f"{arg}: {err}") from None
+    except FormatError as err:
+        raise CliError(f"{arg}: {err}" if not str(err).startswith(f"{arg}:") else str(err)) from None
+
+
+def read_document(arg: str, given: str | None = None, source: Source | None = None) -> Document:
     """Parse a FILE argument: a path (any format :mod:`polyloops.io.registry` reads, by
     ``given``, extension or content; ``-`` is standard input), ``example:NAME`` or
-    ``sig:SIGNATURE``.  The file is read once."""
-    if arg.startswith("sig:"):
-        from polyloops.core.canonical import SignatureError, from_signature
-
-        try:
-            return Document.of(from_signature(arg.removeprefix("sig:")))
-        except SignatureError as err:
-            raise CliError(f"{arg}: {err}") from None
-    if arg.startswith("example:"):
-        name = arg.removeprefix("example:")
-        if name not in EXAMPLES:
-            raise CliError(f"{arg}: unknown example; 'polyloops examples' lists them")
-        doc = parse_document(example_text(name))
-    else:
-        data = read_bytes_file(arg)
-        try:
-            fmt = format_for(arg, given)
-            if given is None and os.path.splitext(arg)[1].lower() not in BY_SUFFIX:
-                fmt = sniff(data) or fmt
-            doc = parse_bytes(data, fmt)
-        except FormatError as err:
-            raise CliError(f"{arg}: {err}" if not str(err).startswith(f"{arg}:") else str(err)) from None
+    ``sig:SIGNATURE`` (``source``: the argument already read)."""
+    source = source or open_input(arg, given)
+    try:
+        doc = source.document()
+    except FormatError as err:
+        raise CliError(f"{arg}: {err}") from None
     if doc.kind == "map":
         doc = _map_document(arg, doc)
     for note in doc.notes:
@@ -71,7 +80,7 @@ def read_document(arg: str, given: str | None = None) -> Document:
 def _map_document(arg: str, doc: Document) -> Document:
     """A map without labels (planar code), read as its only polycube loop structure."""
     from polyloops.core.halfedge import HalfEdgeMap
-    from polyloops.enumerate.catalog import MapStructureError, only_structure_on
+    from polyloops.core.labellings import MapStructureError, only_structure_on
 
     try:
         ls = only_structure_on(HalfEdgeMap.from_faces(doc.faces))

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import re
 import sys
 from pathlib import Path
 from typing import Any
@@ -15,7 +14,6 @@ from polyloops.cli.load import (
     EXIT_OK,
     CliError,
     check_output,
-    format_of,
     output_dir,
     read_text_file,
     read_valid_structure,
@@ -119,20 +117,6 @@ def verify_path_file(source: str, data: dict[str, Any], as_json: bool) -> int:
     else:
         print(f"{source}: path: INVALID at step {check.bad_step}: {check.reason}")
     return EXIT_OK if check.valid else EXIT_INVALID
-
-
-def read_path_file(source: str) -> dict[str, Any] | None:
-    """The JSON of ``source`` if it is a path file, else ``None`` (and no error)."""
-    if source.startswith(("example:", "sig:")) or format_of(source) != "json":
-        return None
-    text = read_text_file(source)
-    if not re.search(r'"kind"\s*:\s*"path"', text):
-        return None  # not worth parsing a large structure twice
-    try:
-        data = json.loads(text)
-    except (ValueError, RecursionError):
-        return None
-    return data if isinstance(data, dict) and data.get("kind") == "path" else None
 
 
 def cmd_conjecture_genus0(args: argparse.Namespace) -> int:

@@ -12,6 +12,7 @@ from polyloops.cli.load import (
     EXIT_OK,
     FORMATS,
     CliError,
+    open_input,
     read_bytes_file,
     read_document,
     read_loop_structure,
@@ -47,13 +48,14 @@ def format_report(source: str, report: Report) -> str:
 
 
 def cmd_verify(args: argparse.Namespace) -> int:
-    from polyloops.cli.reach import read_path_file, verify_path_file
+    from polyloops.cli.reach import verify_path_file
     from polyloops.verify import verify_document
 
-    path_doc = read_path_file(args.file)
-    if path_doc is not None:
-        return verify_path_file(args.file, path_doc, args.json)
-    doc = read_document(args.file)
+    source = open_input(args.file)  # read once: a path file or a structure
+    data = source.json()
+    if isinstance(data, dict) and data.get("kind") == "path":
+        return verify_path_file(args.file, data, args.json)
+    doc = read_document(args.file, source=source)
     try:
         report = verify_document(doc)
     except LabelError as err:

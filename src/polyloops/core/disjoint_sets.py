@@ -1,6 +1,7 @@
-"""A small union-find on hashable items (path halving), created on first sight.
+"""The kernel's union-finds: disjoint sets of hashable items (path halving), created on first
+sight, and their parity variant for sign constraints.
 
-The kernel's one union-find: networkx has one too, but importing networkx costs a tenth of a
+networkx has a union-find too, but importing networkx costs a tenth of a
 second, which ``import polyloops`` should not pay.
 
 >>> s = DisjointSets(range(6))
@@ -56,3 +57,50 @@ class DisjointSets(Generic[T]):
         for x in list(self.parent):
             groups[self.find(x)].add(x)
         yield from groups.values()
+
+
+class ParitySets(Generic[T]):
+    """Disjoint sets whose items carry a sign (+1 or -1) relative to their set's representative:
+    the union-find for parity constraints ``s_a * s_b = p`` (Condition 3 of Definition 4 between
+    the sides of loops).  :meth:`relate` adds a constraint and says whether it is consistent
+    with the ones before.
+
+    >>> s = ParitySets(range(4))
+    >>> s.relate(0, 1, -1), s.relate(1, 2, -1), s.relate(0, 2, 1), s.relate(0, 2, -1)
+    (True, True, True, False)
+    >>> sorted(sorted(c) for c in s.components())
+    [[(0, 1), (1, -1), (2, 1)], [(3, 1)]]
+    """
+
+    def __init__(self, items: Iterable[T] = ()) -> None:
+        self.parent: dict[T, T] = {x: x for x in items}
+        self.parity: dict[T, int] = dict.fromkeys(self.parent, 1)  # sign relative to the parent
+
+    def find(self, x: T) -> tuple[T, int]:
+        """The representative of ``x``'s set and the sign of ``x`` relative to it."""
+        p, q = self.parent, self.parity
+        if x not in p:
+            p[x], q[x] = x, 1
+        sign = 1
+        while p[x] != x:
+            sign *= q[x]
+            x = p[x]
+        return x, sign
+
+    def relate(self, a: T, b: T, product: int) -> bool:
+        """Constrain ``s_a * s_b = product``; ``False`` (and nothing changed) when the sets
+        already force the other product."""
+        (ra, pa), (rb, pb) = self.find(a), self.find(b)
+        if ra == rb:
+            return pa * pb == product
+        self.parent[ra], self.parity[ra] = rb, pa * pb * product
+        return True
+
+    def components(self) -> list[list[tuple[T, int]]]:
+        """The sets, each a list of ``(item, sign relative to the representative)`` in the
+        order the items were first seen."""
+        groups: dict[T, list[tuple[T, int]]] = defaultdict(list)
+        for x in list(self.parent):
+            root, sign = self.find(x)
+            groups[root].append((x, sign))
+        return list(groups.values())

@@ -34,8 +34,8 @@ from polyloops.io.exchange import apg_text, parse_apg, parse_obj
 from polyloops.io.files import OutputError, Sink, read_bytes, resolve_output, write_atomic
 from polyloops.io.formats import Document, FormatError, Structure, dumps, parse_document, to_obj
 
-__all__ = ["FORMATS", "FileFormat", "FormatChoiceError", "format_for", "parse_bytes", "read_document",
-           "sniff", "write_structure"]
+__all__ = ["FORMATS", "FileFormat", "FormatChoiceError", "Source", "UnknownExampleError", "format_for",
+           "open_source", "parse_bytes", "read", "read_document", "sniff", "write", "write_structure"]
 
 
 class FormatChoiceError(FormatError):
@@ -148,7 +148,7 @@ def sniff(data: bytes) -> FileFormat | None:
 def parse_bytes(data: bytes, fmt: FileFormat, where: str = "") -> Document:
     """A document from a file's bytes in format ``fmt``.  Planar code gives a document of kind
     ``map`` (faces only): it has no axis labels, and finding the map's polycube loop structure
-    is a search (:func:`polyloops.enumerate.catalog.only_structure_on`).
+    is a search (:func:`polyloops.core.labellings.only_structure_on`).
 
     Raises
     ------
@@ -174,9 +174,74 @@ def parse_bytes(data: bytes, fmt: FileFormat, where: str = "") -> Document:
     return reader(text)
 
 
+class UnknownExampleError(FormatError):
+    """``example:NAME`` with a name no bundled example has."""
+
+
+@dataclass(frozen=True)
+class Source:
+    """One input, read once: a file (its bytes and format), a bundled example (its JSON), or a
+    signature (``sig:NAME``, its document built directly).  :meth:`document` parses it."""
+
+    name: str
+    data: bytes
+    format: FileFormat
+    built: Document | None = None
+
+    def document(self) -> Document:
+        """The parsed document (planar code: a ``map`` document, see :func:`parse_bytes`).
+
+        Raises
+        ------
+        FormatError
+            For content that is not in the format (the message does not repeat the name).
+        """
+        return self.built if self.built is not None else parse_bytes(self.data, self.format)
+
+    def json(self) -> object | None:
+        """The parsed JSON of a JSON source, or ``None`` (another format, or not JSON)."""
+        import json
+
+        if self.format.name != "json" or self.built is not None:
+            return None
+        try:
+            return json.loads(self.data.decode("utf-8-sig"))
+        except (ValueError, RecursionError):
+            return None
+
+
+def open_source(name: str | os.PathLike[str], given: str | None = None) -> Source:
+    """Read an input once: ``sig:SIGNATURE``, ``example:NAME``, ``-`` (standard input) or a
+    path, its format ``given``, else by extension, else by content (see :func:`sniff`).
+
+    Raises
+    ------
+    InputError
+        When the file cannot be read (not a regular file, too large, missing).
+    FormatError
+        For a signature that does not decode, an unknown example or format name.
+    """
+    text = os.fspath(name)
+    if text.startswith("sig:"):
+        from polyloops.core.canonical import from_signature
+
+        return Source(text, b"", BY_NAME["json"], Document.of(from_signature(text.removeprefix("sig:"))))
+    if text.startswith("example:"):
+        from polyloops.io.examples import EXAMPLES, example_text
+
+        example = text.removeprefix("example:")
+        if example not in EXAMPLES:
+            raise UnknownExampleError(f"unknown example {example!r}")
+        return Source(text, example_text(example).encode(), BY_NAME["json"])
+    data = read_bytes(text)
+    fmt = format_for(text, given)
+    if given is None and os.path.splitext(text)[1].lower() not in BY_SUFFIX:
+        fmt = sniff(data) or fmt
+    return Source(text, data, fmt)
+
+
 def read_document(path: str | os.PathLike[str], given: str | None = None) -> Document:
-    """Read a file once and parse it: the format ``given``, else by extension, else by
-    content (see :func:`sniff`).
+    """:func:`open_source` and parse it.
 
     Raises
     ------
@@ -185,12 +250,7 @@ def read_document(path: str | os.PathLike[str], given: str | None = None) -> Doc
     FormatError
         For content that is not in the format (the message does not repeat the file name).
     """
-    name = os.fspath(path)
-    data = read_bytes(name)
-    fmt = format_for(name, given)
-    if given is None and os.path.splitext(name)[1].lower() not in BY_SUFFIX:
-        fmt = sniff(data) or fmt
-    return parse_bytes(data, fmt)
+    return open_source(path, given).document()
 
 
 def serialize(obj: Structure, fmt: FileFormat, where: str = "") -> str | bytes:
@@ -238,3 +298,89 @@ def write_structure(obj: Structure, path: str | os.PathLike[str], given: str | N
         raise FormatError(f"{name}: {err}") from None
     write_atomic(name, data)
     return fmt
+
+
+def read(path: str | os.PathLike[str], format: str | None = None) -> Structure:
+    """Read a polycube or loop structure from a file in any format polyloops reads
+    (:mod:`polyloops.io.registry`: JSON, DualCube's ``.graph``, OBJ, planar code, PLY, OFF, VTK,
+    ...), by ``format``, extension or content.  Planar code, which has no axis labels, gives
+    the map's only polycube loop structure.
+
+    Parameters
+    ----------
+    path:
+        The file; ``-`` is standard input.
+    format:
+        A format name of :data:`polyloops.io.registry.FORMATS` (``json``, ``apg``, ``obj``,
+        ``planar``, ``ply``, ...), when the extension does not say it.
+
+    Returns
+    -------
+    Polycube or LoopStructure
+
+    Raises
+    ------
+    polyloops.io.files.InputError
+        When the file cannot be read.
+    polyloops.io.formats.FormatError
+        When its content is not in the format (the message names the file).
+    polyloops.core.halfedge.MapError
+        When the faces do not form a closed oriented surface.
+
+    >>> import tempfile
+    >>> from polyloops.core.canonical import signature
+    >>> from polyloops.io.examples import load_example
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     write(load_example("l-shape"), os.path.join(tmp, "l.ply"))
+    ...     signature(read(os.path.join(tmp, "l.ply"))) == signature(load_example("l-shape"))
+    True
+    """
+    from polyloops.io.formats import Document, FormatError
+    from polyloops.io.registry import read_document
+
+    name = os.fspath(path)
+    try:
+        doc = read_document(name, format)
+        if doc.kind == "map":
+            from polyloops.core.halfedge import HalfEdgeMap
+            from polyloops.core.labellings import only_structure_on
+
+            doc = Document.of(only_structure_on(HalfEdgeMap.from_faces(doc.faces)))
+    except FormatError as err:
+        raise type(err)(f"{name}: {err}") from None
+    return doc.build()
+
+
+def write(obj: Structure, path: str | os.PathLike[str], format: str | None = None) -> None:
+    """Write a polycube or loop structure in the format ``format`` or the extension names
+    (JSON, ``.graph``, OBJ, planar code, and polycube meshes through meshio: PLY, OFF, VTK,
+    VTU, MEDIT, Gmsh, STL), through the shared writer: ``-`` is standard output, a link is
+    followed, nothing is left half-written.
+
+    Parameters
+    ----------
+    obj:
+        What to write (the mesh formats and OBJ take polycubes only).
+    path:
+        The output; ``-`` is standard output (JSON unless ``format`` says otherwise).
+    format:
+        A format name, when the extension does not say it.
+
+    Returns
+    -------
+    None
+
+    Raises
+    ------
+    polyloops.io.registry.FormatChoiceError
+        For an extension polyloops does not write, or a loop structure in a mesh format.
+    polyloops.io.files.OutputError
+        When the output cannot be written.
+
+    >>> from polyloops.io.examples import load_example
+    >>> write(load_example("cube"), "-", "apg")  # doctest: +ELLIPSIS
+    / written by polyloops: ...
+    6 12 8
+    ...
+    """
+    write_structure(obj, path, format)

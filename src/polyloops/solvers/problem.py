@@ -25,6 +25,7 @@ from dataclasses import dataclass
 from functools import cached_property
 
 from polyloops.core.directions import Axis
+from polyloops.core.labellings import sign_system
 from polyloops.core.loops import same_axis_meetings
 from polyloops.core.structure import LoopStructure
 from polyloops.core.zones import find_directed_cycle
@@ -108,39 +109,39 @@ class OrientationProblem:
         return g
 
     def _colour(self) -> tuple[list[Component], list[OddCycle]]:
+        """The components of the kernel's parity system (:func:`~polyloops.core.labellings.sign_system`:
+        a loop's sign relative to the lowest loop of its component), and for each axis whose
+        constraints conflict, an odd cycle of its side graph as a witness."""
+        ls = self.structure
+        system = sign_system(ls.map, ls.axes)
+        components = [Component(ls.axes[comp[0][0]], tuple(loop for loop, _ in comp),
+                                tuple(sign for _, sign in comp)) for comp in system.components]
+        odd_axes = sorted({ls.axes[a] for a, _, _ in system.conflicts})
+        return components, [self._odd_cycle(axis) for axis in odd_axes]
+
+    def _odd_cycle(self, axis: Axis) -> OddCycle:
+        """An odd cycle of the side graph of ``axis`` (breadth-first 2-colouring)."""
         adjacency: dict[Side, list[Side]] = defaultdict(list)
-        for a in Axis:
-            for u, v in self._side_edges[a]:
-                adjacency[u].append(v)
-                adjacency[v].append(u)
+        for u, v in self._side_edges[axis]:
+            adjacency[u].append(v)
+            adjacency[v].append(u)
         colour: dict[Side, int] = {}
         parent: dict[Side, Side | None] = {}
-        components: list[Component] = []
-        odd: list[OddCycle] = []
-        odd_axes: set[Axis] = set()
-        ls = self.structure
-        for root_loop in range(self.num_loops):
+        for root_loop in self.loops_of_axis[axis]:
             root = (root_loop, "R")
             if root in colour:
                 continue
             colour[root], parent[root] = 1, None
             queue = deque([root])
-            members = []
             while queue:
                 u = queue.popleft()
-                members.append(u)
                 for v in adjacency[u]:
                     if v not in colour:
                         colour[v], parent[v] = -colour[u], u
                         queue.append(v)
-                    elif colour[v] == colour[u] and ls.axes[u[0]] not in odd_axes:
-                        odd_axes.add(ls.axes[u[0]])
-                        odd.append(OddCycle(ls.axes[u[0]], self._cycle(parent, u, v)))
-            loops = sorted({loop for loop, _ in members})
-            # The colour of a loop's right side is its sign relative to the root's choice.
-            components.append(Component(ls.axes[root_loop], tuple(loops),
-                                        tuple(colour[(i, "R")] for i in loops)))
-        return components, odd
+                    elif colour[v] == colour[u]:
+                        return OddCycle(axis, self._cycle(parent, u, v))
+        raise AssertionError(f"the {axis}-constraints conflict, so their side graph has an odd cycle")
 
     @staticmethod
     def _cycle(parent: dict[Side, Side | None], u: Side, v: Side) -> tuple[Side, ...]:
