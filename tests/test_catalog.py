@@ -138,13 +138,14 @@ def test_resume_and_no_half_written_files(tmp_path, capsys):
 
 def test_slices_and_workers_agree(tmp_path):
     whole, a, b, w = (tmp_path / x for x in ("whole", "a", "b", "w"))
-    assert main(["catalog", "--min-corners", "20", "--max-corners", "20", "-o", str(whole)]) == 0
+    assert main(["catalog", "--min-corners", "20", "--max-corners", "20", "--generator", "plantri",
+                 "-o", str(whole)]) == 0
     assert main(["catalog", "--min-corners", "20", "--max-corners", "20", "--res", "0", "--mod", "2",
-                 "-o", str(a)]) == 0
+                 "--generator", "plantri", "-o", str(a)]) == 0
     assert main(["catalog", "--min-corners", "20", "--max-corners", "20", "--res", "1", "--mod", "2",
-                 "-o", str(b)]) == 0
+                 "--generator", "plantri", "-o", str(b)]) == 0
     assert main(["catalog", "--min-corners", "20", "--max-corners", "20", "--workers", "2",
-                 "-o", str(w)]) == 0
+                 "--generator", "plantri", "-o", str(w)]) == 0
     total = json.loads((whole / "summary.json").read_text())["counts"]["20"]
     halves = [json.loads((x / "summary.json").read_text())["counts"]["20"] for x in (a, b)]
     assert {m: halves[0][m] + halves[1][m] for m in MODES} == total
@@ -160,7 +161,7 @@ def test_dask_local(tmp_path, generator):
     out, ref = tmp_path / "d", tmp_path / "r"
     assert main(["catalog", "--max-corners", "16", "--dask", "local", "--generator", generator,
                  "-o", str(out)]) == 0
-    assert main(["catalog", "--max-corners", "16", "-o", str(ref)]) == 0
+    assert main(["catalog", "--max-corners", "16", "--generator", "plantri", "-o", str(ref)]) == 0
     assert (out / "catalog.jsonl").read_text() == (ref / "catalog.jsonl").read_text()
 
 

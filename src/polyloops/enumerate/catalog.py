@@ -20,9 +20,6 @@ different maps never coincide: classes are counted map by map.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-from typing import Any
-
 from polyloops.core.canonical import CanonicalForm, canonical_form
 from polyloops.core.corners import CATEGORIES, corner_histogram
 from polyloops.core.directions import Axis
@@ -36,37 +33,12 @@ from polyloops.core.labellings import (  # re-exported: the catalog's step 3 liv
 from polyloops.core.moves import removals
 from polyloops.core.structure import LoopStructure
 from polyloops.core.symmetry import Symmetry
+from polyloops.enumerate.records import CatalogRecord
 
 __all__ = ["MODES", "CatalogRecord", "MapStructureError", "map_classes", "only_structure_on",
            "polycube_classes_on", "polycube_structures"]
 
 MODES = tuple(Symmetry)  # labelled, rotation, full
-
-
-@dataclass(frozen=True)
-class CatalogRecord:
-    """One polycube class in one symmetry mode."""
-
-    signature: str
-    corners: int
-    faces: int
-    loops: dict[str, int]
-    categories: dict[str, int]
-    automorphisms: int
-    chiral: bool
-    removable_loops: int  # loops whose removal leaves a polycube loop structure
-
-    @property
-    def irreducible(self) -> bool:
-        """No loop can be removed: additions alone cannot build it (the cube is one too)."""
-        return self.removable_loops == 0
-
-    def to_json(self) -> dict[str, Any]:
-        """A JSON-ready dict: the record's fields and whether it is irreducible."""
-        return {"signature": self.signature, "corners": self.corners, "faces": self.faces,
-                "loops": self.loops, "corner_categories": self.categories,
-                "automorphisms": self.automorphisms, "chiral": self.chiral,
-                "removable_loops": self.removable_loops, "irreducible": self.irreducible}
 
 
 def map_classes(m: HalfEdgeMap) -> dict[str, list[CatalogRecord]]:

@@ -14,66 +14,15 @@ is the one place that reads them.
 from __future__ import annotations
 
 import json
-import sqlite3
 from dataclasses import dataclass
 from functools import cached_property
 from pathlib import Path
 from typing import Any
 
-from polyloops.core.corners import CATEGORIES
-from polyloops.core.errors import PolyloopsError
 from polyloops.core.symmetry import Symmetry
-from polyloops.enumerate.catalog import CatalogRecord
-from polyloops.io.files import InputError, check_regular, read_only_uri, read_text
-
-
-class CatalogError(PolyloopsError, ValueError):
-    """A catalog directory that cannot be read; the message names the file (and line)."""
-
-
-@dataclass(frozen=True)
-class CatalogEntry:
-    """One line of ``catalog.jsonl``: a class's stable name, the symmetry mode the catalog
-    lists classes in, and its record."""
-
-    name: str
-    symmetry: Symmetry
-    record: CatalogRecord
-
-    @property
-    def signature(self) -> str:
-        """The class's signature."""
-        return self.record.signature
-
-    @property
-    def corners(self) -> int:
-        """The class's number of corners."""
-        return self.record.corners
-
-    @classmethod
-    def from_json(cls, data: Any) -> CatalogEntry:
-        """An entry from a parsed JSON line; raises ``KeyError``, ``TypeError`` or
-        ``ValueError`` for anything that is not a catalog record."""
-        if not isinstance(data, dict):
-            raise TypeError("a record is a JSON object")
-        signature, corners = data["signature"], data["corners"]
-        if not isinstance(signature, str) or type(corners) is not int:
-            raise TypeError("signature must be text and corners an integer")
-        record = CatalogRecord(
-            signature, corners, int(data["faces"]), {a: int(n) for a, n in data["loops"].items()},
-            {c: int(data["corner_categories"][c]) for c in CATEGORIES}, int(data["automorphisms"]),
-            bool(data["chiral"]), int(data["removable_loops"]))
-        return cls(str(data.get("name", "")), Symmetry.parse(data.get("symmetry", "full")), record)
-
-    def to_json(self) -> dict[str, Any]:
-        """The entry as a ``catalog.jsonl`` line holds it."""
-        return {"name": self.name, **self.record.to_json(), "symmetry": str(self.symmetry)}
-
-    def structure(self):
-        """The class's canonical representative (a :class:`~polyloops.core.structure.LoopStructure`)."""
-        from polyloops.core.canonical import from_signature
-
-        return from_signature(self.signature)
+from polyloops.enumerate import records
+from polyloops.enumerate.records import CatalogEntry, CatalogError
+from polyloops.io.files import InputError, read_text
 
 
 @dataclass(frozen=True)
@@ -199,48 +148,19 @@ def summary_problem(summary: Any) -> str | None:
 
 
 def query(out: Path, where: str) -> tuple[list[str], list[tuple[Any, ...]]]:
-    """Rows of ``DIR/catalog.sqlite`` matching an SQL WHERE clause (read-only connection):
-    the column names and the rows, by corners then signature.  A missing table or a bad
-    clause raises :class:`CatalogError`.
+    """Rows of ``DIR/catalog.sqlite`` matching an SQL WHERE clause
+    (:func:`polyloops.enumerate.records.query`).
 
     >>> columns, rows = query(default_catalog(), "corners = 16")
     >>> columns[:3], [r[0] for r in rows]
     (['name', 'signature', 'corners'], ['P16.1', 'P16.2'])
     """
-    path = Path(out) / "catalog.sqlite"
-    if not (path.exists() or path.is_symlink()):
-        raise CatalogError(f"{path}: no catalog here")
-    try:
-        check_regular(path, limit=None)
-    except InputError as err:
-        raise CatalogError(str(err)) from None
-    con = sqlite3.connect(read_only_uri(path), uri=True)
-    try:
-        try:
-            tables = {name for (name,) in con.execute("SELECT name FROM sqlite_master WHERE type = 'table'")}
-        except sqlite3.DatabaseError as err:
-            raise CatalogError(f"{path}: not a catalog database ({err})") from None
-        if "polycubes" not in tables:
-            raise CatalogError(f"{path}: not a catalog database (no table polycubes)")
-        cur = con.execute(f"SELECT * FROM polycubes WHERE {where} ORDER BY corners, signature")
-        return [d[0] for d in cur.description], cur.fetchall()
-    except sqlite3.Error as err:
-        raise CatalogError(f"{out}: bad query: {err}") from None
-    finally:
-        con.close()
+    return records.query(Path(out) / "catalog.sqlite", where)
 
 
 def export_csv(out: Path) -> str:
-    """The whole ``polycubes`` table as CSV text (a header line, then one row per class)."""
-    import csv
-    import io
-
-    columns, rows = query(out, "1")
-    buf = io.StringIO()
-    writer = csv.writer(buf, lineterminator="\n")
-    writer.writerow(columns)
-    writer.writerows(rows)
-    return buf.getvalue()
+    """The whole ``polycubes`` table of ``DIR/catalog.sqlite`` as CSV text."""
+    return records.csv_text(Path(out) / "catalog.sqlite")
 
 
 @dataclass(frozen=True)

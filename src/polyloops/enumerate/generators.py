@@ -1,0 +1,355 @@
+"""Where a catalog's candidate maps come from: one small interface, and its generators.
+
+A :class:`Generator` cuts a catalog run into :class:`Job`\\ s (its shares), prepares what its
+jobs share (plantri's binary, the top of the loops search), and lists each job's candidate
+maps, counting what it visited in a :class:`Tally`.  The pipeline
+(:mod:`polyloops.enumerate.catalog_run`) classifies the maps, keeps each finished job as a
+typed :class:`JobResult` in ``DIR/parts/``, and merges the results; nothing in it knows which
+generator ran.  A new generator (genus 1, a pruned search) implements the interface and is
+added with :func:`register`.
+
+- ``plantri``: every quadrangulation plantri writes, filtered
+  (:mod:`polyloops.enumerate.quadrangulations`); jobs are plantri's slices ``n res/mod``, one
+  corner count each, and it counts the maps it reads;
+- ``loops``: arrangements of loops built one loop at a time
+  (:mod:`polyloops.enumerate.arrangements`); each job is a share of one search over every
+  corner count, and it counts the arrangements it builds.
+
+>>> sorted(GENERATORS)
+['loops', 'plantri']
+>>> [job.name for job in GENERATORS["plantri"].plan(8, 12, None, 1)]
+['n012-0of1', 'n010-0of1', 'n008-0of1']
+"""
+
+from __future__ import annotations
+
+import time
+from abc import ABC, abstractmethod
+from collections.abc import Iterator, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+from polyloops.core.halfedge import HalfEdgeMap
+from polyloops.enumerate.catalog import MODES, map_classes
+from polyloops.enumerate.records import CatalogRecord
+
+__all__ = ["GENERATORS", "CornerResult", "Generator", "Job", "JobResult", "LoopsGenerator",
+           "PlantriGenerator", "Tally", "register", "run_job"]
+
+# Version 5: one shape of result for every generator.  Parts of older versions are recomputed.
+SCHEMA_VERSION = 5
+
+
+@dataclass(frozen=True)
+class Job:
+    """One share of a catalog run: the candidate maps of generator ``generator`` with ``low``
+    to ``n`` corners in share ``res`` of ``mod``."""
+
+    generator: str
+    n: int
+    low: int
+    res: int = 0
+    mod: int = 1
+
+    @property
+    def name(self) -> str:
+        """The job's file name stem in ``DIR/parts`` (the generator's :meth:`Generator.job_name`)."""
+        return GENERATORS[self.generator].job_name(self)
+
+    def to_json(self) -> dict[str, Any]:
+        """A JSON-ready dict of the job."""
+        return {"generator": self.generator, "n": self.n, "low": self.low, "res": self.res, "mod": self.mod}
+
+    @classmethod
+    def from_json(cls, data: dict[str, Any]) -> Job:
+        """The job a stored result answers; raises ``KeyError`` or ``TypeError`` otherwise."""
+        return cls(str(data["generator"]), int(data["n"]), int(data["low"]), int(data["res"]), int(data["mod"]))
+
+
+@dataclass
+class Tally:
+    """What a job's generator visited: ``maps[n]`` and ``simple_strips[n]`` per corner count
+    (for generators that count maps they read), and ``statistics`` of its own (summed over
+    jobs, such as the loops search's), and ``visited``, the objects its progress counts."""
+
+    maps: dict[int, int] = field(default_factory=dict)
+    simple_strips: dict[int, int] = field(default_factory=dict)
+    statistics: dict[str, int] = field(default_factory=dict)
+    visited: int = 0
+
+
+@dataclass(frozen=True)
+class CornerResult:
+    """One corner count of a job: its candidate maps, its classes in every mode, and the maps
+    the generator read there (``None`` when it does not count them)."""
+
+    candidates: int
+    records: dict[str, tuple[CatalogRecord, ...]]
+    maps: int | None = None
+    simple_strips: int | None = None
+
+
+@dataclass(frozen=True)
+class JobResult:
+    """A finished job: its results by corner count, what its generator visited, its time."""
+
+    job: Job
+    corners: dict[int, CornerResult]
+    statistics: dict[str, int]
+    visited: int
+    seconds: float
+
+    def to_json(self) -> dict[str, Any]:
+        """The part file's content."""
+        return {"version": SCHEMA_VERSION, **self.job.to_json(), "visited": self.visited,
+                "statistics": self.statistics, "seconds": self.seconds,
+                "corners": {str(n): {"candidates": c.candidates, "maps": c.maps,
+                                     "simple_strips": c.simple_strips,
+                                     "records": {str(m): [r.to_json() for r in recs]
+                                                 for m, recs in c.records.items()}}
+                            for n, c in self.corners.items()}}
+
+    @classmethod
+    def from_json(cls, data: dict[str, Any]) -> JobResult:
+        """A stored part; raises ``KeyError``, ``TypeError`` or ``ValueError`` when it is not
+        one of this schema."""
+        if data.get("version") != SCHEMA_VERSION:
+            raise ValueError("a part of another schema version")
+        corners = {int(n): CornerResult(int(c["candidates"]),
+                                        {m: tuple(CatalogRecord.from_json(r) for r in recs)
+                                         for m, recs in c["records"].items()},
+                                        c["maps"], c["simple_strips"])
+                   for n, c in data["corners"].items()}
+        return cls(Job.from_json(data), corners, {k: int(v) for k, v in data["statistics"].items()},
+                   int(data["visited"]), float(data["seconds"]))
+
+
+class Generator(ABC):
+    """A source of candidate maps for the catalog (see the module docstring).
+
+    Subclasses set ``name`` and ``visits`` (what :attr:`Tally.visited` counts, for progress),
+    and implement :meth:`plan` and :meth:`candidates`; :meth:`prepare` computes what the jobs
+    of one run share, and :meth:`unavailable` says why the generator cannot run here."""
+
+    name: str = ""
+    visits: str = "maps"
+    statistics_key: str | None = None  # summary.json's key for the summed statistics
+
+    def unavailable(self) -> str | None:
+        """Why this generator cannot run here (a part not built), or ``None``."""
+        return None
+
+    @abstractmethod
+    def plan(self, low: int, high: int, share: tuple[int, int] | None, workers: int) -> list[Job]:
+        """The jobs covering ``low`` to ``high`` corners: just share ``(res, mod)`` when given,
+        else cut for ``workers`` local processes."""
+
+    def job_name(self, job: Job) -> str:
+        """A job's file name stem in ``DIR/parts``."""
+        return f"{self.name}-{job.low}to{job.n}-{job.res}of{job.mod}"
+
+    def corner_counts(self, job: Job) -> range:
+        """The corner counts a job reports (each gets a :class:`CornerResult`)."""
+        return range(job.low, job.n + 1)
+
+    def prepare(self, jobs: Sequence[Job], workers: int = 1, dask: str | None = None) -> list[Any]:
+        """What each job needs besides itself (picklable), computed once for the run."""
+        return [None] * len(jobs)
+
+    @abstractmethod
+    def candidates(self, job: Job, context: Any, tally: Tally) -> Iterator[HalfEdgeMap]:
+        """The job's candidate maps (each once up to isomorphism, mirror images identified);
+        ``tally`` records what was visited."""
+
+
+GENERATORS: dict[str, Generator] = {}
+
+
+def register(generator: Generator) -> Generator:
+    """Make ``generator`` available to :func:`~polyloops.enumerate.catalog_run.build_catalog`
+    by its name (a later one of the same name replaces it)."""
+    GENERATORS[generator.name] = generator
+    return generator
+
+
+def run_job(task: tuple[Generator, Job, Any]) -> JobResult:
+    """Classify one job's candidate maps (:func:`~polyloops.enumerate.catalog.map_classes`)."""
+    generator, job, context = task
+    start = time.perf_counter()
+    tally = Tally()
+    found: dict[int, list[int | dict[str, list[CatalogRecord]]]] = {
+        n: [0, {str(mode): [] for mode in MODES}] for n in generator.corner_counts(job)}
+    for m in generator.candidates(job, context, tally):
+        if m.num_corners not in found:
+            continue
+        entry = found[m.num_corners]
+        entry[0] += 1  # type: ignore[operator]
+        for mode, recs in map_classes(m).items():
+            entry[1][str(mode)].extend(recs)  # type: ignore[index]
+    corners = {n: CornerResult(count, {m: tuple(r) for m, r in recs.items()},  # type: ignore[union-attr]
+                               tally.maps.get(n), tally.simple_strips.get(n))
+               for n, (count, recs) in found.items()}
+    return JobResult(job, corners, dict(tally.statistics), tally.visited, time.perf_counter() - start)
+
+
+# -- plantri's quadrangulations, filtered -----------------------------------------------------------
+
+@dataclass(frozen=True)
+class PlantriContext:
+    binary: str
+    method: str
+
+
+class PlantriGenerator(Generator):
+    """Every simple quadrangulation with minimum degree 3 plantri writes, read through the strip
+    filter; a job is plantri's slice ``-qc2 n res/mod`` of one even corner count."""
+
+    name = "plantri"
+    visits = "maps"
+
+    def __init__(self, binary: str | None = None, method: str = "auto"):
+        self.binary, self.method = binary, method
+
+    def configured(self, binary: str | None, method: str) -> PlantriGenerator:
+        """This generator with another plantri binary or strip-filter method."""
+        return PlantriGenerator(binary, method)
+
+    def job_name(self, job: Job) -> str:
+        return f"n{job.n:03d}-{job.res}of{job.mod}"
+
+    def corner_counts(self, job: Job) -> range:
+        return range(job.n, job.n + 1)
+
+    def plan(self, low: int, high: int, share: tuple[int, int] | None, workers: int) -> list[Job]:
+        """One job per even corner count (odd counts have no polycube:
+        :func:`polyloops.enumerate.quadrangulations.odd_corners_have_no_polycube`), split into
+        :func:`slices` for several workers, largest first so that workers finish together."""
+        jobs = []
+        for n in range(low, high + 1):
+            if n % 2:
+                continue
+            if share is not None:
+                jobs.append(Job(self.name, n, n, *share))
+            else:
+                parts = slices(n, workers)
+                jobs.extend(Job(self.name, n, n, r, parts) for r in range(parts))
+        return sorted(jobs, key=lambda j: (-j.n, j.res))
+
+    def prepare(self, jobs: Sequence[Job], workers: int = 1, dask: str | None = None) -> list[Any]:
+        from polyloops.enumerate.quadrangulations import find_plantri, resolve_method
+
+        context = PlantriContext(find_plantri(self.binary), resolve_method(self.method))
+        return [context] * len(jobs)
+
+    def candidates(self, job: Job, context: Any, tally: Tally) -> Iterator[HalfEdgeMap]:
+        from polyloops.enumerate.quadrangulations import FilteredBatch, candidate_maps
+
+        tally.maps[job.n] = tally.simple_strips[job.n] = 0
+
+        def seen(batch: FilteredBatch) -> None:
+            tally.maps[job.n] += batch.maps
+            tally.simple_strips[job.n] += batch.simple_strips
+            tally.visited += batch.maps
+
+        yield from candidate_maps(job.n, context.binary, job.res, job.mod, on_batch=seen,
+                                  method=context.method)
+
+
+def slices(n: int, workers: int) -> int:
+    """How many plantri slices a corner count is split into.  Each slice of ``plantri -qc2 n
+    res/mod`` first regenerates the part of plantri's search tree above its split level, about
+    1.5 s whatever ``n`` (measured at 28 and 30 corners), so slices are kept long: the number of
+    maps grows about 3.6 times per corner, the slices about 2 times per two corners (about 15 s
+    of plantri each at 28 corners, 100 s at 30)."""
+    return 1 if workers <= 1 or n < 24 else workers * 2 ** ((n - 22) // 2)
+
+
+# -- arrangements of loops -----------------------------------------------------------------------
+
+class LoopsGenerator(Generator):
+    """Arrangements of loops built one loop at a time by a canonical construction path (the
+    compiled search); a job is share ``res/mod`` of the subtrees below the top of the tree,
+    covering every corner count at once."""
+
+    name = "loops"
+    visits = "arrangements"
+    statistics_key = "search"
+
+    def unavailable(self) -> str | None:
+        from polyloops.enumerate.arrangements import compiled_generator_available
+
+        if compiled_generator_available():
+            return None
+        return ("the compiled arrangement search was not built (a C compiler and the Python headers "
+                "are needed at install time)")
+
+    def plan(self, low: int, high: int, share: tuple[int, int] | None, workers: int) -> list[Job]:
+        if share is not None:
+            return [Job(self.name, high, low, *share)]
+        parts = loops_slices(high, workers)
+        return [Job(self.name, high, low, r, parts) for r in range(parts)]
+
+    def prepare(self, jobs: Sequence[Job], workers: int = 1, dask: str | None = None) -> list[Any]:
+        """The top of the search (computed once a run for each bound, spread over the workers;
+        not stored: 5 s at 28 corners) and each job's part of it."""
+        tops = {n: loops_frontier(n, workers, dask) for n in {job.n for job in jobs}}
+        return [(share_of(tops[job.n][0], job.res, job.mod), tops[job.n][1] if job.res == 0 else None)
+                for job in jobs]
+
+    def candidates(self, job: Job, context: Any, tally: Tally) -> Iterator[HalfEdgeMap]:
+        from polyloops.enumerate.arrangements import SearchStats, candidate_arrangements
+
+        top, top_search = context if context is not None else (None, None)
+        stats = [SearchStats(**top_search)] if top_search else []
+        # a given ``top`` is this share's part of the frontier (share_of): all of it is ours
+        res, mod = (0, 1) if top is not None else (job.res, job.mod)
+        for a in candidate_arrangements(job.n, res, mod, on_stats=stats.append, top=top):
+            if a.corners >= job.low:
+                yield a.quad_mesh()
+        total = sum(stats, SearchStats()).as_dict()
+        tally.statistics.update(total)
+        tally.visited += total["arrangements"]
+
+
+def loops_slices(max_n: int, workers: int) -> int:
+    """How many shares a loops run is cut into.  The frontier is computed once a run, and
+    finished shares are what a rerun keeps, so eight a worker from 26 corners on (a share
+    then takes about 10 s of CPU at 28 corners, 70 s at 30)."""
+    return 1 if workers <= 1 and max_n < 26 else max(workers, 1) * (8 if max_n >= 26 else 1)
+
+
+def _expand_chunk(args: tuple[list[Any], int]) -> list[Any]:
+    from polyloops.enumerate.arrangements import expand
+
+    return expand(*args)
+
+
+def loops_frontier(max_n: int, workers: int = 1, dask: str | None = None) -> tuple[Any, dict[str, int]]:
+    """The loops search's frontier for ``max_n`` corners and its statistics, each level spread
+    over the workers.  It is not stored (hundreds of thousands of arrangements from 28 corners
+    on): a rerun computes it again (5 s at 28 corners) and then skips the shares already done."""
+    from polyloops.enumerate.arrangements import SearchStats, frontier
+    from polyloops.enumerate.parallel import run_jobs
+
+    stats: list[SearchStats] = []
+
+    def spread(nodes: list[Any], max_corners: int) -> list[Any]:
+        size = max(1, -(-len(nodes) // (4 * workers)))
+        chunks = [(nodes[i:i + size], max_corners) for i in range(0, len(nodes), size)]
+        parts = run_jobs(_expand_chunk, chunks, workers, dask, ordered=True)
+        return [pair for part in parts for pair in part]
+
+    top = frontier(max_n, on_stats=stats.append, expander=spread)
+    return top, sum(stats, SearchStats()).as_dict()
+
+
+def share_of(top: Any, res: int, mod: int) -> Any:
+    """The part of a frontier one share needs: its roots (rank ``res`` modulo ``mod``), and the
+    candidates above the frontier for share 0."""
+    from polyloops.enumerate.arrangements import Frontier
+
+    return Frontier(top.loops, top.roots[res::mod], top.shallow if res == 0 else ())
+
+
+register(PlantriGenerator())
+register(LoopsGenerator())
