@@ -34,7 +34,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from _common import markdown_table
 
-from polyloops.enumerate.catalog_run import slices
+from polyloops.enumerate.generators import slices
 from polyloops.enumerate.quadrangulations import find_plantri
 
 

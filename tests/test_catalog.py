@@ -15,7 +15,9 @@ from polyloops.core.directions import Axis
 from polyloops.core.halfedge import HalfEdgeMap
 from polyloops.core.structure import LoopStructure
 from polyloops.enumerate.catalog import MODES
+from polyloops.enumerate.generators import GENERATORS, Generator, Job, register
 from polyloops.enumerate.quadrangulations import find_plantri, plantri_batches, plantri_count
+from polyloops.io.examples import load_example
 from polyloops.solvers import OrientationProblem, make_solver
 from polyloops.verify import check_polycube_loop_structure
 
@@ -287,9 +289,9 @@ def test_no_quadrangulation_with_odd_corners_has_only_simple_loops():
 
 
 def test_odd_counts_are_not_generated(tmp_path):
-    from polyloops.enumerate.catalog_run import plan_jobs
+    from polyloops.enumerate.generators import GENERATORS
 
-    assert {j.n for j in plan_jobs(8, 21, None, None, 2)} == {8, 10, 12, 14, 16, 18, 20}
+    assert {j.n for j in GENERATORS["plantri"].plan(8, 21, None, 2)} == {8, 10, 12, 14, 16, 18, 20}
     assert main(["catalog", "--min-corners", "9", "--max-corners", "11", "--generator", "plantri",
                  "-o", str(tmp_path / "c")]) == 0
     summary = json.loads((tmp_path / "c" / "summary.json").read_text())
@@ -351,11 +353,13 @@ def test_counts_page_and_bfiles_are_the_summary():
 
 
 def test_long_corner_counts_are_sliced():
-    from polyloops.enumerate.catalog_run import Job, plan_jobs
+    from polyloops.enumerate.generators import GENERATORS, Job
 
-    jobs = plan_jobs(24, 26, None, None, 2)
-    assert set(jobs) == {Job(24, r, 4) for r in range(4)} | {Job(26, r, 8) for r in range(8)}
-    assert all(j.mod == 1 for j in plan_jobs(8, 30, None, None, 1))
+    plantri = GENERATORS["plantri"]
+    jobs = plantri.plan(24, 26, None, 2)
+    assert set(jobs) == ({Job("plantri", 24, 24, r, 4) for r in range(4)}
+                         | {Job("plantri", 26, 26, r, 8) for r in range(8)})
+    assert all(j.mod == 1 for j in plantri.plan(8, 30, None, 1))
 
 
 @pytest.mark.slow
@@ -496,3 +500,51 @@ def test_catalog_query_in_strange_directory_names(tmp_path, capsys, name):
     empty.mkdir()
     assert main(["catalog", "query", str(empty), "corners = 16"]) == 2
     assert list(empty.iterdir()) == []  # no stray database left behind
+
+
+# -- a generator plugs in by the interface alone -------------------------------------------------
+
+class ToyGenerator(Generator):
+    """A toy generator: the quad maps of a few bundled examples, one job a corner count."""
+
+    name = "toy"
+    visits = "examples"
+    statistics_key = "toy"
+
+    def plan(self, low, high, share, workers):
+        res, mod = share or (0, 1)
+        return [Job(self.name, n, n, res, mod) for n in range(low, high + 1) if n % 2 == 0]
+
+    def candidates(self, job, context, tally):
+        for name in ("cube", "box-2x1x1", "l-shape"):
+            m = load_example(name).map
+            if m.num_corners == job.n and job.res == 0:
+                tally.visited += 1
+                tally.statistics["examples"] = tally.statistics.get("examples", 0) + 1
+                yield m
+
+
+def test_a_toy_generator_builds_a_catalog_through_the_pipeline(tmp_path):
+    """Implementing the interface is all a generator needs: the pipeline plans, runs, keeps
+    parts, names and stores the records, and sums the generator's statistics."""
+    from polyloops.enumerate.catalog_run import build_catalog
+
+    register(ToyGenerator())
+    try:
+        built = build_catalog(tmp_path / "toy", 16, generator="toy")
+        again = build_catalog(tmp_path / "toy", 16, generator="toy")  # resumed from its parts
+    finally:
+        GENERATORS.pop("toy")
+    reference = build_catalog(tmp_path / "ref", 16, generator="plantri")
+    known = {json.loads(line)["signature"]: json.loads(line)["name"]
+             for line in (tmp_path / "ref" / "catalog.jsonl").read_text().splitlines()}
+    mine = [json.loads(line) for line in (tmp_path / "toy" / "catalog.jsonl").read_text().splitlines()]
+    # the cube, the 2x1x1 box and the L: each named as the full catalog names it, where its
+    # corner count holds no other class of the toy's
+    assert [r["name"] for r in mine] == ["P8.1", "P12.1", "P16.1"]
+    assert [known[r["signature"]] for r in mine] == ["P8.1", "P12.1", "P16.2"]
+    assert built.summary["generator"] == "toy" and built.summary["toy"] == {"examples": 3}
+    assert set(built.summary["quadrangulations"].values()) == {None}  # the toy counts no maps
+    assert reference.summary["counts"]["12"] == built.summary["counts"]["12"]  # the 2x1x1 boxes
+    assert again.summary == built.summary and sorted(p.name for p in (tmp_path / "toy" / "parts").iterdir()) \
+        == [f"toy-{n}to{n}-0of1.json" for n in (10, 12, 14, 16, 8)]

@@ -29,6 +29,7 @@ def cmd_catalog(args: argparse.Namespace) -> int:
         build_catalog,
         choose_generator,
     )
+    from polyloops.enumerate.generators import GENERATORS, JobResult
     from polyloops.enumerate.quadrangulations import PlantriError
 
     try:
@@ -44,11 +45,12 @@ def cmd_catalog(args: argparse.Namespace) -> int:
     def planned(jobs: list[Any]) -> None:
         bar.reset(total=len(jobs))
 
-    def progress(result: dict[str, Any]) -> None:
-        # plantri's jobs count the maps they read, the loops' the arrangements they built
-        maps[0] += result["search"]["arrangements"] if "search" in result else result["quadrangulations"]
+    visits = GENERATORS[generator].visits
+
+    def progress(result: JobResult) -> None:
+        maps[0] += result.visited  # what the generator visits: maps read, arrangements built
         bar.update(1)
-        bar.set_postfix({"corners": result["n"], "arrangements" if "search" in result else "maps": maps[0]})
+        bar.set_postfix({"corners": result.job.n, visits: maps[0]})
 
     try:
         built = build_catalog(args.output, args.max_corners, args.min_corners, args.symmetry,
@@ -70,8 +72,9 @@ def cmd_catalog(args: argparse.Namespace) -> int:
             for k, v in summary["counts"].items()]
     text = "corners  quadrangulations  simple strips  labelled  rotation  full\n" + "\n".join(
         f"{r[0]:>7}  {r[1]:>16}  {r[2]:>13}  {r[3]:>8}  {r[4]:>8}  {r[5]:>4}" for r in rows)
-    if "search" in summary:
-        text += f"\narrangements built: {summary['search']['arrangements']} (generator loops)"
+    key = GENERATORS[generator].statistics_key
+    if key is not None and "arrangements" in summary.get(key, {}):
+        text += f"\narrangements built: {summary[key]['arrangements']} (generator {generator})"
     emit(args, summary, f"{text}\nwrote {built.records} records ({args.symmetry}) to {args.output}")
     return EXIT_OK
 
@@ -131,7 +134,9 @@ def add_commands(command: AddCommand, hidden: AddCommand) -> None:
     p.add_argument("--symmetry", choices=SYMMETRIES, default="full",
                    help="which classes the records list (summary.json counts all three); default full")
     p.add_argument("--workers", type=count_arg(1), default=1, metavar="K", help="local worker processes")
-    p.add_argument("--generator", choices=("plantri", "loops"), default=None,
+    from polyloops.enumerate.generators import GENERATORS
+
+    p.add_argument("--generator", choices=sorted(GENERATORS), default=None,
                    help="where candidate maps come from: loops (arrangements built one loop at a "
                    "time, compiled at install; the default where it was built) or plantri (every "
                    "quadrangulation, filtered; the default otherwise, and when --method or "

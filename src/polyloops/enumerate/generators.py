@@ -63,7 +63,8 @@ class Job:
     @classmethod
     def from_json(cls, data: dict[str, Any]) -> Job:
         """The job a stored result answers; raises ``KeyError`` or ``TypeError`` otherwise."""
-        return cls(str(data["generator"]), int(data["n"]), int(data["low"]), int(data["res"]), int(data["mod"]))
+        return cls(str(data["generator"]), int(data["n"]), int(data["low"]), int(data["res"]),
+                   int(data["mod"]))
 
 
 @dataclass
@@ -134,10 +135,26 @@ class Generator(ABC):
     name: str = ""
     visits: str = "maps"
     statistics_key: str | None = None  # summary.json's key for the summed statistics
+    options: frozenset[str] = frozenset()  # what with_options takes
+    preference: int = 0  # the default generator is the most preferred that can run
 
     def unavailable(self) -> str | None:
         """Why this generator cannot run here (a part not built), or ``None``."""
         return None
+
+    def with_options(self, **options: Any) -> Generator:
+        """This generator with the build's options (``plantri``: a binary, ``method``: the
+        strip filter); one that takes none refuses any that is set.
+
+        Raises
+        ------
+        ValueError
+            For an option this generator does not take.
+        """
+        given = [k for k, v in options.items() if v not in (None, "auto") and k not in self.options]
+        if given:
+            raise ValueError(f"the {self.name} generator takes no option {', '.join(given)}")
+        return self
 
     @abstractmethod
     def plan(self, low: int, high: int, share: tuple[int, int] | None, workers: int) -> list[Job]:
@@ -177,18 +194,16 @@ def run_job(task: tuple[Generator, Job, Any]) -> JobResult:
     generator, job, context = task
     start = time.perf_counter()
     tally = Tally()
-    found: dict[int, list[int | dict[str, list[CatalogRecord]]]] = {
-        n: [0, {str(mode): [] for mode in MODES}] for n in generator.corner_counts(job)}
+    counts = dict.fromkeys(generator.corner_counts(job), 0)
+    records: dict[int, dict[str, list[CatalogRecord]]] = {n: {str(m): [] for m in MODES} for n in counts}
     for m in generator.candidates(job, context, tally):
-        if m.num_corners not in found:
-            continue
-        entry = found[m.num_corners]
-        entry[0] += 1  # type: ignore[operator]
-        for mode, recs in map_classes(m).items():
-            entry[1][str(mode)].extend(recs)  # type: ignore[index]
-    corners = {n: CornerResult(count, {m: tuple(r) for m, r in recs.items()},  # type: ignore[union-attr]
+        if m.num_corners in counts:
+            counts[m.num_corners] += 1
+            for mode, recs in map_classes(m).items():
+                records[m.num_corners][str(mode)].extend(recs)
+    corners = {n: CornerResult(count, {m: tuple(r) for m, r in records[n].items()},
                                tally.maps.get(n), tally.simple_strips.get(n))
-               for n, (count, recs) in found.items()}
+               for n, count in counts.items()}
     return JobResult(job, corners, dict(tally.statistics), tally.visited, time.perf_counter() - start)
 
 
@@ -196,6 +211,8 @@ def run_job(task: tuple[Generator, Job, Any]) -> JobResult:
 
 @dataclass(frozen=True)
 class PlantriContext:
+    """What every plantri job of a run shares: the binary, and the strip filter resolved."""
+
     binary: str
     method: str
 
@@ -206,18 +223,25 @@ class PlantriGenerator(Generator):
 
     name = "plantri"
     visits = "maps"
+    options = frozenset({"plantri", "method"})
+    preference = 1  # the reference, and the fallback without a compiler
 
     def __init__(self, binary: str | None = None, method: str = "auto"):
         self.binary, self.method = binary, method
 
-    def configured(self, binary: str | None, method: str) -> PlantriGenerator:
-        """This generator with another plantri binary or strip-filter method."""
-        return PlantriGenerator(binary, method)
+    def with_options(self, **options: Any) -> Generator:
+        """This generator with another plantri binary (``plantri``) or strip-filter ``method``."""
+        extra = set(options) - {"plantri", "method"}
+        if extra:
+            raise ValueError(f"the plantri generator takes no option {', '.join(sorted(extra))}")
+        return PlantriGenerator(options.get("plantri"), options.get("method") or "auto")
 
     def job_name(self, job: Job) -> str:
+        """``n024-0of1``: plantri's slice of one corner count."""
         return f"n{job.n:03d}-{job.res}of{job.mod}"
 
     def corner_counts(self, job: Job) -> range:
+        """A plantri job covers its one corner count."""
         return range(job.n, job.n + 1)
 
     def plan(self, low: int, high: int, share: tuple[int, int] | None, workers: int) -> list[Job]:
@@ -236,12 +260,14 @@ class PlantriGenerator(Generator):
         return sorted(jobs, key=lambda j: (-j.n, j.res))
 
     def prepare(self, jobs: Sequence[Job], workers: int = 1, dask: str | None = None) -> list[Any]:
+        """The binary and the filter, found once (a missing one fails before any work)."""
         from polyloops.enumerate.quadrangulations import find_plantri, resolve_method
 
         context = PlantriContext(find_plantri(self.binary), resolve_method(self.method))
         return [context] * len(jobs)
 
     def candidates(self, job: Job, context: Any, tally: Tally) -> Iterator[HalfEdgeMap]:
+        """The maps of the slice that pass the filter; every map read is counted."""
         from polyloops.enumerate.quadrangulations import FilteredBatch, candidate_maps
 
         tally.maps[job.n] = tally.simple_strips[job.n] = 0
@@ -274,8 +300,10 @@ class LoopsGenerator(Generator):
     name = "loops"
     visits = "arrangements"
     statistics_key = "search"
+    preference = 2  # several times cheaper from 26 corners on
 
     def unavailable(self) -> str | None:
+        """Why the compiled search cannot run (it was not built), or ``None``."""
         from polyloops.enumerate.arrangements import compiled_generator_available
 
         if compiled_generator_available():
@@ -284,6 +312,7 @@ class LoopsGenerator(Generator):
                 "are needed at install time)")
 
     def plan(self, low: int, high: int, share: tuple[int, int] | None, workers: int) -> list[Job]:
+        """One search over every corner count, cut into :func:`loops_slices` shares."""
         if share is not None:
             return [Job(self.name, high, low, *share)]
         parts = loops_slices(high, workers)
@@ -297,6 +326,8 @@ class LoopsGenerator(Generator):
                 for job in jobs]
 
     def candidates(self, job: Job, context: Any, tally: Tally) -> Iterator[HalfEdgeMap]:
+        """The share's candidate arrangements as quad maps; the search's statistics go to
+        ``tally`` (share 0 adds the top's)."""
         from polyloops.enumerate.arrangements import SearchStats, candidate_arrangements
 
         top, top_search = context if context is not None else (None, None)
