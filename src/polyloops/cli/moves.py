@@ -14,7 +14,7 @@ from polyloops.core.directions import Axis
 def _count_additions(ls: Any, axes: list[Axis], args: argparse.Namespace) -> Any:
     from tqdm import tqdm
 
-    from polyloops.core.moves import count_additions_within
+    from polyloops.enumerate.listing import count_additions_within
 
     bar = tqdm(unit=" loops", desc="counting", disable=None, file=sys.stderr, leave=False)
     shown = dict.fromkeys((a.name for a in axes), 0)
@@ -32,7 +32,8 @@ def _count_additions(ls: Any, axes: list[Axis], args: argparse.Namespace) -> Any
 
 
 def cmd_moves(args: argparse.Namespace) -> int:
-    from polyloops.core.moves import check_removal, list_additions
+    from polyloops.core.moves import check_removal
+    from polyloops.enumerate.listing import list_additions
 
     if sum(map(bool, (args.count, args.shortest is not None, args.sample is not None))) > 1:
         raise CliError("--count, --shortest and --sample are different questions: ask one")
@@ -99,7 +100,7 @@ def cmd_add(args: argparse.Namespace) -> int:
     except InvalidMoveError as err:
         raise CliError(f"{args.file}: {err}", EXIT_INVALID) from None
     except MoveError as err:
-        raise CliError(f"{args.file}: {err}") from None
+        raise CliError(f"{args.file}: {err} ('polyloops moves {args.file}' lists them)") from None
     text = write_output(args.output, add_loop(ls, move))
     if text is not None:
         print(text, end="")

@@ -572,7 +572,7 @@ def _unwrap(sig: str) -> str:
         raise SignatureError("an empty signature")
     if sig[0] in "ol":
         raise SignatureError("an unversioned signature of polyloops 0.1 (no check characters); "
-                             "make it again with 'polyloops signature'")
+                             "compute it again from the structure")
     if sig[0] != SIGNATURE_VERSION:
         raise SignatureError(f"signature version {sig[0]!r} is not one this polyloops reads "
                              f"(version {SIGNATURE_VERSION})")

@@ -35,7 +35,6 @@ corners and faces are then renumbered consecutively in their old order.
 from __future__ import annotations
 
 import random
-import time
 from collections import defaultdict
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
@@ -300,18 +299,24 @@ def additions(ls: LoopStructure, axis: Axis | None = None, limit: int | None = N
     """
     n = 0
     for a in (Axis if axis is None else [axis]):
-        for move in _valid_additions(ls, a, max_length, stop):
+        for move in valid_additions(ls, a, max_length, stop):
             if limit is not None and n >= limit:
                 return
             n += 1
             yield move
 
 
-def _valid_additions(ls: LoopStructure, axis: Axis, max_length: int | None = None,
+def valid_additions(ls: LoopStructure, axis: Axis, max_length: int | None = None,
                      stop: Callable[[], bool] | None = None,
                      graph: _AdditionGraph | None = None) -> Iterator[Addition]:
-    """The cycles of the addition graph (``graph``, built here if not given) whose loops
-    separate their zone."""
+    """The valid ``axis``-additions: the cycles of the addition graph (``graph``, built here if
+    not given; at most ``max_length`` corners) whose loops separate their zone.  ``stop()`` is
+    asked now and then, and :class:`SearchStopped` raised when it says so.
+
+    >>> from polyloops.io.examples import load_example
+    >>> sum(1 for _ in valid_additions(load_example("cube").dualize(), Axis.X))
+    2
+    """
     if not ls.oriented:
         raise ValueError("loop moves need an oriented loop structure")
     for cycle in (graph or _AdditionGraph(ls, axis)).cycles(max_length, stop):
@@ -348,75 +353,17 @@ def addition_at(ls: LoopStructure, index: str | int) -> Addition | None:
 
 def count_additions(ls: LoopStructure, limit: int | None = None,
                     axes: Sequence[Axis] = tuple(Axis)) -> dict[str, int]:
-    """The number of valid additions per label (of ``axes`` only), counted without storing them."""
-    return count_additions_within(ls, axes, limit).counts
-
-
-@dataclass(frozen=True)
-class AdditionCount:
-    """Valid additions per label, and per label whether the count is complete: ``False`` where
-    ``limit`` or the time limit stopped it, so that the number is only a lower bound."""
-
-    counts: dict[str, int]
-    complete: dict[str, bool]
-
-
-def count_additions_within(ls: LoopStructure, axes: Sequence[Axis] = tuple(Axis),
-                           limit: int | None = None, seconds: float | None = None,
-                           progress: Callable[[str, int], None] | None = None) -> AdditionCount:
-    """Count valid additions label by label, stopping a label at ``limit`` and everything when
-    ``seconds`` have passed (checked inside the cycle search too, so a search that finds
-    nothing for a long time still stops).  ``progress(label, count)`` is called now and then.
-
-    >>> from polyloops.io.examples import load_example
-    >>> count_additions_within(load_example("cube").dualize(), limit=1)
-    AdditionCount(counts={'X': 1, 'Y': 1, 'Z': 1}, complete={'X': False, 'Y': False, 'Z': False})
-    """
-    budget = TimeShares(seconds, len(axes))
-    counts = dict.fromkeys((a.name for a in axes), 0)
-    complete = dict.fromkeys(counts, False)
+    """The number of valid additions per label (of ``axes`` only, at most ``limit`` each),
+    counted without storing them."""
+    out = {}
     for a in axes:
-        expired = budget.next_share()
-        found = 0
-        try:
-            for _ in _valid_additions(ls, a, None, expired):
-                if limit is not None and found >= limit:
-                    break
-                found += 1
-                if progress is not None and found % 256 == 0:
-                    progress(a.name, found)
-            else:
-                complete[a.name] = True
-        except SearchStopped:
-            pass
-        counts[a.name] = found
-        if progress is not None:
-            progress(a.name, found)
-    return AdditionCount(counts, complete)
-
-
-class TimeShares:
-    """A time budget shared by ``parts`` searches done one after another: each gets an equal
-    share of what is left when it starts, so time a quick search leaves over goes to the later
-    ones and no search is starved by an earlier one (``seconds=None``: no bound).
-
-    >>> shares = TimeShares(None, 3)
-    >>> shares.next_share()()
-    False
-    """
-
-    def __init__(self, seconds: float | None, parts: int):
-        self.end = None if seconds is None else time.monotonic() + seconds
-        self.left = max(parts, 1)
-
-    def next_share(self) -> Callable[[], bool]:
-        """The ``expired()`` test of the next search's share."""
-        if self.end is None:
-            return lambda: False
-        now = time.monotonic()
-        deadline = now + max(self.end - now, 0.0) / self.left
-        self.left = max(self.left - 1, 1)
-        return lambda: time.monotonic() > deadline
+        n = 0
+        for _ in valid_additions(ls, a):
+            if limit is not None and n >= limit:
+                break
+            n += 1
+        out[a.name] = n
+    return out
 
 
 def shortest_additions(ls: LoopStructure, axis: Axis, k: int,
@@ -438,7 +385,7 @@ def shortest_additions(ls: LoopStructure, axis: Axis, k: int,
         return found
     graph = _AdditionGraph(ls, axis)
     for length in range(3, ls.map.num_corners + 1):
-        found.extend(mv for mv in _valid_additions(ls, axis, length, stop, graph) if len(mv.cycle) == length)
+        found.extend(mv for mv in valid_additions(ls, axis, length, stop, graph) if len(mv.cycle) == length)
         if len(found) >= k:
             break
     return found[:k]
@@ -843,7 +790,8 @@ class InvalidMoveError(MoveError):
     """A well-formed loop addition that is not valid on this structure."""
 
 
-MOVE_SYNTAX = "write an index from 'polyloops moves' (such as Y3), or AXIS:c0,c1,..."
+MOVE_SYNTAX = ("an addition is named by its index in the listing of additions (such as Y3) or as "
+               "AXIS:c0,c1,... (its corners)")
 
 
 def parse_addition(ls: LoopStructure, text: str) -> Addition:
@@ -861,7 +809,7 @@ def parse_addition(ls: LoopStructure, text: str) -> Addition:
     >>> parse_addition(box, "Q7")  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    polyloops.core.moves.MoveError: move 'Q7': write an index from 'polyloops moves' (such as Y3), ...
+    polyloops.core.moves.MoveError: move 'Q7': an addition is named by its index in the listing ...
     """
     if ":" in text:
         label, _, corners = text.partition(":")
@@ -881,77 +829,5 @@ def parse_addition(ls: LoopStructure, text: str) -> Addition:
     except ValueError:
         raise MoveError(f"move {text!r}: {MOVE_SYNTAX}") from None
     if found is None:
-        raise MoveError(f"there is no addition {text} ('polyloops moves' lists them)")
+        raise MoveError(f"there is no addition {text}")
     return found
-
-
-@dataclass(frozen=True)
-class AdditionListing:
-    """Additions found by :func:`list_additions`, each with its name, and per label whether
-    the listing is complete (``False`` where a limit or the time limit stopped it)."""
-
-    additions: tuple[tuple[str, Addition], ...]
-    complete: dict[str, bool]
-    stopped_by: str | None  # "a limit", "the time limit", or None when complete
-
-
-def list_additions(ls: LoopStructure, axes: Sequence[Axis] = tuple(Axis), *, limit: int | None = None,
-                   seconds: float | None = None, shortest: int | None = None,
-                   sample: int | None = None, seed: int = 0,
-                   on_found: Callable[[str, Addition], None] | None = None) -> AdditionListing:
-    """Valid additions of the labels ``axes``: all of them in :func:`additions` order (named
-    ``Y3``, at most ``limit`` in all), the ``shortest`` per label, or a random ``sample`` per
-    label (named by their cycle, ``Y:0,4,5,1``, since their place in the full listing is
-    unknown).  ``seconds`` bounds the time; ``on_found(name, move)`` is called as each is found,
-    so a caller can show a long listing as it grows.
-
-    >>> from polyloops.io.examples import load_example
-    >>> box = load_example("box-2x1x1").dualize()
-    >>> listing = list_additions(box, [Axis.X], limit=2)
-    >>> [name for name, _ in listing.additions], listing.complete, listing.stopped_by
-    (['X0', 'X1'], {'X': False}, 'a limit')
-    >>> [name for name, _ in list_additions(box, [Axis.Y], shortest=1).additions]
-    ['Y:0,4,5,1']
-    """
-    found: list[tuple[str, Addition]] = []
-    complete = {a.name: True for a in axes}
-    budget = TimeShares(seconds, len(axes))
-
-    def show(name: str, move: Addition) -> None:
-        found.append((name, move))
-        if on_found is not None:
-            on_found(name, move)
-
-    if shortest is not None or sample is not None:
-        for a in axes:
-            expired = budget.next_share()
-            try:
-                picked = (shortest_additions(ls, a, shortest, expired) if shortest is not None
-                          else sample_additions(ls, a, sample or 0, seed, stop=expired))
-            except SearchStopped:
-                complete[a.name] = False
-                continue
-            if expired():
-                complete[a.name] = False
-            for move in picked:
-                show(f"{a.name}:" + ",".join(map(str, move.cycle)), move)
-        return AdditionListing(tuple(found), complete,
-                               None if all(complete.values()) else "the time limit")
-    total = 0
-    for a in axes:
-        expired = budget.next_share()
-        i = 0
-        try:
-            for move in additions(ls, a, stop=expired):
-                if (limit is not None and total >= limit) or expired():
-                    complete[a.name] = False
-                    break
-                show(addition_index(a, i), move)
-                i += 1
-                total += 1
-        except SearchStopped:
-            complete[a.name] = False
-    stopped = None
-    if not all(complete.values()):
-        stopped = "a limit" if limit is not None and total >= limit else "the time limit"
-    return AdditionListing(tuple(found), complete, stopped)
