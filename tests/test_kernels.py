@@ -12,8 +12,6 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import polyloops.core.arrays as arrays
-import polyloops.core.halfedge as halfedge
-import polyloops.core.structure as structure
 from polyloops.core.builders import box, torus_grid
 from polyloops.core.directions import Axis, Direction
 from polyloops.core.halfedge import FaceListError, HalfEdgeMap, MapError
@@ -39,8 +37,7 @@ def tuple_genera(ls, axis):
 @pytest.fixture
 def arrays_everywhere(monkeypatch):
     """Every size counts as large, so the array kernels run on small structures too."""
-    for module in (arrays, halfedge, structure, loop_structure):
-        monkeypatch.setattr(module, "LARGE", 0)
+    monkeypatch.setattr(arrays, "LARGE", 0)
 
 
 def check_map_twins(faces):
@@ -118,8 +115,7 @@ def test_reports_are_the_same_with_array_kernels(ls):
     """Definition 3, Definition 4 and Theorem 3 reports, valid or not, are identical."""
     expected = verify(ls).to_json()
     with pytest.MonkeyPatch.context() as mp:
-        for module in (arrays, halfedge, structure, loop_structure):
-            mp.setattr(module, "LARGE", 0)
+        mp.setattr(arrays, "LARGE", 0)
         again = LoopStructure(HalfEdgeMap.from_faces(ls.map.faces), ls.axes, ls.signs)
         assert again == ls
         assert verify(again).to_json() == expected
@@ -213,7 +209,7 @@ def test_definition1_reports_are_the_same_with_array_kernels(q, seed):
     moved = Polycube(q.map, tuple(tuple(p) for p in positions))
     expected = check_polycube(moved).to_json()
     with pytest.MonkeyPatch.context() as mp:
-        mp.setattr(definition1, "LARGE", 0)
+        mp.setattr(arrays, "LARGE", 0)
         assert check_polycube(moved).to_json() == expected
 
 
@@ -224,8 +220,10 @@ def test_signed_volume_on_arrays_adds_up_like_the_loop():
 
     q = box(20, 14, 10)
     faces, pos = q.faces, q.positions
-    assert len(faces) >= 1024
-    chunks = sum(signed_volume(faces[i:i + 500], pos) for i in range(0, len(faces), 500))
+    assert arrays.use_arrays(4 * len(faces))
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(arrays, "LARGE", 10**9)  # the loop, in chunks
+        chunks = sum(signed_volume(faces[i:i + 500], pos) for i in range(0, len(faces), 500))
     assert signed_volume(faces, pos) == chunks == 20 * 14 * 10
     flipped = [f[::-1] for f in faces]
     assert signed_volume(flipped, pos) == -chunks
@@ -235,7 +233,6 @@ def test_signed_volume_on_arrays_adds_up_like_the_loop():
 @given(polycubes(max_size=8), st.randoms(use_true_random=False))
 def test_dualize_twins(q, seed):
     """The same loop structure, or the same refusal, with the array kernel."""
-    import polyloops.core.duality as duality
     from polyloops.core.duality import DualityError, dualize
     from polyloops.core.polycube import Polycube
 
@@ -247,7 +244,7 @@ def test_dualize_twins(q, seed):
     results = []
     for large in (10**9, 0):
         with pytest.MonkeyPatch.context() as mp:
-            mp.setattr(duality, "LARGE", large)
+            mp.setattr(arrays, "LARGE", large)
             try:
                 results.append(dualize(moved))
             except DualityError:
@@ -301,7 +298,7 @@ def test_signature_text_twins(ls, mode):
     while 64 ** w <= n:
         w += 1
     with pytest.MonkeyPatch.context() as mp:
-        mp.setattr(canonical, "LARGE", 10**9)
+        mp.setattr(arrays, "LARGE", 10**9)
         by_characters = canonical._encode(form.code, form.oriented)
     by_arrays = canonical._encode_arrays(np.asarray(form.code), form.oriented, w)
     assert by_arrays == by_characters

@@ -28,6 +28,18 @@ if TYPE_CHECKING:
 
 LARGE = 512  # darts: from here on, maps use the array kernels
 
+
+def use_arrays(darts: int) -> bool:
+    """The one switch between the tuple kernels and their array twins: whether a structure of
+    ``darts`` darts uses the arrays (from :data:`LARGE` on).  Every kernel with an array twin
+    asks here, so setting ``LARGE`` (to 0: arrays always; to a huge number: never) moves all of
+    them at once, which is how the tests run the twins against each other.
+
+    >>> use_arrays(LARGE - 1), use_arrays(LARGE)
+    (False, True)
+    """
+    return darts >= LARGE
+
 F = TypeVar("F", bound=Callable)
 
 

@@ -30,7 +30,7 @@ from functools import cached_property
 
 import numpy as np
 
-from polyloops.core.arrays import LARGE, gc_paused
+from polyloops.core.arrays import gc_paused, use_arrays
 from polyloops.core.directions import Axis, Direction
 from polyloops.core.errors import PolyloopsError
 from polyloops.core.halfedge import faces_from_next, permutation_orbits
@@ -360,7 +360,7 @@ def canonical_form(obj: LoopStructure | Polycube, mode: Symmetry | str = Symmetr
     mode = Symmetry.parse(mode)
     ls = obj.dualize() if isinstance(obj, Polycube) else obj
     m = ls.map
-    if m.num_darts >= LARGE:
+    if use_arrays(m.num_darts):
         return _canonical_form_arrays(ls, mode)
     nxt = list(m.next)
     twin = list(m.twin)
@@ -507,7 +507,7 @@ def _encode(code: tuple[int, ...], oriented: bool) -> str:
     w = 1
     while 64 ** w <= n:
         w += 1
-    if n >= LARGE:
+    if use_arrays(n):
         return _encode_arrays(np.fromiter(code, dtype=np.int64, count=len(code)), oriented, w)
     parts = [SIGNATURE_VERSION, "o" if oriented else "l", ALPHABET[w], _digits(n, w)]
     seen = 1  # darts discovered so far: the root

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 from collections import deque
 
-from polyloops.core.arrays import LARGE
+from polyloops.core.arrays import use_arrays
 from polyloops.core.directions import Axis
 from polyloops.core.errors import PolyloopsError
 from polyloops.core.polycube import Polycube
@@ -55,7 +55,7 @@ def dualize(q: Polycube) -> LoopStructure:
     (True, [2, 2, 1])
     """
     m = q.map
-    if m.num_darts >= LARGE:
+    if use_arrays(m.num_darts):
         found = _dualize_arrays(q)
         if found is not None:
             return found
@@ -153,7 +153,7 @@ def primalize(ls: LoopStructure) -> Polycube:
         raise DualityError("a labelled loop structure has no polycube; orient it first")
     levels = [zone_levels(ls, a) for a in Axis]
     zone_of = [ls.zones(a).zone_of for a in Axis]
-    if ls.map.num_darts >= LARGE:
+    if use_arrays(ls.map.num_darts):
         import numpy as np
 
         from polyloops.core.arrays import as_array

@@ -28,7 +28,7 @@ from functools import cached_property
 from itertools import chain
 from typing import TYPE_CHECKING
 
-from polyloops.core.arrays import LARGE, gc_paused
+from polyloops.core.arrays import gc_paused, use_arrays
 from polyloops.core.disjoint_sets import DisjointSets
 from polyloops.core.errors import PolyloopsError
 
@@ -173,7 +173,7 @@ class HalfEdgeMap:
         names every problem.  Both give the same map.
         """
         faces = list(faces)
-        if sum(len(f) for f in faces) >= LARGE:
+        if use_arrays(sum(len(f) for f in faces)):
             m = cls._from_valid_faces_arrays(faces)
             if m is not None:
                 return m
@@ -412,7 +412,7 @@ class HalfEdgeMap:
 
     @cached_property
     def _edge_ids(self) -> tuple[int, ...]:
-        if self.num_darts >= LARGE:
+        if use_arrays(self.num_darts):
             return tuple(self.arrays.edge_id.tolist())
         ids = [-1] * self.num_darts
         k = 0

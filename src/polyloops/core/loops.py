@@ -90,9 +90,9 @@ class LoopSystem:
 
 def trace_loops(m: HalfEdgeMap) -> LoopSystem:
     """Trace every loop of ``m``; raise :class:`OddFaceError` on an odd face."""
-    from polyloops.core.arrays import LARGE
+    from polyloops.core.arrays import use_arrays
 
-    if m.num_darts >= LARGE:
+    if use_arrays(m.num_darts):
         return _trace_loops_arrays(m)
     return _trace_loops_tuples(m)
 

@@ -34,7 +34,9 @@ def signed_volume(faces: Sequence[Sequence[int]], positions: Sequence[Sequence[i
     0.16666666666666666
     """
     # The array path multiplies in int64: only for coordinates whose triple products stay exact.
-    if len(faces) >= 1024 and set(map(len, faces)) == {4} and _small(positions):
+    from polyloops.core.arrays import use_arrays
+
+    if use_arrays(4 * len(faces)) and set(map(len, faces)) == {4} and _small(positions):
         from itertools import chain
 
         import numpy as np

@@ -33,7 +33,7 @@ from functools import cached_property
 from itertools import chain
 from typing import TYPE_CHECKING
 
-from polyloops.core.arrays import LARGE, gc_paused
+from polyloops.core.arrays import gc_paused, use_arrays
 from polyloops.core.directions import Axis, Direction
 from polyloops.core.errors import PolyloopsError
 from polyloops.core.halfedge import HalfEdgeMap
@@ -76,7 +76,7 @@ class LoopStructure:
         must all be signed or all unsigned, and agree along each loop.
         """
         m = HalfEdgeMap.from_faces(faces)
-        if m.num_darts >= LARGE:
+        if use_arrays(m.num_darts):
             found = cls._from_valid_edge_labels_arrays(m, labels)
             if found is not None:
                 return found
@@ -261,7 +261,7 @@ class LoopStructure:
         if self.signs is None:
             raise ValueError("a labelled loop structure has no directions; orient it first")
         ls = self.map.loop_system
-        if self.map.num_darts >= LARGE:
+        if use_arrays(self.map.num_darts):
             members = list(Direction)
             return tuple(members[c] for c in self.direction_codes.tolist())
         return tuple(

@@ -53,9 +53,9 @@ class Zones:
 def compute_zones(ls: LoopStructure, axis: Axis) -> Zones:
     """The ``axis``-zones of a structure (array kernels from :data:`~polyloops.core.arrays.LARGE` darts
     on)."""
-    from polyloops.core.arrays import LARGE
+    from polyloops.core.arrays import use_arrays
 
-    if ls.map.num_darts >= LARGE:
+    if use_arrays(ls.map.num_darts):
         return _compute_zones_arrays(ls, axis)
     return _compute_zones_tuples(ls, axis)
 

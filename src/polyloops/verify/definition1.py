@@ -14,7 +14,7 @@ from collections import defaultdict
 from collections.abc import Sequence
 from itertools import chain
 
-from polyloops.core.arrays import LARGE
+from polyloops.core.arrays import use_arrays
 from polyloops.core.directions import Direction
 from polyloops.core.halfedge import FaceListError, HalfEdgeMap, MapError
 from polyloops.core.polycube import Polycube, quad_volume, signed_volume
@@ -73,7 +73,7 @@ def check_polycube_faces(faces: Sequence[Sequence[int]], positions: Sequence[Seq
             return rb.build()
     add_surface_checks(rb, problems)
     points = None
-    if built is not None and built.num_darts >= LARGE:
+    if built is not None and use_arrays(built.num_darts):
         points = _positions_fine(built, positions)
     if points is not None:
         for cond, statement in (("1", "each corner has a position in Z^3"),

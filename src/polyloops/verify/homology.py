@@ -223,9 +223,9 @@ def zone_genera(ls: LoopStructure, axis: Axis, integral: bool = False) -> tuple[
     if integral:
         pieces = cut_zones(ls, axis)
         return tuple(pieces[z].genus(integral=True) for z in sorted(pieces))
-    from polyloops.core.arrays import LARGE
+    from polyloops.core.arrays import use_arrays
 
-    if ls.map.num_darts >= LARGE and all(len(face) == 4 for face in ls.map.faces):
+    if use_arrays(ls.map.num_darts) and all(len(face) == 4 for face in ls.map.faces):
         found = _zone_genera_arrays(ls, axis)
         if found is not None:
             return found

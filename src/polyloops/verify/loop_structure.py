@@ -15,7 +15,7 @@ from __future__ import annotations
 from collections import defaultdict
 from dataclasses import dataclass
 
-from polyloops.core.arrays import LARGE
+from polyloops.core.arrays import use_arrays
 from polyloops.core.directions import Axis, Direction
 from polyloops.core.structure import LoopStructure
 from polyloops.core.zones import find_directed_cycle
@@ -78,7 +78,7 @@ def crossing_violations(rb: ReportBuilder, ls: LoopStructure, condition: str = "
     structures too.
     """
     m = ls.map
-    if m.num_darts >= LARGE and _no_crossing_problem(ls):
+    if use_arrays(m.num_darts) and _no_crossing_problem(ls):
         return []
     out = []
     for lp in ls.loops:
@@ -117,7 +117,7 @@ def _no_crossing_problem(ls: LoopStructure) -> bool:
 def repeated_direction_violations(rb: ReportBuilder, ls: LoopStructure) -> list[Violation]:
     """Condition 3: corners with two edges in the same direction."""
     m = ls.map
-    if m.num_darts >= LARGE:
+    if use_arrays(m.num_darts):
         from polyloops.core.arrays import all_distinct
 
         if all_distinct(m.arrays.origin * 6 + ls.direction_codes):
@@ -184,7 +184,7 @@ def check_polycube_loop_structure(ls: LoopStructure) -> Report:
     m = ls.map
     rb = ReportBuilder("loop-structure", DEF4)
     rb.condition("1", "no three loops intersect at a single point", _many_loops(rb, ls, "1"))
-    if m.num_darts >= LARGE:
+    if use_arrays(m.num_darts):
         import numpy as np
 
         degrees = np.bincount(m.arrays.origin, minlength=m.num_corners).tolist()
