@@ -44,6 +44,7 @@ from polyloops.core.disjoint_sets import DisjointSets
 from polyloops.core.zones import find_directed_cycle
 from polyloops.enumerate.corners import chart_corners
 from polyloops.segmentation.charts import Segmentation
+from polyloops.solvers.sat import minimal_core
 
 
 @dataclass(frozen=True)
@@ -197,7 +198,7 @@ def check_global(seg: Segmentation, max_cuts: int = 10_000, try_mesh_first: bool
         cuts = 0
         while True:
             if not solver.solve(assumptions=list(selectors)):
-                core = _minimal_core(solver, list(solver.get_core() or []))
+                core = minimal_core(solver, list(solver.get_core() or []))
                 corners = tuple(sorted(selectors[s][1] for s in core if selectors[s][0] == "corner"))
                 charts = tuple(sorted(selectors[s][1] for s in core if selectors[s][0] == "chart"))
                 cycles = tuple(selectors[s][1] for s in core if selectors[s][0] == "cycle")
@@ -311,15 +312,3 @@ def _find_cycle(seg: Segmentation, zones, arcs_by_axis, sign) -> Cycle | None:
         if found is not None:
             return Cycle(axis, tuple(b for _, _, b in found))
     return None
-
-
-def _minimal_core(solver: Solver, core: list[int], limit: int = 200) -> list[int]:
-    """Drop members of an unsatisfiable core that it does not need (deletion; small cores)."""
-    if len(core) > limit:
-        return sorted(core)
-    keep = list(core)
-    for sel in list(core):
-        trial = [s for s in keep if s != sel]
-        if not solver.solve(assumptions=trial):
-            keep = trial
-    return sorted(keep)

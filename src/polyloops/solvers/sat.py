@@ -89,25 +89,35 @@ class SatSolver:
 
     def blocking_cycles(self, problem: OrientationProblem) -> list[tuple[Axis, list[Arc]]] | None:
         """If no acyclic choice exists: a small set of cycles whose cuts are unsatisfiable
-        together (deletion-minimal), else ``None``."""
+        together (deletion-minimal), else ``None``.  Each cut is guarded by a selector
+        variable and assumed, so the solver's unsatisfiable core names the cuts that matter,
+        and :func:`minimal_core` shrinks it in the same solver."""
         where = self._component_of(problem)
-        cuts: list[tuple[list[int], tuple[Axis, list[Arc]]]] = []
+        cuts: dict[int, tuple[Axis, list[Arc]]] = {}  # selector variable -> its cycle
         with PySatSolver(name=self.backend) as s:
-            while s.solve():
+            while s.solve(assumptions=list(cuts)):
                 signs = self._signs(problem, s.get_model() or [])
                 found = problem.find_cycle(signs)
                 if found is None:
                     return None
                 clause = self._cut(problem, where, found[1], signs)
-                cuts.append((clause, found))
                 if not clause:
                     return [found]
-                s.add_clause(clause)
-        # Shrink: drop each cut whose removal keeps the rest unsatisfiable.
-        keep = list(cuts)
-        for item in list(cuts):
-            trial = [c for c in keep if c is not item]
-            with PySatSolver(name=self.backend, bootstrap_with=[c for c, _ in trial]) as s2:
-                if not s2.solve():
-                    keep = trial
-        return [cycle for _, cycle in keep]
+                selector = problem.k + 1 + len(cuts)
+                cuts[selector] = found
+                s.add_clause([-selector, *clause])
+            core = minimal_core(s, [lit for lit in s.get_core() or [] if lit in cuts])
+        return [cuts[selector] for selector in core]
+
+
+def minimal_core(solver: PySatSolver, core: list[int], limit: int = 200) -> list[int]:
+    """Drop the assumptions of an unsatisfiable core that it does not need (deletion, in the
+    solver that found it); a core larger than ``limit`` is returned as it is, sorted."""
+    if len(core) > limit:
+        return sorted(core)
+    keep = sorted(core)
+    for lit in list(keep):
+        trial = [x for x in keep if x != lit]
+        if not solver.solve(assumptions=trial):
+            keep = trial
+    return keep
