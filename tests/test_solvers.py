@@ -136,3 +136,56 @@ def test_cli_one(capsys, solver):
     assert main(["orient", "example:box-2x1x1", "--solver", solver]) == 0
     ls = loads(capsys.readouterr().out)
     assert ls.oriented and check_polycube_loop_structure(ls).valid
+
+
+def check_blocking_cycles(problem):
+    """When no choice of sides is acyclic, the cycles the core names close for every choice
+    (checked over all 2^k choices), and dropping any one of them leaves a choice that avoids
+    the rest (deletion-minimal).  Returns whether the problem had no acyclic choice."""
+    from polyloops.solvers.sat import SatSolver
+
+    cycles = SatSolver().blocking_cycles(problem)
+    choices = [problem.signs_from_choices(c) for c in itertools.product((1, -1), repeat=problem.k)]
+
+    def closes(signs, cycle):
+        axis, arcs = cycle
+        return set(arcs) <= set(problem.arcs(signs, axis))
+
+    acyclic = [s for s in choices if problem.find_cycle(s) is None]
+    if cycles is None:
+        assert acyclic
+        return False
+    assert not acyclic and cycles
+    assert all(any(closes(s, c) for c in cycles) for s in choices)
+    for i in range(len(cycles)):
+        rest = cycles[:i] + cycles[i + 1:]
+        assert any(not any(closes(s, c) for c in rest) for s in choices)
+    return True
+
+
+def test_blocking_cycles_of_the_examples():
+    from polyloops.core.duality import DualityError
+    from polyloops.core.polycube import Polycube
+    from polyloops.io.examples import EXAMPLES
+
+    unsat = []
+    for name in sorted(EXAMPLES):
+        structure = load_example(name)
+        if isinstance(structure, Polycube):
+            try:
+                structure = structure.dualize()
+            except DualityError:  # a polycube that does not dualize: nothing to orient
+                continue
+        problem = OrientationProblem(structure)
+        if not (problem.odd_cycles or problem.local_violations) and problem.k <= 12 \
+                and check_blocking_cycles(problem):
+            unsat.append(name)
+    assert "torus-cycle" in unsat
+
+
+@settings(max_examples=40, deadline=None)
+@given(labelled_structures())
+def test_blocking_cycles_on_random_structures(ls):
+    problem = OrientationProblem(ls)
+    if not (problem.odd_cycles or problem.local_violations) and problem.k <= 10:
+        check_blocking_cycles(problem)
