@@ -1,6 +1,7 @@
 """Signatures: invariant under renumbering, re-rooting, rotation and mirroring; distinct for
 non-isomorphic structures (checked against a brute-force isomorphism test)."""
 
+import itertools
 import random
 
 import networkx as nx
@@ -16,6 +17,7 @@ from polyloops.core.canonical import (
     signature,
     transformed,
 )
+from polyloops.core.directions import Axis, Direction
 from polyloops.core.structure import LoopStructure
 from polyloops.core.symmetry import ROTATIONS, SIGNED_PERMUTATIONS, SYMMETRY_MODES
 from polyloops.io.examples import EXAMPLES, load_example
@@ -33,22 +35,23 @@ def renumber(ls: LoopStructure, rng: random.Random) -> LoopStructure:
     rng.shuffle(faces)
     labels = {}
     for u, v, lab in ls.edge_labels():
-        from polyloops.io.formats import _label
-
         if rng.random() < 0.5:
-            labels[(perm[u], perm[v])] = _label(lab, 0)
+            labels[(perm[u], perm[v])] = parse_label(lab)
         else:
             flipped = lab if len(lab) == 1 else ("-" if lab[0] == "+" else "+") + lab[1]
-            labels[(perm[v], perm[u])] = _label(flipped, 0)
+            labels[(perm[v], perm[u])] = parse_label(flipped)
     return LoopStructure.from_edge_labels(faces, labels)
+
+
+def parse_label(text: str) -> Direction | Axis:
+    """An edge label as ``edge_labels`` writes it: a direction (``+X``) or, without sides, an axis."""
+    return Direction.parse(text) if len(text) == 2 else Axis.parse(text)
 
 
 def mirror(ls: LoopStructure) -> LoopStructure:
     """The inverse: every face reversed, every direction kept."""
-    from polyloops.io.formats import _label
-
     faces = [tuple(reversed(f)) for f in ls.map.faces]
-    return LoopStructure.from_edge_labels(faces, {(u, v): _label(lab, 0) for u, v, lab in ls.edge_labels()})
+    return LoopStructure.from_edge_labels(faces, {(u, v): parse_label(lab) for u, v, lab in ls.edge_labels()})
 
 
 def dart_graph(ls: LoopStructure, mirrored: bool) -> nx.DiGraph:
@@ -152,8 +155,27 @@ def test_automorphism_orders_match_brute_force():
             assert canonical_form(ls, mode).automorphisms == count, (name, mode)
 
 
-def test_rotations_are_24():
-    assert len(ROTATIONS) == 24
+def test_rotations_are_the_proper_signed_permutations():
+    """ROTATIONS are exactly the signed permutation matrices of determinant +1, derived here
+    from itertools and a determinant, each once (24 of them)."""
+    import numpy as np
+
+    derived = set()
+    for perm in itertools.permutations(range(3)):
+        for signs in itertools.product((1, -1), repeat=3):
+            matrix = np.zeros((3, 3), dtype=int)
+            for row, (col, sign) in enumerate(zip(perm, signs, strict=True)):
+                matrix[row, col] = sign
+            if round(np.linalg.det(matrix)) == 1:
+                derived.add(tuple(map(tuple, matrix)))
+    def matrix_of(g):  # column a is the image of e_a
+        m = np.zeros((3, 3), dtype=int)
+        for a in range(3):
+            m[g.perm[a], a] = g.signs[a]
+        return tuple(map(tuple, m))
+
+    assert len(derived) == 24 and len(ROTATIONS) == 24
+    assert {matrix_of(g) for g in ROTATIONS} == derived
 
 
 def test_bad_signatures():

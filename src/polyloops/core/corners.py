@@ -122,10 +122,9 @@ def corner_configurations() -> tuple[CornerConfig, ...]:
     tuple[CornerConfig, ...]
         Each with its ``id`` (its index), degree, category and directions counter-clockwise.
 
-    Raises
-    ------
-    RuntimeError
-        Never; the table is derived, not read (and cached).
+    Notes
+    -----
+    Nothing is raised: the table is derived, not read (and cached).
 
     >>> configs = corner_configurations()
     >>> len(configs), configs[0].degree, str(configs[-1].category)

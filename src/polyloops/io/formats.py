@@ -252,10 +252,9 @@ def dumps(obj: Structure) -> str:
     str
         Text that :func:`loads` reads back to an equal structure.
 
-    Raises
-    ------
-    ValueError
-        Never for a built structure (every structure has a JSON form).
+    Notes
+    -----
+    Nothing is raised for a built structure (every structure has a JSON form).
 
     >>> from polyloops.io.examples import load_example
     >>> dumps(load_example("cube")).splitlines()[2].strip()

@@ -42,10 +42,9 @@ def explain(problem: OrientationProblem) -> Explanation | None:
         can mend) or ``"5"`` (level-graph cycles, one of which closes for every choice), with
         a ``witness``.
 
-    Raises
-    ------
-    ValueError
-        Never for a built problem.
+    Notes
+    -----
+    Nothing is raised for a built problem.
 
     >>> from polyloops.io.examples import load_example
     >>> [explain(OrientationProblem(load_example(n))).condition

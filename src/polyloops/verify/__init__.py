@@ -50,10 +50,9 @@ def verify(obj: Structure) -> Report:
         Every condition with its status, every violation with a witness; ``valid`` when there
         is none.
 
-    Raises
-    ------
-    DualityError
-        Never; a polycube whose faces are not axis-aligned rectangles is reported, not raised.
+    Notes
+    -----
+    Nothing is raised: a polycube whose faces are not axis-aligned rectangles is reported.
 
     >>> from polyloops.io.examples import load_example
     >>> verify(load_example("ring")).valid

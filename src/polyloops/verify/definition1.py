@@ -49,10 +49,9 @@ def check_polycube_faces(faces: Sequence[Sequence[int]], positions: Sequence[Seq
     -------
     Report
 
-    Raises
-    ------
-    IndexError
-        Never for faces over corners ``0..len(positions)-1``; other ids are reported.
+    Notes
+    -----
+    Nothing is raised for faces over corners ``0..len(positions)-1``; other ids are reported.
 
     >>> report = check_polycube_faces([[0, 1, 2, 3]], [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)])
     >>> report.valid, "closed" in {str(v.condition) for v in report.violations}

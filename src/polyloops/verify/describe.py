@@ -60,10 +60,10 @@ def describe(obj: Structure) -> dict[str, Any]:
     dict
         Plain JSON types; ``polyloops info --json`` prints it.
 
-    Raises
-    ------
-    ValueError
-        Never for a built structure; what cannot be computed is reported in the summary.
+    Notes
+    -----
+    Nothing is raised for a built structure; what cannot be computed is reported in the
+    summary.
 
     >>> from polyloops.io.examples import load_example
     >>> s = describe(load_example("ring"))

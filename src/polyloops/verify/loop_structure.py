@@ -51,10 +51,9 @@ def check_quad_loop_structure(ls: LoopStructure) -> Report:
     -------
     Report
 
-    Raises
-    ------
-    ValueError
-        Never for a built structure.
+    Notes
+    -----
+    Nothing is raised for a built structure.
 
     >>> from polyloops.io.examples import load_example
     >>> r = check_quad_loop_structure(load_example("self-crossing"))  # allowed in a quad mesh
@@ -171,10 +170,9 @@ def check_polycube_loop_structure(ls: LoopStructure) -> Report:
     Report
         With a witness for every violation (corners, loops, a cycle of zones).
 
-    Raises
-    ------
-    ValueError
-        Never for a built structure.
+    Notes
+    -----
+    Nothing is raised for a built structure.
 
     >>> from polyloops.io.examples import load_example
     >>> r = check_polycube_loop_structure(load_example("double-plus-x"))
