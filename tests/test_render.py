@@ -9,7 +9,7 @@ from hypothesis import given, settings
 
 from polyloops.cli import main
 from polyloops.io.examples import EXAMPLES, load_example
-from polyloops.render.colors import AXIS_COLOR, LIGHT_COLOR
+from polyloops.render.colours import AXIS_COLOUR, LIGHT_COLOUR
 from polyloops.render.polycube import as_polycube, choose_views, face_normal
 from strategies import polycubes
 
@@ -36,13 +36,13 @@ def test_loops_in_the_paper_colours_on_both_sides(tmp_path):
     out = tmp_path / "ring.png"
     assert main(["render", "example:ring", "-o", str(out)]) == 0
     _, img = ink(out)
-    for colours in (AXIS_COLOR, LIGHT_COLOR):
+    for colours in (AXIS_COLOUR, LIGHT_COLOUR):
         for c in colours.values():
             assert has_colour(img, c), c
     plain = tmp_path / "plain.png"
     assert main(["render", "example:ring", "--no-loops", "-o", str(plain)]) == 0
     _, img2 = ink(plain)
-    assert not any(has_colour(img2, c) for c in AXIS_COLOR.values())
+    assert not any(has_colour(img2, c) for c in AXIS_COLOUR.values())
 
 
 def test_deterministic(tmp_path):

@@ -9,7 +9,7 @@ from typing import Any
 from matplotlib.patches import Polygon
 
 from polyloops.core.corners import CATEGORIES, CornerConfig, corner_configurations
-from polyloops.render.colors import direction_color
+from polyloops.render.colours import direction_colour
 from polyloops.render.figure import new_figure, save_figure
 from polyloops.render.projection import View
 
@@ -41,7 +41,7 @@ def draw_corner(ax, config: CornerConfig, view: View) -> None:
             ax.add_patch(Polygon(pts, closed=True, facecolor=colour, edgecolor="white", lw=0.5, alpha=0.9))
         else:
             x, y = view.project(obj.vector)
-            ax.plot([0, x], [0, y], color=direction_color(obj), lw=2.5, solid_capstyle="round")
+            ax.plot([0, x], [0, y], color=direction_colour(obj), lw=2.5, solid_capstyle="round")
     ax.plot([0], [0], "o", color="black", ms=2.5)
     ax.set_xlim(-1.25, 1.25)
     ax.set_ylim(-1.25, 1.25)

@@ -12,7 +12,7 @@ from matplotlib.patches import FancyArrowPatch
 from polyloops.core.directions import Axis
 from polyloops.core.duality import DualityError, zone_levels
 from polyloops.core.structure import LoopStructure
-from polyloops.render.colors import AXIS_COLOR, LIGHT_COLOR
+from polyloops.render.colours import AXIS_COLOUR, LIGHT_COLOUR
 from polyloops.render.figure import new_figure, save_figure
 
 
@@ -43,23 +43,23 @@ def draw_level_graph(ax, ls: LoopStructure, axis: Axis, shades: list[str] | None
         pair = (min(u, v), max(u, v))
         k = seen[pair]
         seen[pair] += 1
-        style: dict[str, Any] = dict(arrowstyle="-|>", mutation_scale=14, color=AXIS_COLOR[axis], lw=1.6)
+        style: dict[str, Any] = dict(arrowstyle="-|>", mutation_scale=14, color=AXIS_COLOUR[axis], lw=1.6)
         if u == v:  # a self-loop (an invalid structure): a small arc above the node, stacked
             (x, y), lift = pos[u], 0.25 * k
             arrow = FancyArrowPatch((x + 0.12, y + 0.1 + lift), (x - 0.12, y + 0.1 + lift),
                                     connectionstyle="arc3,rad=2.2", shrinkA=0, shrinkB=0, **style)
             ax.add_patch(arrow)
-            ax.text(x + 0.3, y + 0.35 + lift, str(loop), fontsize=7, color=AXIS_COLOR[axis])
+            ax.text(x + 0.3, y + 0.35 + lift, str(loop), fontsize=7, color=AXIS_COLOUR[axis])
             continue
         rad = 0.0 if k == 0 else (0.35 * ((k + 1) // 2)) * (1 if k % 2 else -1)
         arrow = FancyArrowPatch(pos[u], pos[v], connectionstyle=f"arc3,rad={rad}", shrinkA=11, shrinkB=11,
                                 **style)
         ax.add_patch(arrow)
         mx, my = (pos[u][0] + pos[v][0]) / 2, (pos[u][1] + pos[v][1]) / 2
-        ax.text(mx + 0.12 + rad * 0.4, my, str(loop), fontsize=7, color=AXIS_COLOR[axis])
+        ax.text(mx + 0.12 + rad * 0.4, my, str(loop), fontsize=7, color=AXIS_COLOUR[axis])
     for z, (x, y) in pos.items():
-        fill = LIGHT_COLOR[axis] if shades is None else shades[z]
-        ax.plot([x], [y], "o", ms=16, color=fill, markeredgecolor=AXIS_COLOR[axis])
+        fill = LIGHT_COLOUR[axis] if shades is None else shades[z]
+        ax.plot([x], [y], "o", ms=16, color=fill, markeredgecolor=AXIS_COLOUR[axis])
         ax.text(x, y, str(z), ha="center", va="center", fontsize=8)
     xs = [p[0] for p in pos.values()] or [0.0]
     ys = [p[1] for p in pos.values()] or [0.0]

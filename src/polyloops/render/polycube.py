@@ -23,7 +23,7 @@ from polyloops.core.duality import DualityError, dualize, primalize
 from polyloops.core.errors import PolyloopsError
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LoopStructure
-from polyloops.render.colors import AXIS_COLOR, LIGHT_COLOR
+from polyloops.render.colours import AXIS_COLOUR, LIGHT_COLOUR
 from polyloops.render.figure import new_figure, save_figure
 from polyloops.render.projection import View
 from polyloops.render.raster import DepthBuffer, rasterize
@@ -166,8 +166,8 @@ def shade(q: Polycube, buf: DepthBuffer, view: View, loops: LoopStructure | None
         for k in Axis:
             d = buf.point[..., k] - mid[fid, k]
             on = seen & in_plane[fid, k]
-            rgb = np.where((on & (np.abs(d + OFFSET) < STROKE))[..., None], _rgb(LIGHT_COLOR[k]), rgb)
-            rgb = np.where((on & (np.abs(d - OFFSET) < STROKE))[..., None], _rgb(AXIS_COLOR[k]), rgb)
+            rgb = np.where((on & (np.abs(d + OFFSET) < STROKE))[..., None], _rgb(LIGHT_COLOUR[k]), rgb)
+            rgb = np.where((on & (np.abs(d - OFFSET) < STROKE))[..., None], _rgb(AXIS_COLOUR[k]), rgb)
     # The quads' edges: where the visible face changes between neighbouring pixels.
     edge = np.zeros_like(seen)
     edge[:, :-1] |= fid[:, :-1] != fid[:, 1:]

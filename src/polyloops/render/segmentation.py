@@ -10,11 +10,11 @@ from matplotlib.collections import PolyCollection
 from matplotlib.patches import Patch
 
 from polyloops.core.directions import Direction
-from polyloops.render.colors import direction_color
+from polyloops.render.colours import direction_colour
 from polyloops.render.figure import new_figure, save_figure
 from polyloops.render.projection import View
 
-WITNESS_COLOR = "#d7191c"
+WITNESS_COLOUR = "#d7191c"
 VIEWS = (View(35.0, 28.0), View(215.0, -28.0))
 
 
@@ -28,11 +28,11 @@ def _normal(points, tri) -> tuple[float, float, float]:
 SUBDIVISIONS = 6  # each triangle drawn as 36 small ones, so that far-to-near order holds
 
 
-def _tint(color: str) -> tuple[float, float, float]:
+def _tint(colour: str) -> tuple[float, float, float]:
     """The colour mixed half with the witness red."""
     from matplotlib.colors import to_rgb
 
-    a, b = to_rgb(color), to_rgb(WITNESS_COLOR)
+    a, b = to_rgb(colour), to_rgb(WITNESS_COLOUR)
     return (0.5 * a[0] + 0.5 * b[0], 0.5 * a[1] + 0.5 * b[1], 0.5 * a[2] + 0.5 * b[2])
 
 
@@ -58,8 +58,8 @@ def draw_segmentation(ax, report, view: View) -> None:
     front = [f for f, tri in enumerate(mesh.triangles) if view.facing(_normal(mesh.points, tri)) > 0]
     for f in front:
         a, b, c = (mesh.points[i] for i in mesh.triangles[f])
-        color = direction_color(mesh.labels[f])
-        fill = _tint(color) if chart_of[f] in hot_charts else color
+        colour = direction_colour(mesh.labels[f])
+        fill = _tint(colour) if chart_of[f] in hot_charts else colour
 
         def at(i: int, j: int, a=a, b=b, c=c) -> tuple[float, float, float]:
             x, y, z = (a[k] + i / n * (b[k] - a[k]) + j / n * (c[k] - a[k]) for k in range(3))
@@ -72,7 +72,7 @@ def draw_segmentation(ax, report, view: View) -> None:
                 edge_kind.append(None)
             else:
                 hot = frozenset((m.origin(d), m.target(d))) in hot_edges
-                edge_kind.append((WITNESS_COLOR, 3.0) if hot else ("black", 1.0))
+                edge_kind.append((WITNESS_COLOUR, 3.0) if hot else ("black", 1.0))
         for i in range(n):
             for j in range(n - i):
                 pieces = [((i, j), (i + 1, j), (i, j + 1))]
@@ -96,8 +96,8 @@ def draw_segmentation(ax, report, view: View) -> None:
                     if kind is not None:
                         pts = [at(*p), at(*q)]
                         depth = sum(view.depth(x) for x in pts) / 2 + 1e-6
-                        color_k, width = kind
-                        items.append((depth, [view.project(x) for x in pts], "none", color_k, width))
+                        colour_k, width = kind
+                        items.append((depth, [view.project(x) for x in pts], "none", colour_k, width))
     items.sort(key=lambda item: item[0])
     ax.add_collection(PolyCollection([it[1] for it in items], facecolors=[it[2] for it in items],
                                      edgecolors=[it[3] for it in items], linewidths=[it[4] for it in items],
@@ -107,7 +107,7 @@ def draw_segmentation(ax, report, view: View) -> None:
         xy = [view.project(mesh.points[seg.corners[c].vertex]) for c in witness.corners
               if seg.corners[c].vertex in visible]
         if xy:
-            ax.scatter([p[0] for p in xy], [p[1] for p in xy], s=40, color=WITNESS_COLOR, zorder=5,
+            ax.scatter([p[0] for p in xy], [p[1] for p in xy], s=40, color=WITNESS_COLOUR, zorder=5,
                        edgecolors="white", linewidths=0.8)
     ax.autoscale_view()
     ax.set_aspect("equal")
@@ -134,6 +134,6 @@ def render_segmentation(report, path: str | os.PathLike[str]) -> None:
     elif report.local.violations:
         title += "\n" + _wrap(f"{report.local.violations[0].rule}: {report.local.violations[0].message}")
     fig.suptitle(title, fontsize=10)
-    fig.legend(handles=[Patch(color=direction_color(d), label=str(d)) for d in Direction],
+    fig.legend(handles=[Patch(color=direction_colour(d), label=str(d)) for d in Direction],
                loc="lower center", ncol=6, fontsize=8, frameon=False)
     save_figure(fig, path)

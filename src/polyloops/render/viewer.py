@@ -23,7 +23,7 @@ from polyloops.core.directions import Axis
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LoopStructure
 from polyloops.io.files import write_atomic
-from polyloops.render.colors import AXIS_COLOR, LIGHT_COLOR
+from polyloops.render.colours import AXIS_COLOUR, LIGHT_COLOUR
 from polyloops.render.polycube import FACE_SHADE, OFFSET, as_polycube
 
 LIFT = 0.02  # loops float this far above the surface, so that faces do not hide them
@@ -127,7 +127,7 @@ def viewer_figure(obj: Polycube | LoopStructure, title: str | None = None):
             for loop in (lp.id for lp in ls.loops if ls.axes[lp.id] == axis):
                 plus, minus = _loop_paths(q, ls, loop)
                 text = f"{axis.name}-loop {loop}, {len(ls.loops[loop])} segments"
-                for stroke, colour in ((plus, AXIS_COLOR[axis]), (minus, LIGHT_COLOR[axis])):
+                for stroke, colour in ((plus, AXIS_COLOUR[axis]), (minus, LIGHT_COLOUR[axis])):
                     closed = [*stroke, stroke[0]]
                     traces.append(go.Scatter3d(
                         x=[p[0] for p in closed], y=[p[1] for p in closed], z=[p[2] for p in closed],

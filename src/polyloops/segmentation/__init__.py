@@ -7,7 +7,7 @@ realises (Sokolov's ramp).  :func:`check_segmentation` reports both:
 - the global test (:mod:`polyloops.segmentation.levels`): directions for the boundaries that
   satisfy every corner and keep the level graphs acyclic, or a witness that none exist;
 - when the global test passes, a polycube built from those directions
-  (:mod:`polyloops.segmentation.realize`), checked with Definition 1.
+  (:mod:`polyloops.segmentation.realise`), checked with Definition 1.
 
 The verdict is ``True`` when a polycube was built and checked, ``False`` when a necessary
 condition fails, and ``None`` (undecided) when the conditions pass but the construction
@@ -29,7 +29,7 @@ from polyloops.io.labelled_mesh import LabelledMesh
 from polyloops.segmentation.charts import Boundary, Chart, Corner, Segmentation, segment
 from polyloops.segmentation.levels import GlobalResult, Witness, check_global
 from polyloops.segmentation.local import LocalResult, LocalViolation, check_local
-from polyloops.segmentation.realize import Realisation, realise
+from polyloops.segmentation.realise import Realisation, realise
 
 __all__ = ["Boundary", "Chart", "Corner", "GlobalResult", "LocalResult", "LocalViolation", "Realisation",
            "Segmentation", "SegmentationReport", "Witness", "check_global", "check_local",

@@ -26,7 +26,7 @@ When there are no such directions, the unsatisfiable core names a witness: the c
 rules and the cycles whose cuts cannot all hold.  Reversing every direction keeps every
 corner rule (negating all the directions of a corner keeps the normals ``a x b``) and
 reverses every arc, so solutions come in pairs: the two mirror images of one polycube, one
-of them inside out (see :mod:`polyloops.segmentation.realize`).
+of them inside out (see :mod:`polyloops.segmentation.realise`).
 """
 
 from __future__ import annotations
