@@ -149,3 +149,37 @@ def test_no_import_cycle_between_modules():
         if v.startswith(u + "."):
             graph.remove_edge(u, v)
     assert list(nx.simple_cycles(graph)) == []
+
+
+def test_core_imports_nothing_from_io():
+    """The kernel reads no files: nothing in core/ imports polyloops.io, even lazily."""
+    bad = {path.name: sorted(m for m in resolved_imports(path) if m.startswith("polyloops.io"))
+           for path in sorted(CORE.glob("*.py"))}
+    assert {k: v for k, v in bad.items() if v} == {}
+
+
+# What reading or parsing a file looks like in source (``json.loads``, ``Path.read_text``,
+# ``np.load``, ``sqlite3.connect``, a bare ``open``): the command line leaves it to polyloops.io.
+PARSING_METHODS = {"loads", "load", "read_text", "read_bytes", "connect", "fromfile", "genfromtxt", "loadtxt"}
+PARSING_MODULES = {"sqlite3", "meshio", "csv", "pickle", "tempfile"}
+
+
+def test_the_command_line_parses_no_file_itself():
+    """Each command parses arguments and calls the library: no ``open``, ``json.loads``,
+    ``Path.read_text``, SQLite or meshio in cli/ (``json.dumps`` for printing is fine)."""
+    offenders = {}
+    for path in sorted((PACKAGE / "cli").glob("*.py")):
+        found = set()
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.Call):
+                func = node.func
+                if isinstance(func, ast.Attribute) and func.attr in PARSING_METHODS:
+                    found.add(func.attr)
+                elif isinstance(func, ast.Name) and func.id == "open":
+                    found.add("open")
+            elif isinstance(node, (ast.Import, ast.ImportFrom)):
+                names = [a.name for a in node.names] if isinstance(node, ast.Import) else [node.module or ""]
+                found |= {n for n in names if n.split(".")[0] in PARSING_MODULES}
+        if found:
+            offenders[path.name] = sorted(found)
+    assert offenders == {}

@@ -13,16 +13,14 @@ from polyloops.cli.load import (
     EXIT_OK,
     CliError,
     check_output,
-    check_readable_file,
     picture_output,
-    read_bytes_file,
-    read_text_file,
     write_error,
     write_output,
 )
 from polyloops.core.halfedge import MapError
-from polyloops.io.formats import FormatError
-from polyloops.io.labelled_mesh import LabelledMesh, parse_labels, read_triangle_mesh
+from polyloops.io.files import InputError
+from polyloops.io.labelled_mesh import LabelledMesh, LabelledMeshError
+from polyloops.io.labelled_mesh import read_labelled_mesh as read_mesh_files
 
 
 def add_command(command: Callable[..., argparse.ArgumentParser]) -> None:
@@ -52,40 +50,12 @@ def read_labelled_mesh(mesh_arg: str, labels_arg: str | None) -> LabelledMesh:
             raise CliError(f"{mesh_arg}: {err.args[0]}") from None
     if labels_arg is None:
         raise CliError(f"{mesh_arg}: give the LABELS file too (one integer per triangle)")
-    if mesh_arg == "-":  # standard input: OBJ or STL text, by its first word
-        return _read_stdin_mesh(labels_arg)
-    check_readable_file(mesh_arg)  # a regular file of reasonable size, or a one-line error
     try:
-        points, triangles = read_triangle_mesh(mesh_arg)
-    except FormatError as err:
-        raise CliError(f"{mesh_arg}: {err}") from None
-    except OSError as err:
-        raise CliError(f"{mesh_arg}: cannot read: {err.strerror or err}") from None
-    try:
-        labels = parse_labels(read_text_file(labels_arg), len(triangles))
-    except FormatError as err:
-        raise CliError(f"{labels_arg}: {err}") from None
-    return LabelledMesh(points, triangles, labels)
-
-
-def _read_stdin_mesh(labels_arg: str) -> LabelledMesh:
-    import tempfile
-
-    data = read_bytes_file("-")
-    suffix = ".stl" if data.lstrip(b"\xef\xbb\xbf \t\r\n").lower().startswith(b"solid") else ".obj"
-    with tempfile.TemporaryDirectory() as tmp:
-        path = os.path.join(tmp, "mesh" + suffix)
-        with open(path, "wb") as fh:
-            fh.write(data)
-        try:
-            points, triangles = read_triangle_mesh(path)
-        except FormatError as err:
-            raise CliError(f"-: {err}") from None
-    try:
-        labels = parse_labels(read_text_file(labels_arg), len(triangles))
-    except FormatError as err:
-        raise CliError(f"{labels_arg}: {err}") from None
-    return LabelledMesh(points, triangles, labels)
+        return read_mesh_files(mesh_arg, labels_arg)
+    except InputError as err:
+        raise CliError(str(err)) from None
+    except LabelledMeshError as err:
+        raise CliError(f"{err.where or mesh_arg}: {err}") from None
 
 
 def format_report(source: str, report) -> str:

@@ -29,7 +29,7 @@ from polyloops.io.exchange import obj_polygons
 from polyloops.io.formats import FormatError
 
 __all__ = ["LabelledMesh", "LabelledMeshError", "labelled_mesh_from_polycube", "labels_text",
-           "parse_labels", "read_triangle_mesh", "triangle_obj_text"]
+           "parse_labels", "read_labelled_mesh", "read_triangle_mesh", "triangle_obj_text"]
 
 Point = tuple[float, float, float]
 Triangle = tuple[int, int, int]
@@ -37,7 +37,12 @@ MESH_SUFFIXES = (".obj", ".stl", ".mesh")
 
 
 class LabelledMeshError(FormatError):
-    """A mesh or labels file that cannot be read; the message names the line or face."""
+    """A mesh or labels file that cannot be read; the message names the line or face, and
+    ``where`` the file (when known)."""
+
+    def __init__(self, message: str, where: str | None = None):
+        super().__init__(message)
+        self.where = where
 
 
 @dataclass(frozen=True)
@@ -181,3 +186,49 @@ def labelled_mesh_from_polycube(q: Polycube, labels: Sequence[Direction] | None 
         normals += [label, label]
     points = tuple((float(x), float(y), float(z)) for x, y, z in q.positions)
     return LabelledMesh(points, tuple(triangles), tuple(normals))
+
+
+def read_labelled_mesh(mesh: str | os.PathLike[str], labels: str | os.PathLike[str]) -> LabelledMesh:
+    """A labelled mesh from its two files, each read once through :mod:`polyloops.io.files`:
+    the triangles (OBJ, STL or MEDIT ``.mesh`` by extension; ``-``, standard input, as OBJ or
+    STL text by its first word) and the labels (one integer per triangle).
+
+    Raises
+    ------
+    InputError
+        When a file cannot be read (the message names it).
+    LabelledMeshError
+        For content that is not a triangle mesh or a labels file; ``where`` says which file.
+    """
+    import tempfile
+
+    from polyloops.io.files import check_regular, read_bytes, read_text
+
+    name = os.fspath(mesh)
+    if name == "-":  # standard input: a file name is needed by meshio, so keep it in one
+        data = read_bytes(name)
+        suffix = ".stl" if data.lstrip(b"\xef\xbb\xbf \t\r\n").lower().startswith(b"solid") else ".obj"
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "mesh" + suffix)
+            with open(path, "wb") as fh:
+                fh.write(data)
+            points, triangles = _triangles(name, path)
+    else:
+        check_regular(name)  # a regular file of reasonable size (meshio would read a FIFO forever)
+        points, triangles = _triangles(name, name)
+    try:
+        parsed = parse_labels(read_text(labels), len(triangles))
+    except LabelledMeshError as err:
+        raise LabelledMeshError(str(err), where=os.fspath(labels)) from None
+    return LabelledMesh(points, triangles, parsed)
+
+
+def _triangles(name: str, path: str) -> tuple[tuple[Point, ...], tuple[Triangle, ...]]:
+    try:
+        return read_triangle_mesh(path)
+    except LabelledMeshError as err:
+        raise LabelledMeshError(str(err), where=name) from None
+    except FormatError as err:
+        raise LabelledMeshError(str(err), where=name) from None
+    except OSError as err:
+        raise LabelledMeshError(f"cannot read: {err.strerror or err}", where=name) from None
