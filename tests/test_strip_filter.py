@@ -122,3 +122,13 @@ def test_cli_says_when_the_compiled_filter_is_missing(monkeypatch, tmp_path, cap
     assert code == 2
     assert "--method numpy" in err and "Traceback" not in err
     assert len(err.strip().splitlines()) == 1
+
+
+def test_the_fallback_filter_is_announced(monkeypatch, capsys, tmp_path):
+    """Without the compiled filter, plantri's generator says once that the numpy twin runs."""
+    import polyloops.enumerate.quadrangulations as quadrangulations
+
+    monkeypatch.setattr(quadrangulations, "compiled_filter_available", lambda: False)
+    assert main(["catalog", "--max-corners", "12", "--generator", "plantri", "-o", str(tmp_path / "c")]) == 0
+    err = capsys.readouterr().err
+    assert err.count("numpy filter") == 1 and "note:" in err

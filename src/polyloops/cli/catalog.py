@@ -36,8 +36,13 @@ def cmd_catalog(args: argparse.Namespace) -> int:
         generator, note = choose_generator(args.generator, args.method, args.plantri)
     except CatalogRunError as err:
         raise CliError(f"--generator {args.generator}: {err}") from None
-    if note:
-        print(f"polyloops catalog: note: {note}", file=sys.stderr)
+    try:
+        configured = GENERATORS[generator].with_options(plantri=args.plantri, method=args.method)
+    except (KeyError, ValueError):
+        configured = None  # build_catalog names the problem
+    for line in [note, *(configured.notes() if configured else [])]:
+        if line:
+            print(f"polyloops catalog: note: {line}", file=sys.stderr)
 
     bar = tqdm(unit="job", desc="catalog", disable=None, file=sys.stderr)
     maps = [0]

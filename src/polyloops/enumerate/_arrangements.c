@@ -19,6 +19,13 @@
  * as its canonical twin array (uint16), with a flag telling whether the child is itself a
  * candidate (regions of 3 to 6 sides, no two regions sharing two edges or one region on both
  * sides of an edge).  A parent with two darts is the single loop, with one marker vertex.
+ *
+ * canonical(rot, twin) gives the canonical twin array and the candidate flag of one
+ * arrangement.
+ *
+ * Not reentrant: the search keeps one static context and one static child, and runs with the
+ * GIL held (it never releases it), so Python calls it one at a time per process; the catalog
+ * parallelises over processes.  Names follow docs/catalog.md ("Cuts, with their proofs").
  */
 #define PY_SSIZE_T_CLEAN
 #include <Python.h>
@@ -29,20 +36,40 @@
 #define MAXV (MAXD / 2)
 #define MAXL 64            /* loops (a bit mask each) */
 
+/* The search context, one parent at a time.  The module keeps one static context and one
+ * static child (below), so it is not reentrant: Python calls it with the GIL held, one call
+ * at a time per process (the catalog's workers are processes, not threads). */
 typedef struct {
-    int R[MAXD], IR[MAXD], T[MAXD], O[MAXD], S[MAXD];
-    unsigned char P[MAXD];
-    int mark[MAXD], fs[MAXD];
-    unsigned lab[MAXD], nextlab;   /* reset with each parent */
-    int stamp;
-    int n, nv, nv0;
-    int pedge[MAXD];
-    unsigned char marker[MAXV];
-    int f0, limit, budget, e0min, ban0, ban1;
-    int ploop[MAXD], npl, pcross[MAXL], pdel[MAXL], ci[MAXL];
-    PyObject *out;
-    int failed;
-    long long nodes, closed, bounded, rejected;
+    /* the partial map being drawn: the parent's darts, then 2 per edge piece or chord added */
+    int rot[MAXD];          /* next dart counter-clockwise around the origin */
+    int irot[MAXD];         /* rot's inverse */
+    int twin[MAXD];         /* the other dart of the edge */
+    int origin[MAXD];       /* the vertex a dart leaves (crossings first, then the new points) */
+    int parent_dart[MAXD];  /* the parent dart an edge piece lies along (-1 on the new curve) */
+    unsigned char on_curve[MAXD];  /* 1 for the darts of the curve being drawn */
+    int seen[MAXD];         /* a stamp per dart, for walks that visit each face once */
+    int fsize[MAXD];        /* the number of corners of the face on the dart's left */
+    unsigned flabel[MAXD], next_label;  /* a label per face (on its darts); reset with each parent */
+    int stamp;              /* the current value for seen[] */
+    int n, nv, nv0;         /* darts, vertices now, vertices of the parent */
+    int parent_edge[MAXD];  /* the lesser dart of the parent edge a parent dart lies on */
+    unsigned char marker[MAXV];    /* a degree-2 vertex: the single loop's marker */
+    int parent_crossings;   /* crossings of the parent (its vertices, markers aside) */
+    int limit;              /* the corner budget of the whole search */
+    int budget;             /* crossings the new curve may add: limit - parent_crossings */
+    int first_edge;         /* the start edge: no edge below it in the numbering may be crossed */
+    int near, near_twin;    /* the start edge's piece between its origin and the start: the
+                               curve starts at its crossing nearest the origin, so it never
+                               crosses that piece again */
+    int loop_of[MAXD];      /* the parent loop a dart lies on */
+    int nloops;             /* the parent's loops */
+    int loop_crossings[MAXL];  /* crossings of each parent loop in the parent */
+    int deletable[MAXL];    /* 1 when deleting the loop leaves the parent connected */
+    int crossings_with[MAXL];  /* crossings of the curve being drawn with each parent loop */
+    PyObject *out;          /* the list of children found */
+    int failed;             /* 1: a Python error is set; 2: a child with too many loops */
+    long long nodes, closed, bounded, rejected;  /* statistics: curves drawn, closed, over the
+                                                    bound, not canonical */
 } Ctx;
 
 static inline int need(int s)
@@ -54,8 +81,13 @@ static inline int need(int s)
 
 static inline int max3(int a, int b, int c) { return a > b ? (a > c ? a : c) : (b > c ? b : c); }
 
-/* Twice the least share of the later crossings that an open face needs (see dfs): one where
- * the path ends at a corner (it leaves through a side), and the face holding both ends. */
+/* Cut 2 of docs/catalog.md (the open faces' shares), doubled to stay in integers.  half2(s):
+ * twice the least share of the later crossings that an open face of s sides needs where the
+ * path leaves from one of its corners (one half-arc from the corner, then t arcs and x
+ * crossings: t + x >= max(0, ceil((s - 9) / 2), 3 - s), share t + x + 1/2).  both2(s): the
+ * same for the face holding both ends of the path, the lesser of closing at once (share t + x,
+ * t + x >= max(0, ceil((s - 10) / 2), 4 - s)) and leaving and coming back (share t + x + 1,
+ * t + x >= max(0, ceil((s - 12) / 2), 3 - s)).  need(s) is cut 1's need of a closed region. */
 static inline int half2(int s) { return 2 * max3(0, s >= 9 ? (s - 8) / 2 : 0, 3 - s) + 1; }
 
 static inline int both2(int s)
@@ -65,55 +97,58 @@ static inline int both2(int s)
     return direct < around ? direct : around;
 }
 
-static inline int fnext(const Ctx *c, int e) { return c->IR[c->T[e]]; }
+static inline int fnext(const Ctx *c, int e) { return c->irot[c->twin[e]]; }
 
 static void subdivide(Ctx *c, int e, int *e1, int *e2)
 {
-    int q = c->nv++, a = c->n, b = c->n + 1, te = c->T[e];
+    int q = c->nv++, a = c->n, b = c->n + 1, te = c->twin[e];
     c->n += 2;
-    c->R[a] = b; c->R[b] = a; c->IR[a] = b; c->IR[b] = a;
-    c->T[a] = e; c->T[b] = te; c->O[a] = q; c->O[b] = q;
-    c->P[a] = 0; c->P[b] = 0; c->S[a] = c->S[te]; c->S[b] = c->S[e];
-    c->T[e] = a; c->T[te] = b;
+    c->rot[a] = b; c->rot[b] = a; c->irot[a] = b; c->irot[b] = a;
+    c->twin[a] = e; c->twin[b] = te; c->origin[a] = q; c->origin[b] = q;
+    c->on_curve[a] = 0; c->on_curve[b] = 0; c->parent_dart[a] = c->parent_dart[te]; c->parent_dart[b] = c->parent_dart[e];
+    c->twin[e] = a; c->twin[te] = b;
     *e1 = a; *e2 = b;
 }
 
 static void unsubdivide(Ctx *c, int e, int e1)
 {
-    int te = c->T[e1 + 1];
-    c->T[e] = te; c->T[te] = e;
+    int te = c->twin[e1 + 1];
+    c->twin[e] = te; c->twin[te] = e;
     c->n -= 2; c->nv--;
 }
 
 /* A chord from the origin of x (right after x, counter-clockwise) to the origin of y. */
 static void chord(Ctx *c, int x, int y)
 {
-    int a = c->n, b = c->n + 1, rx = c->R[x], ry = c->R[y];
+    int a = c->n, b = c->n + 1, rx = c->rot[x], ry = c->rot[y];
     c->n += 2;
-    c->R[a] = rx; c->R[b] = ry; c->IR[a] = x; c->IR[b] = y;
-    c->T[a] = b; c->T[b] = a; c->O[a] = c->O[x]; c->O[b] = c->O[y];
-    c->P[a] = 1; c->P[b] = 1; c->S[a] = -1; c->S[b] = -1;
-    c->R[x] = a; c->IR[rx] = a; c->R[y] = b; c->IR[ry] = b;
+    c->rot[a] = rx; c->rot[b] = ry; c->irot[a] = x; c->irot[b] = y;
+    c->twin[a] = b; c->twin[b] = a; c->origin[a] = c->origin[x]; c->origin[b] = c->origin[y];
+    c->on_curve[a] = 1; c->on_curve[b] = 1; c->parent_dart[a] = -1; c->parent_dart[b] = -1;
+    c->rot[x] = a; c->irot[rx] = a; c->rot[y] = b; c->irot[ry] = b;
 }
 
 static void unchord(Ctx *c, int x, int y)
 {
-    int a = c->n - 2, b = c->n - 1, rx = c->R[a], ry = c->R[b];
-    c->R[x] = rx; c->IR[rx] = x; c->R[y] = ry; c->IR[ry] = y;
+    int a = c->n - 2, b = c->n - 1, rx = c->rot[a], ry = c->rot[b];
+    c->rot[x] = rx; c->irot[rx] = x; c->rot[y] = ry; c->irot[ry] = y;
     c->n -= 2;
 }
 
-static inline int is_marker(const Ctx *c, int d) { return c->O[d] < c->nv0 && c->marker[c->O[d]]; }
+static inline int is_marker(const Ctx *c, int d) { return c->origin[d] < c->nv0 && c->marker[c->origin[d]]; }
 
 /* The child: compact darts (markers removed), then loops, the bound, acceptance, the code. */
 typedef struct {
-    int D;
-    int R[MAXD], IR[MAXD], T[MAXD];
-    int face[MAXD], fdeg[MAXD], loop[MAXD];
-    int nf, nl;
-    int lcross[MAXL];
-    uint64_t adj[MAXL];
-    int best[MAXD], code[MAXD], num[MAXD], order[MAXD];
+    int D;                  /* darts */
+    int rot[MAXD], irot[MAXD], twin[MAXD];  /* as in Ctx */
+    int face[MAXD];         /* the face on a dart's left */
+    int face_size[MAXD];    /* sides of each face */
+    int loop[MAXD];         /* the loop a dart lies on */
+    int nfaces, nloops;
+    int loop_crossings[MAXL];  /* crossings of each loop */
+    uint64_t adj[MAXL];     /* the loops each loop crosses, a bit each */
+    int best[MAXD], code[MAXD], num[MAXD], order[MAXD];  /* canonical code: least so far, the
+                                                            current one, and its numbering */
 } Child;
 
 static Child child;
@@ -121,8 +156,8 @@ static Child child;
 static int face_key(const Child *h, int o, int d)
 {
     /* an isomorphism invariant of (orientation, dart): mirrored, left and right swap */
-    int f = o ? h->face[h->T[d]] : h->face[d];
-    return h->lcross[h->loop[d]] * 64 + h->fdeg[f];
+    int f = o ? h->face[h->twin[d]] : h->face[d];
+    return h->loop_crossings[h->loop[d]] * 64 + h->face_size[f];
 }
 
 /* The code from root r in orientation o (0: rot, 1: irot); returns -1 if it exceeds best at
@@ -130,7 +165,7 @@ static int face_key(const Child *h, int o, int d)
  * of the first dart in the numbering that lies on a candidate loop. */
 static int code_from(Child *h, int o, int r, int have_best, uint64_t cand, int *first)
 {
-    const int *rot = o ? h->IR : h->R;
+    const int *rot = o ? h->irot : h->rot;
     int cnt = 0, smaller = !have_best;
     for (int d = 0; d < h->D; d++) h->num[d] = -1;
     *first = -1;
@@ -138,7 +173,7 @@ static int code_from(Child *h, int o, int r, int have_best, uint64_t cand, int *
         h->order[cnt++] = t_; t_ = rot[t_]; } } while (0)
     VISIT(r);
     for (int i = 0; i < h->D; i++) {
-        int d = h->order[i], t = h->T[d];
+        int d = h->order[i], t = h->twin[d];
         if (*first < 0 && (cand >> h->loop[d] & 1)) *first = h->loop[d];
         if (h->num[t] < 0) VISIT(t);
         int v = h->num[t];
@@ -155,13 +190,13 @@ static int code_from(Child *h, int o, int r, int have_best, uint64_t cand, int *
 static int connected_without(const Child *h, int skip)
 {
     uint64_t all = 0, seen, frontier;
-    for (int l = 0; l < h->nl; l++) if (l != skip) all |= (uint64_t)1 << l;
+    for (int l = 0; l < h->nloops; l++) if (l != skip) all |= (uint64_t)1 << l;
     if (!all) return 1;
     int s = skip == 0 ? 1 : 0;
     seen = frontier = (uint64_t)1 << s;
     while (frontier) {
         uint64_t next = 0;
-        for (int l = 0; l < h->nl; l++) if (frontier >> l & 1) next |= h->adj[l];
+        for (int l = 0; l < h->nloops; l++) if (frontier >> l & 1) next |= h->adj[l];
         next &= all & ~seen;
         seen |= next;
         frontier = next;
@@ -173,14 +208,14 @@ static int connected_without(const Child *h, int skip)
 static int child_faces(Child *h)
 {
     int total = h->D / 4;
-    for (int d = 0; d < h->D; d++) h->IR[h->R[d]] = d;
+    for (int d = 0; d < h->D; d++) h->irot[h->rot[d]] = d;
     for (int d = 0; d < h->D; d++) h->face[d] = -1;
-    h->nf = 0;
+    h->nfaces = 0;
     for (int d = 0; d < h->D; d++) {
         if (h->face[d] >= 0) continue;
         int k = 0, e = d;
-        do { h->face[e] = h->nf; k++; e = h->IR[h->T[e]]; } while (e != d);
-        h->fdeg[h->nf++] = k;
+        do { h->face[e] = h->nfaces; k++; e = h->irot[h->twin[e]]; } while (e != d);
+        h->face_size[h->nfaces++] = k;
         total += need(k);
     }
     return total;
@@ -191,23 +226,23 @@ static int child_faces(Child *h)
 static int child_loops(Child *h)
 {
     for (int d = 0; d < h->D; d++) h->loop[d] = -1;
-    h->nl = 0;
+    h->nloops = 0;
     for (int d = 0; d < h->D; d++) {
         if (h->loop[d] >= 0) continue;
-        if (h->nl >= MAXL) return -1;
+        if (h->nloops >= MAXL) return -1;
         int e = d;
-        do { h->loop[e] = h->nl; h->loop[h->T[e]] = h->nl; e = h->R[h->R[h->T[e]]]; } while (e != d);
-        h->lcross[h->nl] = 0;
-        h->adj[h->nl] = 0;
-        h->nl++;
+        do { h->loop[e] = h->nloops; h->loop[h->twin[e]] = h->nloops; e = h->rot[h->rot[h->twin[e]]]; } while (e != d);
+        h->loop_crossings[h->nloops] = 0;
+        h->adj[h->nloops] = 0;
+        h->nloops++;
     }
     for (int d = 0; d < h->D; d++) {
-        int a = h->loop[d], b = h->loop[h->R[d]];
+        int a = h->loop[d], b = h->loop[h->rot[d]];
         if (a == b) return -1;
-        h->lcross[a]++;
+        h->loop_crossings[a]++;
         h->adj[a] |= (uint64_t)1 << b;
     }
-    for (int l = 0; l < h->nl; l++) h->lcross[l] /= 2;
+    for (int l = 0; l < h->nloops; l++) h->loop_crossings[l] /= 2;
     return 0;
 }
 
@@ -239,12 +274,12 @@ static int child_code(Child *h, uint64_t cand, int wanted)
 static int child_is_candidate(const Child *h)
 {
     static unsigned char pair[MAXV * MAXV / 4];
-    int nf = h->nf;
-    for (int f = 0; f < nf; f++) if (h->fdeg[f] < 3 || h->fdeg[f] > 6) return 0;
+    int nf = h->nfaces;
+    for (int f = 0; f < nf; f++) if (h->face_size[f] < 3 || h->face_size[f] > 6) return 0;
     if ((size_t)nf * nf > sizeof(pair)) return -1;
     memset(pair, 0, (size_t)nf * nf);
     for (int d = 0; d < h->D; d++) {
-        int a = h->face[d], b = h->face[h->T[d]];
+        int a = h->face[d], b = h->face[h->twin[d]];
         if (a == b || pair[a * nf + b]) return 0;
         pair[a * nf + b] = 1;
     }
@@ -268,10 +303,10 @@ static void emit(Ctx *c, int newdart)
     h->D = D;
     for (int d = 0; d < c->n; d++) {
         if (id[d] < 0) continue;
-        int t = c->T[d];
-        if (id[t] < 0) t = c->T[c->R[t]];      /* through the marker */
-        h->T[id[d]] = id[t];
-        h->R[id[d]] = id[c->R[d]];             /* markers are never on a crossing */
+        int t = c->twin[d];
+        if (id[t] < 0) t = c->twin[c->rot[t]];      /* through the marker */
+        h->twin[id[d]] = id[t];
+        h->rot[id[d]] = id[c->rot[d]];             /* markers are never on a crossing */
     }
     if (child_faces(h) > c->limit) { c->bounded++; return; }
     if (child_loops(h) < 0) { c->failed = 2; return; }
@@ -279,10 +314,10 @@ static void emit(Ctx *c, int newdart)
     /* candidates: deletable loops with the fewest crossings */
     uint64_t cand = 0;
     int fewest = 1 << 30;
-    for (int l = 0; l < h->nl; l++) {
+    for (int l = 0; l < h->nloops; l++) {
         if (!connected_without(h, l)) continue;
-        if (h->lcross[l] < fewest) { fewest = h->lcross[l]; cand = 0; }
-        if (h->lcross[l] == fewest) cand |= (uint64_t)1 << l;
+        if (h->loop_crossings[l] < fewest) { fewest = h->loop_crossings[l]; cand = 0; }
+        if (h->loop_crossings[l] == fewest) cand |= (uint64_t)1 << l;
     }
     if (!(cand >> newloop & 1) || !child_code(h, cand, newloop)) { c->rejected++; return; }
     int final = child_is_candidate(h);
@@ -300,7 +335,7 @@ static void emit(Ctx *c, int newdart)
 static void label_face(Ctx *c, int d, unsigned label, int size)
 {
     int e = d;
-    do { c->lab[e] = label; c->fs[e] = size; e = fnext(c, e); } while (e != d);
+    do { c->flabel[e] = label; c->fsize[e] = size; e = fnext(c, e); } while (e != d);
 }
 
 /* The parent's faces labelled; returns twice their needs. */
@@ -308,10 +343,10 @@ static int label_all(Ctx *c)
 {
     int st = ++c->stamp, sum = 0;
     for (int d = 0; d < c->n; d++) {
-        if (c->mark[d] == st) continue;
+        if (c->seen[d] == st) continue;
         int s = 0, e = d;
-        do { c->mark[e] = st; s += !is_marker(c, e); e = fnext(c, e); } while (e != d);
-        label_face(c, d, ++c->nextlab, s);
+        do { c->seen[e] = st; s += !is_marker(c, e); e = fnext(c, e); } while (e != d);
+        label_face(c, d, ++c->next_label, s);
         sum += 2 * need(s);
     }
     return sum;
@@ -332,17 +367,17 @@ static void dfs(Ctx *c, int x, int y0, int cr, int base2)
         e = fnext(c, e);
     } while (e != x);
     int sg = corner[k];
-    unsigned lg = ++c->nextlab;
-    for (int i = 0; i < k; i++) { c->lab[face[i]] = lg; c->fs[face[i]] = sg; }
-    int closable = at >= 0, sz = c->fs[y0];
-    unsigned lz = c->lab[y0];
+    unsigned lg = ++c->next_label;
+    for (int i = 0; i < k; i++) { c->flabel[face[i]] = lg; c->fsize[face[i]] = sg; }
+    int closable = at >= 0, sz = c->fsize[y0];
+    unsigned lz = c->flabel[y0];
     /* A loop of the parent that stays deletable (the new loop meets another loop too) must
      * have at least as many crossings as the new one: the new loop meets the other loops at
      * most as often as that loop's crossings in the parent. */
     int crossed = 0;
-    for (int l = 0; l < c->npl; l++) crossed += c->ci[l] > 0;
-    for (int l = 0; l < c->npl; l++)
-        if (c->pdel[l] && crossed > (c->ci[l] > 0) && cr - c->ci[l] > c->pcross[l]) return;
+    for (int l = 0; l < c->nloops; l++) crossed += c->crossings_with[l] > 0;
+    for (int l = 0; l < c->nloops; l++)
+        if (c->deletable[l] && crossed > (c->crossings_with[l] > 0) && cr - c->crossings_with[l] > c->loop_crossings[l]) return;
     /* Twice a lower bound on the child's crossings and on those of later loops: base2 covers
      * the faces other than the open ones (regions of the child, or pieces later loops must
      * cut to size); the open faces will hold the rest of the path. */
@@ -367,9 +402,9 @@ static void dfs(Ctx *c, int x, int y0, int cr, int base2)
     int go[MAXD], gob[MAXD], goi[MAXD], ngo = 0;
     for (int i = 0; i < k; i++) {
         int d = face[i];
-        if (c->P[d] || c->pedge[c->S[d]] < c->e0min || d == c->ban0 || d == c->ban1) continue;
-        int t = c->T[d], z = c->lab[t] == lz;   /* is the face across the closing face? */
-        int s1 = corner[i + 1] + 1, s2 = corner[k] - corner[i + 1] + 2, sh = c->fs[t];
+        if (c->on_curve[d] || c->parent_edge[c->parent_dart[d]] < c->first_edge || d == c->near || d == c->near_twin) continue;
+        int t = c->twin[d], z = c->flabel[t] == lz;   /* is the face across the closing face? */
+        int s1 = corner[i + 1] + 1, s2 = corner[k] - corner[i + 1] + 2, sh = c->fsize[t];
         int nb2 = base2 + 2 - (z ? 0 : 2 * need(sh)), next2;
         if (closable) {   /* the piece with the closing angle stays open */
             int keep = at <= i ? s1 : s2, cut = at <= i ? s2 : s1;
@@ -382,26 +417,26 @@ static void dfs(Ctx *c, int x, int y0, int cr, int base2)
         if (next2 <= limit2) { go[ngo] = d; gob[ngo] = nb2; goi[ngo++] = i; }
     }
     for (int j = 0; j < ngo; j++) {
-        int d = go[j], i = goi[j], e1, e2, l = c->npl ? c->ploop[c->S[d]] : 0;
-        int t = c->T[d], sh = c->fs[t];
-        unsigned lh = c->lab[t];
+        int d = go[j], i = goi[j], e1, e2, l = c->nloops ? c->loop_of[c->parent_dart[d]] : 0;
+        int t = c->twin[d], sh = c->fsize[t];
+        unsigned lh = c->flabel[t];
         subdivide(c, d, &e1, &e2);
         chord(c, x, e2);
         /* the two pieces: face[0..i] with the chord's dart at q, and e2, face[i+1..] with
          * the chord's dart at p */
-        unsigned l1 = ++c->nextlab, l2 = ++c->nextlab;
+        unsigned l1 = ++c->next_label, l2 = ++c->next_label;
         int s1 = corner[i + 1] + 1, s2 = corner[k] - corner[i + 1] + 2;
         int a = c->n - 2, b = c->n - 1;
-        for (int m = 0; m <= i; m++) { c->lab[face[m]] = l1; c->fs[face[m]] = s1; }
-        c->lab[b] = l1; c->fs[b] = s1;
-        for (int m = i + 1; m < k; m++) { c->lab[face[m]] = l2; c->fs[face[m]] = s2; }
-        c->lab[e2] = l2; c->fs[e2] = s2; c->lab[a] = l2; c->fs[a] = s2;
-        c->ci[l]++;
+        for (int m = 0; m <= i; m++) { c->flabel[face[m]] = l1; c->fsize[face[m]] = s1; }
+        c->flabel[b] = l1; c->fsize[b] = s1;
+        for (int m = i + 1; m < k; m++) { c->flabel[face[m]] = l2; c->fsize[face[m]] = s2; }
+        c->flabel[e2] = l2; c->fsize[e2] = s2; c->flabel[a] = l2; c->fsize[a] = s2;
+        c->crossings_with[l]++;
         dfs(c, e1, y0, cr + 1, gob[j]);
-        c->ci[l]--;
+        c->crossings_with[l]--;
         unchord(c, x, e2);
         unsubdivide(c, d, e1);
-        for (int m = 0; m < k; m++) { c->lab[face[m]] = lg; c->fs[face[m]] = sg; }
+        for (int m = 0; m < k; m++) { c->flabel[face[m]] = lg; c->fsize[face[m]] = sg; }
         label_face(c, t, lh, sh);
     }
 }
@@ -436,21 +471,21 @@ static void edge_orbit_minima(Ctx *c, unsigned char *is_min)
     int D = c->n;
     Child *h = &child;   /* for the invariant that automorphisms keep: roots are tried by it */
     h->D = D;
-    memcpy(h->R, c->R, sizeof(int) * (size_t)D);
-    memcpy(h->T, c->T, sizeof(int) * (size_t)D);
+    memcpy(h->rot, c->rot, sizeof(int) * (size_t)D);
+    memcpy(h->twin, c->twin, sizeof(int) * (size_t)D);
     child_faces(h);
     child_loops(h);
     int low = 1 << 30, root = 0;
     for (int d = 0; d < D; d++) { int k = face_key(h, 0, d); if (k < low) { low = k; root = d; } }
-    for (int d = 0; d < D; d++) is_min[d] = d < c->T[d];
-    number_from(c->R, c->T, D, root, num0, order0, ref, NULL);
+    for (int d = 0; d < D; d++) is_min[d] = d < c->twin[d];
+    number_from(c->rot, c->twin, D, root, num0, order0, ref, NULL);
     for (int o = 0; o < 2; o++) {
-        const int *rot = o ? c->IR : c->R;
+        const int *rot = o ? c->irot : c->rot;
         for (int r = 0; r < D; r++) {
-            if (face_key(h, o, r) != low || number_from(rot, c->T, D, r, num, order, code, ref)) continue;
+            if (face_key(h, o, r) != low || number_from(rot, c->twin, D, r, num, order, code, ref)) continue;
             for (int d = 0; d < D; d++) {    /* d -> order[num0[d]] is an automorphism */
                 int img = order[num0[d]];
-                if (is_min[d] && c->pedge[img] < d) is_min[d] = 0;
+                if (is_min[d] && c->parent_edge[img] < d) is_min[d] = 0;
             }
         }
     }
@@ -461,33 +496,33 @@ static int parent_loops(Ctx *c)
 {
     uint64_t adj[MAXL];
     int n = c->n;
-    for (int d = 0; d < n; d++) c->ploop[d] = -1;
-    c->npl = 0;
+    for (int d = 0; d < n; d++) c->loop_of[d] = -1;
+    c->nloops = 0;
     for (int d = 0; d < n; d++) {
-        if (c->ploop[d] >= 0) continue;
-        if (c->npl >= MAXL) return -1;
+        if (c->loop_of[d] >= 0) continue;
+        if (c->nloops >= MAXL) return -1;
         int e = d;
-        do { c->ploop[e] = c->npl; c->ploop[c->T[e]] = c->npl; e = c->R[c->R[c->T[e]]]; } while (e != d);
-        c->pcross[c->npl] = 0;
-        adj[c->npl++] = 0;
+        do { c->loop_of[e] = c->nloops; c->loop_of[c->twin[e]] = c->nloops; e = c->rot[c->rot[c->twin[e]]]; } while (e != d);
+        c->loop_crossings[c->nloops] = 0;
+        adj[c->nloops++] = 0;
     }
     for (int d = 0; d < n; d++) {
-        c->pcross[c->ploop[d]]++;
-        adj[c->ploop[d]] |= (uint64_t)1 << c->ploop[c->R[d]];
+        c->loop_crossings[c->loop_of[d]]++;
+        adj[c->loop_of[d]] |= (uint64_t)1 << c->loop_of[c->rot[d]];
     }
-    for (int l = 0; l < c->npl; l++) {
-        c->pcross[l] /= 2;
+    for (int l = 0; l < c->nloops; l++) {
+        c->loop_crossings[l] /= 2;
         uint64_t all = 0, seen, frontier;
-        for (int m = 0; m < c->npl; m++) if (m != l) all |= (uint64_t)1 << m;
+        for (int m = 0; m < c->nloops; m++) if (m != l) all |= (uint64_t)1 << m;
         seen = frontier = all & -all;
         while (frontier) {
             uint64_t next = 0;
-            for (int m = 0; m < c->npl; m++) if (frontier >> m & 1) next |= adj[m];
+            for (int m = 0; m < c->nloops; m++) if (frontier >> m & 1) next |= adj[m];
             next &= all & ~seen;
             seen |= next;
             frontier = next;
         }
-        c->pdel[l] = seen == all;
+        c->deletable[l] = seen == all;
     }
     return 0;
 }
@@ -517,48 +552,48 @@ static PyObject *children(PyObject *self, PyObject *args)
     memset(c, 0, sizeof(*c));
     c->n = n;
     for (int d = 0; d < n; d++) {
-        c->R[d] = rot[d]; c->T[d] = twin[d]; c->S[d] = d; c->O[d] = -1;
-        c->pedge[d] = d < twin[d] ? d : twin[d];
+        c->rot[d] = rot[d]; c->twin[d] = twin[d]; c->parent_dart[d] = d; c->origin[d] = -1;
+        c->parent_edge[d] = d < twin[d] ? d : twin[d];
     }
     PyBuffer_Release(&rb); PyBuffer_Release(&tb);
-    for (int d = 0; d < n; d++) c->IR[c->R[d]] = d;
+    for (int d = 0; d < n; d++) c->irot[c->rot[d]] = d;
     for (int d = 0; d < n; d++) {
-        if (c->O[d] >= 0) continue;
+        if (c->origin[d] >= 0) continue;
         int e = d, deg = 0;
-        do { c->O[e] = c->nv; deg++; e = c->R[e]; } while (e != d);
+        do { c->origin[e] = c->nv; deg++; e = c->rot[e]; } while (e != d);
         if (deg != 4 && deg != 2) return PyErr_Format(PyExc_ValueError, "a vertex of degree %d", deg);
         c->marker[c->nv++] = deg == 2;
     }
     c->nv0 = c->nv;
     int markers = 0;
     for (int v = 0; v < c->nv; v++) markers += c->marker[v];
-    c->f0 = c->nv - markers;
+    c->parent_crossings = c->nv - markers;
     c->limit = limit;
-    c->budget = limit - c->f0;
+    c->budget = limit - c->parent_crossings;
     if (!markers && parent_loops(c) < 0) return PyErr_Format(PyExc_ValueError, "more than %d loops", MAXL);
     static unsigned char is_min[MAXD];
-    if (markers) for (int d = 0; d < n; d++) is_min[d] = d < c->T[d];
+    if (markers) for (int d = 0; d < n; d++) is_min[d] = d < c->twin[d];
     else edge_orbit_minima(c, is_min);
     c->out = PyList_New(0);
     if (!c->out) return NULL;
     int needs2 = label_all(c);
     for (int e = 0; e < n && !c->failed; e++) {
         if (!is_min[e]) continue;
-        int e1, e2, l = c->npl ? c->ploop[e] : 0, te = c->T[e];
-        int sa = c->fs[e], sb = c->fs[te];
-        unsigned la = c->lab[e], lb = c->lab[te];
-        c->e0min = e;
+        int e1, e2, l = c->nloops ? c->loop_of[e] : 0, te = c->twin[e];
+        int sa = c->fsize[e], sb = c->fsize[te];
+        unsigned la = c->flabel[e], lb = c->flabel[te];
+        c->first_edge = e;
         subdivide(c, e, &e1, &e2);
         /* the faces on either side of e gain the start as a corner; they are the open ones */
         label_face(c, e, la, sa + 1);
         label_face(c, e1, lb, sb + 1);
-        int base2 = 2 * (c->f0 + 1) + needs2 - 2 * need(sa) - 2 * need(sb);
+        int base2 = 2 * (c->parent_crossings + 1) + needs2 - 2 * need(sa) - 2 * need(sb);
         /* the start is the new loop's crossing on e nearest to e's origin */
-        c->ban0 = e;
-        c->ban1 = e1;
-        c->ci[l]++;
+        c->near = e;
+        c->near_twin = e1;
+        c->crossings_with[l]++;
         dfs(c, e1, e2, 1, base2);
-        c->ci[l]--;
+        c->crossings_with[l]--;
         unsubdivide(c, e, e1);
         label_face(c, e, la, sa);
         label_face(c, te, lb, sb);
@@ -584,8 +619,8 @@ static PyObject *canonical(PyObject *self, PyObject *args)
         memset(seen, 0, sizeof(int) * (size_t)n);
         for (int d = 0; d < n && !bad; d++) {
             bad = rot[d] >= n || twin[d] >= n || twin[d] == d || twin[twin[d]] != d || seen[rot[d]]++;
-            h->R[d] = rot[d];
-            h->T[d] = twin[d];
+            h->rot[d] = rot[d];
+            h->twin[d] = twin[d];
         }
     }
     PyBuffer_Release(&rb);
@@ -595,7 +630,7 @@ static PyObject *canonical(PyObject *self, PyObject *args)
     /* every crossing has four darts, and the map is connected */
     for (int d = 0; d < n; d++) {
         int e = d, k = 0;
-        do { e = h->R[e]; k++; } while (e != d && k <= 4);
+        do { e = h->rot[e]; k++; } while (e != d && k <= 4);
         if (k != 4) return PyErr_Format(PyExc_ValueError, "a crossing without four darts");
     }
     int stack[MAXD], top = 0, reached = 1;
@@ -603,7 +638,7 @@ static PyObject *canonical(PyObject *self, PyObject *args)
     seen[0] = 1;
     stack[top++] = 0;
     while (top) {
-        int d = stack[--top], nb[2] = {h->R[d], h->T[d]};
+        int d = stack[--top], nb[2] = {h->rot[d], h->twin[d]};
         for (int j = 0; j < 2; j++)
             if (!seen[nb[j]]) { seen[nb[j]] = 1; reached++; stack[top++] = nb[j]; }
     }
@@ -619,9 +654,10 @@ static PyMethodDef methods[] = {
     {"canonical", canonical, METH_VARARGS,
      "canonical(rot, twin) -> (canonical twin array, is_candidate) of an arrangement"},
     {"children", children, METH_VARARGS,
-     "children(rot, twin, limit) -> ([(canonical twin array, is_candidate)], "
-     "(an empty rot: that of a canonical arrangement) "
-     "(curves drawn, closed, over the bound, not canonical))"},
+     "children(rot, twin, limit) -> (children, (curves drawn, closed, over the bound, not canonical)):\n"
+     "the children of an arrangement (rot and twin as uint16 arrays; an empty rot means the\n"
+     "rot of a canonical arrangement, four darts a crossing), each as (canonical twin array,\n"
+     "is_candidate), with at most limit crossings after every cut"},
     {NULL, NULL, 0, NULL},
 };
 

@@ -142,6 +142,10 @@ class Generator(ABC):
         """Why this generator cannot run here (a part not built), or ``None``."""
         return None
 
+    def notes(self) -> list[str]:
+        """What a user should know about how this generator will run here (a slower fallback)."""
+        return []
+
     def with_options(self, **options: Any) -> Generator:
         """This generator with the build's options (``plantri``: a binary, ``method``: the
         strip filter); one that takes none refuses any that is set.
@@ -235,6 +239,15 @@ class PlantriGenerator(Generator):
         if extra:
             raise ValueError(f"the plantri generator takes no option {', '.join(sorted(extra))}")
         return PlantriGenerator(options.get("plantri"), options.get("method") or "auto")
+
+    def notes(self) -> list[str]:
+        """That the numpy filter stands in for the compiled one, when that was not built."""
+        from polyloops.enumerate.quadrangulations import compiled_filter_available
+
+        if self.method == "auto" and not compiled_filter_available():
+            return ["the compiled strip filter was not built (a C compiler is needed at install time); "
+                    "using the numpy filter, which keeps the same maps"]
+        return []
 
     def job_name(self, job: Job) -> str:
         """``n024-0of1``: plantri's slice of one corner count."""

@@ -1,0 +1,9 @@
+"""Types of the compiled arrangement search (_arrangements.c)."""
+
+# (canonical twin array as uint16 bytes, whether the arrangement is a candidate map)
+Child = tuple[bytes, int]
+# curves drawn, curves closed, closed curves over the bound, closed curves not canonical
+Counts = tuple[int, int, int, int]
+
+def children(rot: bytes, twin: bytes, limit: int, /) -> tuple[list[Child], Counts]: ...
+def canonical(rot: bytes, twin: bytes, /) -> tuple[bytes, int]: ...
