@@ -183,3 +183,17 @@ def test_the_command_line_parses_no_file_itself():
         if found:
             offenders[path.name] = sorted(found)
     assert offenders == {}
+
+
+def test_the_architecture_page_states_these_layers():
+    """docs/architecture.md lists the layers in the order this test enforces, each allowed to
+    import exactly the layers below it."""
+    import re
+
+    text = (PACKAGE.parent.parent / "docs" / "architecture.md").read_text(encoding="utf-8")
+    rows = re.findall(r"^\| `(\w+)` \| [^|]+ \| ([^|]+) \|$", text, re.M)
+    assert [name for name, _ in rows] == list(LAYERS)
+    for i, (name, allowed) in enumerate(rows):
+        named = re.findall(r"`(\w+)`", allowed)
+        assert named == list(LAYERS[:i]) or (allowed.strip().startswith("all of the above") and i > 3) \
+            or (i == 0 and "nothing" in allowed), (name, allowed)

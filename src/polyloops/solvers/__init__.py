@@ -1,5 +1,11 @@
 """Orientation solvers for labelled loop structures: exhaustive, SAT and SMT, one interface.
 
+What lives here: the problem (:mod:`~polyloops.solvers.problem`: side-graph components from the
+kernel's parity system, zones, level graphs), the solvers (:mod:`~polyloops.solvers.brute`,
+:mod:`~polyloops.solvers.sat` with lazy cycle cuts and unsatisfiable cores,
+:mod:`~polyloops.solvers.smt`), counting (:mod:`~polyloops.solvers.base`) and explanations of
+failure (:mod:`~polyloops.solvers.explain`).  It imports the kernel, ``io`` and ``verify``.
+
 >>> from polyloops.io.examples import load_example
 >>> labelled = load_example("ring").dualize().forget_orientation()
 >>> result = orient(labelled, solver="sat")

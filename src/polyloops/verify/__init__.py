@@ -1,5 +1,11 @@
 """Checkers for the paper's definitions; each returns a :class:`Report` of every violation.
 
+What lives here: Definition 1 (:mod:`~polyloops.verify.definition1`), the surface checks
+(:mod:`~polyloops.verify.surface`), Definitions 3 and 4
+(:mod:`~polyloops.verify.loop_structure`), homology and Theorem 3
+(:mod:`~polyloops.verify.homology`), reports with witnesses (:mod:`~polyloops.verify.report`)
+and summaries (:mod:`~polyloops.verify.describe`).  It imports the kernel and ``io`` only.
+
 >>> from polyloops.io.examples import load_example
 >>> verify(load_example("ring")).valid
 True
