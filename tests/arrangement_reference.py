@@ -194,3 +194,24 @@ def reference_arrangements(max_corners: int) -> dict[tuple[int, ...], bool]:
             found[code] = is_candidate(r, t)
         level = list(nxt.values())
     return found
+
+
+def three_colourable(code: tuple[int, ...]) -> bool:
+    """Whether the loops of the arrangement with canonical code ``code`` (its twin array, four
+    darts a crossing in order) can be coloured with three colours so that crossing loops
+    differ: every assignment tried (the arrangements of the tests have few loops)."""
+    from itertools import product
+
+    n = len(code)
+    rot = [4 * (d // 4) + (d + 1) % 4 for d in range(n)]
+    loop = [-1] * n
+    count = 0
+    for d in range(n):
+        if loop[d] < 0:
+            e = d
+            while loop[e] < 0:  # straight on: the dart opposite at the next crossing
+                loop[e] = loop[code[e]] = count
+                e = rot[rot[code[e]]]
+            count += 1
+    pairs = {(min(loop[d], loop[rot[d]]), max(loop[d], loop[rot[d]])) for d in range(n)}
+    return any(all(c[a] != c[b] for a, b in pairs) for c in product(range(3), repeat=count))

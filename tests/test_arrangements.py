@@ -12,7 +12,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from arrangement_reference import canonical_code, reference_arrangements
+from arrangement_reference import canonical_code, reference_arrangements, three_colourable
 from polyloops.core.halfedge import HalfEdgeMap
 from polyloops.enumerate.arrangements import (
     Arrangement,
@@ -47,15 +47,22 @@ def reference_code(a: Arrangement) -> tuple[int, ...]:
     return canonical_code(list(a.rot), list(a.twin))
 
 
+@pytest.mark.parametrize("colour_cut", [True, False])
 @pytest.mark.parametrize("max_corners", [12, 14, pytest.param(16, marks=pytest.mark.slow)])
-def test_search_visits_exactly_what_the_slow_twin_finds(max_corners):
+def test_search_visits_exactly_what_the_slow_twin_finds(max_corners, colour_cut, monkeypatch):
     """The compiled search (canonical construction, every cut) visits each connected
     arrangement of simple loops that passes the counting bound once: the slow twin's list,
-    made with no canonical construction, another canonical code and only the final bound."""
+    made with no canonical construction, another canonical code and only the final bound; with
+    cut 4, those of them whose crossing graph is 3-colourable (the twin tries every colouring)."""
+    import polyloops.enumerate.arrangements as arrangements_module
+
+    monkeypatch.setattr(arrangements_module, "COLOUR_CUT", colour_cut)
     tree = whole_tree(max_corners)
     codes = [reference_code(a) for a in tree]
     assert len(set(codes)) == len(codes)  # no arrangement twice
     expected = reference_arrangements(max_corners)
+    if colour_cut:
+        expected = {code: candidate for code, candidate in expected.items() if three_colourable(code)}
     assert set(codes) == set(expected)
     assert {c: a.candidate for c, a in zip(codes, tree, strict=True)} == expected
 
@@ -113,17 +120,27 @@ def test_children_give_back_their_parent(a):
 
 @pytest.mark.parametrize("n", [*range(8, 23, 2), pytest.param(24, marks=pytest.mark.slow),
                                pytest.param(26, marks=pytest.mark.slow)])
-def test_candidates_are_plantris(n):
-    """The candidate maps with n corners are those plantri's filter keeps, map for map."""
-    mine = [a for a in candidate_arrangements(n) if a.corners == n]
+def test_candidates_are_plantris(n, monkeypatch):
+    """The candidate maps with n corners are those plantri's filter keeps, map for map; with
+    cut 4, those of them whose crossing graph is 3-colourable (every colouring tried)."""
+    import polyloops.enumerate.arrangements as arrangements_module
+
     theirs = {Arrangement.of(m) for m in candidate_maps(n, find_plantri())}
-    assert len(set(mine)) == len(mine)
-    assert set(mine) == theirs
+    monkeypatch.setattr(arrangements_module, "COLOUR_CUT", False)
+    every = [a for a in candidate_arrangements(n) if a.corners == n]
+    assert len(set(every)) == len(every) and set(every) == theirs
+    monkeypatch.setattr(arrangements_module, "COLOUR_CUT", True)
+    cut = [a for a in candidate_arrangements(n) if a.corners == n]
+    assert set(cut) == {a for a in theirs if three_colourable(reference_code(a))}
 
 
-def test_quad_mesh_round_trip():
+def test_quad_mesh_round_trip(monkeypatch):
+    import polyloops.enumerate.arrangements as arrangements_module
+
+    monkeypatch.setattr(arrangements_module, "COLOUR_CUT", False)  # every candidate map
     found = list(candidate_arrangements(20))
-    assert Counter(a.corners for a in found)[20] == 60
+    maps = sum(1 for _ in candidate_maps(20, find_plantri()))  # what plantri's filter keeps
+    assert Counter(a.corners for a in found)[20] == maps == 60
     for a in found:
         m = a.quad_mesh()
         assert isinstance(m, HalfEdgeMap)

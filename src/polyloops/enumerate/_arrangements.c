@@ -66,10 +66,11 @@ typedef struct {
     int loop_crossings[MAXL];  /* crossings of each parent loop in the parent */
     int deletable[MAXL];    /* 1 when deleting the loop leaves the parent connected */
     int crossings_with[MAXL];  /* crossings of the curve being drawn with each parent loop */
+    int colour_cut;         /* cut 4: drop children whose crossing graph is not 3-colourable */
     PyObject *out;          /* the list of children found */
     int failed;             /* 1: a Python error is set; 2: a child with too many loops */
-    long long nodes, closed, bounded, rejected;  /* statistics: curves drawn, closed, over the
-                                                    bound, not canonical */
+    long long nodes, closed, bounded, rejected, uncolourable;  /* statistics: curves drawn,
+                                       closed, over the bound, not canonical, not 3-colourable */
 } Ctx;
 
 static inline int need(int s)
@@ -286,6 +287,41 @@ static int child_is_candidate(const Child *h)
     return 1;
 }
 
+/* Cut 4 of docs/catalog.md: a polycube's axes colour the graph of crossing loops properly with
+ * three colours (loops of one axis never cross), and deleting a loop keeps a colouring, so
+ * every arrangement on the canonical construction path of a candidate that carries a polycube
+ * is 3-colourable.  Backtracking over the loops, most crossed first, colour bits per loop. */
+static int colour_from(const Child *h, const int *order, int i, unsigned char *colour)
+{
+    if (i == h->nloops) return 1;
+    int l = order[i];
+    unsigned used = 0;
+    for (int m = 0; m < h->nloops; m++)
+        if ((h->adj[l] >> m & 1) && colour[m]) used |= 1u << colour[m];
+    for (unsigned char k = 1; k <= 3; k++) {
+        if (used >> k & 1) continue;
+        colour[l] = k;
+        if (colour_from(h, order, i + 1, colour)) return 1;
+    }
+    colour[l] = 0;
+    return 0;
+}
+
+static int colourable3(const Child *h)
+{
+    int order[MAXL], deg[MAXL];
+    unsigned char colour[MAXL] = {0};
+    for (int l = 0; l < h->nloops; l++) {
+        order[l] = l;
+        deg[l] = __builtin_popcountll(h->adj[l]);
+    }
+    for (int i = 1; i < h->nloops; i++)   /* most crossed first: the tightest choices early */
+        for (int j = i; j > 0 && deg[order[j]] > deg[order[j - 1]]; j--) {
+            int t = order[j]; order[j] = order[j - 1]; order[j - 1] = t;
+        }
+    return colour_from(h, order, 0, colour);
+}
+
 static PyObject *code_bytes(const Child *h)
 {
     uint16_t buf[MAXD];
@@ -310,6 +346,7 @@ static void emit(Ctx *c, int newdart)
     }
     if (child_faces(h) > c->limit) { c->bounded++; return; }
     if (child_loops(h) < 0) { c->failed = 2; return; }
+    if (c->colour_cut && !colourable3(h)) { c->uncolourable++; return; }
     int newloop = h->loop[id[newdart]];
     /* candidates: deletable loops with the fewest crossings */
     uint64_t cand = 0;
@@ -530,8 +567,8 @@ static int parent_loops(Ctx *c)
 static PyObject *children(PyObject *self, PyObject *args)
 {
     Py_buffer rb, tb;
-    int limit;
-    if (!PyArg_ParseTuple(args, "y*y*i", &rb, &tb, &limit)) return NULL;
+    int limit, colour_cut = 1;
+    if (!PyArg_ParseTuple(args, "y*y*i|p", &rb, &tb, &limit, &colour_cut)) return NULL;
     Ctx *c = &ctx;
     int n = (int)(tb.len / 2), implicit = rb.len == 0;
     static uint16_t blocks[MAXD];   /* an empty rot: four darts a crossing, in order */
@@ -550,6 +587,7 @@ static PyObject *children(PyObject *self, PyObject *args)
         return PyErr_Format(PyExc_ValueError, "not an arrangement's rot and twin arrays");
     }
     memset(c, 0, sizeof(*c));
+    c->colour_cut = colour_cut;
     c->n = n;
     for (int d = 0; d < n; d++) {
         c->rot[d] = rot[d]; c->twin[d] = twin[d]; c->parent_dart[d] = d; c->origin[d] = -1;
@@ -603,7 +641,8 @@ static PyObject *children(PyObject *self, PyObject *args)
         if (c->failed == 2) return PyErr_Format(PyExc_ValueError, "more than %d loops", MAXL);
         return NULL;
     }
-    PyObject *res = Py_BuildValue("(N(LLLL))", c->out, c->nodes, c->closed, c->bounded, c->rejected);
+    PyObject *res = Py_BuildValue("(N(LLLLL))", c->out, c->nodes, c->closed, c->bounded, c->rejected,
+                                  c->uncolourable);
     return res;
 }
 
@@ -654,10 +693,11 @@ static PyMethodDef methods[] = {
     {"canonical", canonical, METH_VARARGS,
      "canonical(rot, twin) -> (canonical twin array, is_candidate) of an arrangement"},
     {"children", children, METH_VARARGS,
-     "children(rot, twin, limit) -> (children, (curves drawn, closed, over the bound, not canonical)):\n"
-     "the children of an arrangement (rot and twin as uint16 arrays; an empty rot means the\n"
-     "rot of a canonical arrangement, four darts a crossing), each as (canonical twin array,\n"
-     "is_candidate), with at most limit crossings after every cut"},
+     "children(rot, twin, limit, colour_cut=True) -> (children, (curves drawn, closed, over the\n"
+     "bound, not canonical, not 3-colourable)): the children of an arrangement (rot and twin as\n"
+     "uint16 arrays; an empty rot means the rot of a canonical arrangement, four darts a\n"
+     "crossing), each as (canonical twin array, is_candidate), with at most limit crossings\n"
+     "after every cut; colour_cut applies cut 4 (crossing graphs must be 3-colourable)"},
     {NULL, NULL, 0, NULL},
 };
 

@@ -2,8 +2,10 @@
 
 # (canonical twin array as uint16 bytes, whether the arrangement is a candidate map)
 Child = tuple[bytes, int]
-# curves drawn, curves closed, closed curves over the bound, closed curves not canonical
-Counts = tuple[int, int, int, int]
+# curves drawn, curves closed, closed curves over the bound, closed curves not canonical,
+# closed curves whose child's crossing graph is not 3-colourable (cut 4)
+Counts = tuple[int, int, int, int, int]
 
-def children(rot: bytes, twin: bytes, limit: int, /) -> tuple[list[Child], Counts]: ...
+def children(rot: bytes, twin: bytes, limit: int, colour_cut: bool = True, /) -> tuple[list[Child],
+                                                                                     Counts]: ...
 def canonical(rot: bytes, twin: bytes, /) -> tuple[bytes, int]: ...

@@ -16,11 +16,13 @@ arrangement is built once, from one parent, and the search is a tree that splits
 independent subtrees (``res``/``mod``).  Deleting a loop keeps loops simple but not region
 sizes, so intermediate arrangements have bigons and large regions; a counting bound prunes
 those that cannot grow into a candidate within the corner budget (``docs/catalog.md`` proves
-it).  The search itself is the compiled extension ``_arrangements``.
+it).  Arrangements whose graph of crossing loops is not 3-colourable carry no polycube, nor
+does anything built from them, so they are not built either (cut 4, :data:`COLOUR_CUT`).  The
+search itself is the compiled extension ``_arrangements``.
 
 >>> from collections import Counter
 >>> sorted(Counter(a.corners for a in candidate_arrangements(16)).items())
-[(8, 1), (12, 1), (14, 4), (16, 4)]
+[(8, 1), (12, 1), (14, 2), (16, 3)]
 >>> cube = next(candidate_arrangements(8))
 >>> cube.crossings, cube.quad_mesh().num_corners
 (6, 8)
@@ -30,7 +32,7 @@ from __future__ import annotations
 
 import array
 from collections.abc import Callable, Iterator
-from dataclasses import asdict, astuple, dataclass, field
+from dataclasses import asdict, astuple, dataclass, field, fields
 from functools import cached_property
 
 from polyloops.core.errors import PolyloopsError
@@ -203,7 +205,8 @@ class Arrangement:
 class SearchStats:
     """What a search did: curves drawn (partial paths), closed curves, closed curves over the
     bound, closed curves that were not the canonical loop to delete, arrangements kept (the
-    objects visited) and candidate maps among them."""
+    objects visited), candidate maps among them, and closed curves whose arrangement cut 4
+    dropped (a crossing graph that is not 3-colourable)."""
 
     curves: int = 0
     closed: int = 0
@@ -211,6 +214,7 @@ class SearchStats:
     not_canonical: int = 0
     arrangements: int = 0
     candidates: int = 0
+    not_colourable: int = 0  # closed curves cut 4 dropped (crossing graph not 3-colourable)
 
     def __add__(self, other: SearchStats) -> SearchStats:
         return SearchStats(*(a + b for a, b in zip(astuple(self), astuple(other), strict=True)))
@@ -221,18 +225,25 @@ class SearchStats:
 
 
 SINGLE_LOOP = (_pack([1, 0]), _pack([1, 0]))  # one loop, one marker vertex on it
+
+# Cut 4 (docs/catalog.md): arrangements whose crossing graph is not 3-colourable carry no
+# polycube, nor does any arrangement built from them; they are not built.  The candidate maps
+# are then those of plantri's filter whose crossing graph is 3-colourable, and the catalog's
+# records are the same.  False visits every candidate map (the tests compare both with plantri).
+COLOUR_CUT = True
 IMPLICIT = b""  # a canonical arrangement's rotation, which the search works out itself
 
 
 def _children(parent: Arrangement | None, max_corners: int) -> tuple[list[Arrangement], tuple[int, ...]]:
     rot, twin = SINGLE_LOOP if parent is None else (IMPLICIT, parent.code)
-    found, (curves, closed, over, rejected) = _module().children(rot, twin, max_corners - 2)
+    found, counts = _module().children(rot, twin, max_corners - 2, COLOUR_CUT)
+    curves, closed, over, rejected, uncolourable = counts
     kids, seen = [], set()
     for code, candidate in found:
         if code not in seen:
             seen.add(code)
             kids.append(Arrangement(code, bool(candidate)))
-    return kids, (curves, closed, over, rejected, len(kids), sum(k.candidate for k in kids))
+    return kids, (curves, closed, over, rejected, len(kids), sum(k.candidate for k in kids), uncolourable)
 
 
 def children(parent: Arrangement | None, max_corners: int) -> tuple[list[Arrangement], SearchStats]:
@@ -301,7 +312,7 @@ def candidate_arrangements(max_corners: int, res: int = 0, mod: int = 1,
     for rank, root in enumerate(top.roots):
         if rank % mod != res:
             continue
-        stack, total = [root], [0] * 6
+        stack, total = [root], [0] * len(fields(SearchStats))
         while stack:
             node = stack.pop()
             if node.candidate:
