@@ -288,3 +288,20 @@ def test_cli_generator_flag(tmp_path, capsys):
     assert exit_info.value.code == 2
     err = capsys.readouterr().err
     assert "invalid choice: 'nope'" in err and len(err.strip().splitlines()) == 1
+
+
+def test_a_spilled_top_gives_each_share_its_part(tmp_path):
+    """The top of the search written to a file and read back share by share holds the same
+    roots, in the same order, and the same shallow candidates, as the top in memory; a second
+    run reads the file instead of computing the top again."""
+    from polyloops.enumerate.generators import loops_frontier, read_frontier_share, share_of, spill_frontier
+
+    top, search = loops_frontier(20)
+    path = spill_frontier(20, 1, None, tmp_path)
+    stamp = path.stat().st_mtime_ns
+    for res in range(3):
+        mine, mine_search = read_frontier_share(str(path), res, 3, res == 0)
+        theirs = share_of(top, res, 3)
+        assert mine == theirs and [a.candidate for a in mine.roots] == [a.candidate for a in theirs.roots]
+        assert mine_search == (search if res == 0 else None)
+    assert spill_frontier(20, 1, None, tmp_path) == path and path.stat().st_mtime_ns == stamp

@@ -152,7 +152,7 @@ def execute(generator: Generator, jobs: list[Job], out: Path, workers: int = 1, 
     for part in done.values():
         if part is not None and progress:
             progress(part)
-    contexts = generator.prepare(todo, workers, dask) if todo else []
+    contexts = generator.prepare(todo, workers, dask, out / "parts") if todo else []
     tasks = [(generator, job, context) for job, context in zip(todo, contexts, strict=True)]
     for result in run_jobs(run_job, tasks, workers, dask, ordered=False):
         write_atomic(part_path(out, result.job), json.dumps(result.to_json(), separators=(",", ":")))

@@ -23,10 +23,12 @@ added with :func:`register`.
 
 from __future__ import annotations
 
+import json
 import time
 from abc import ABC, abstractmethod
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any
 
 from polyloops.core.halfedge import HalfEdgeMap
@@ -173,8 +175,10 @@ class Generator(ABC):
         """The corner counts a job reports (each gets a :class:`CornerResult`)."""
         return range(job.low, job.n + 1)
 
-    def prepare(self, jobs: Sequence[Job], workers: int = 1, dask: str | None = None) -> list[Any]:
-        """What each job needs besides itself (picklable), computed once for the run."""
+    def prepare(self, jobs: Sequence[Job], workers: int = 1, dask: str | None = None,
+                where: Path | None = None) -> list[Any]:
+        """What each job needs besides itself (picklable), computed once for the run;
+        ``where`` is a directory for what is too large to send (the run's ``parts/``)."""
         return [None] * len(jobs)
 
     @abstractmethod
@@ -272,7 +276,8 @@ class PlantriGenerator(Generator):
                 jobs.extend(Job(self.name, n, n, r, parts) for r in range(parts))
         return sorted(jobs, key=lambda j: (-j.n, j.res))
 
-    def prepare(self, jobs: Sequence[Job], workers: int = 1, dask: str | None = None) -> list[Any]:
+    def prepare(self, jobs: Sequence[Job], workers: int = 1, dask: str | None = None,
+                where: Path | None = None) -> list[Any]:
         """The binary and the filter, found once (a missing one fails before any work)."""
         from polyloops.enumerate.quadrangulations import find_plantri, resolve_method
 
@@ -331,12 +336,19 @@ class LoopsGenerator(Generator):
         parts = loops_slices(high, workers)
         return [Job(self.name, high, low, r, parts) for r in range(parts)]
 
-    def prepare(self, jobs: Sequence[Job], workers: int = 1, dask: str | None = None) -> list[Any]:
-        """The top of the search (computed once a run for each bound, spread over the workers;
-        not stored: 5 s at 28 corners) and each job's part of it."""
-        tops = {n: loops_frontier(n, workers, dask) for n in {job.n for job in jobs}}
-        return [(share_of(tops[job.n][0], job.res, job.mod), tops[job.n][1] if job.res == 0 else None)
-                for job in jobs]
+    def prepare(self, jobs: Sequence[Job], workers: int = 1, dask: str | None = None,
+                where: Path | None = None) -> list[Any]:
+        """The top of the search, computed once for each bound (spread over the workers) and
+        spilled to ``where`` (a run's ``parts/``; a temporary directory otherwise), so that no
+        process holds all of it while the shares run: each job reads its own roots from the
+        file.  A rerun reads the file instead of computing the top again."""
+        bounds = {job.n for job in jobs}
+        if where is None:  # kept in memory, each job sent its share
+            tops = {n: loops_frontier(n, workers, dask) for n in bounds}
+            return [(share_of(tops[job.n][0], job.res, job.mod), tops[job.n][1] if job.res == 0 else None)
+                    for job in jobs]
+        files = {n: spill_frontier(n, workers, dask, where) for n in bounds}
+        return [(str(files[job.n]), job.res == 0) for job in jobs]
 
     def candidates(self, job: Job, context: Any, tally: Tally) -> Iterator[HalfEdgeMap]:
         """The share's candidate arrangements as quad maps; the search's statistics go to
@@ -344,6 +356,8 @@ class LoopsGenerator(Generator):
         from polyloops.enumerate.arrangements import SearchStats, candidate_arrangements
 
         top, top_search = context if context is not None else (None, None)
+        if isinstance(top, str):  # a spilled top: read this share's part
+            top, top_search = read_frontier_share(top, job.res, job.mod, bool(top_search))
         stats = [SearchStats(**top_search)] if top_search else []
         # a given ``top`` is this share's part of the frontier (share_of): all of it is ours
         res, mod = (0, 1) if top is not None else (job.res, job.mod)
@@ -385,6 +399,70 @@ def loops_frontier(max_n: int, workers: int = 1, dask: str | None = None) -> tup
 
     top = frontier(max_n, on_stats=stats.append, expander=spread)
     return top, sum(stats, SearchStats()).as_dict()
+
+
+TOP_MAGIC = b"polyloops-top-1\n"
+
+
+def spill_frontier(max_n: int, workers: int, dask: str | None, where: Path) -> Path:
+    """The top of the loops search for ``max_n`` corners in a file of ``where`` (computed and
+    written atomically unless a complete one is there): a header line with the split level and
+    the top's statistics, then one record a node (``R`` a root, ``S`` a shallow candidate, a
+    byte whether it is a candidate, a 4-byte length, the code)."""
+    import struct
+
+    import polyloops.enumerate.arrangements as arrangements
+    from polyloops.io.files import writing
+
+    path = where / f"loops-top-{max_n}.bin"
+    made_by = {"version": SCHEMA_VERSION, "colour_cut": arrangements.COLOUR_CUT}
+    if path.is_file():  # a top written by a run of this search: read, not recomputed
+        with open(path, "rb") as fh:
+            try:
+                if fh.read(len(TOP_MAGIC)) == TOP_MAGIC:
+                    (size,) = struct.unpack("<I", fh.read(4))
+                    if json.loads(fh.read(size)).get("made_by") == made_by:
+                        return path
+            except (struct.error, ValueError):
+                pass  # damaged: computed again
+    top, top_search = loops_frontier(max_n, workers, dask)
+    with writing(path) as pending, open(pending.path, "wb") as fh:
+        fh.write(TOP_MAGIC)
+        header = json.dumps({"loops": top.loops, "search": top_search, "made_by": made_by}).encode()
+        fh.write(struct.pack("<I", len(header)) + header)
+        for kind, nodes in ((b"R", top.roots), (b"S", top.shallow)):
+            for node in nodes:
+                fh.write(kind + struct.pack("<BI", node.candidate, len(node.code)) + node.code)
+    del top  # the workers read their shares from the file
+    return path
+
+
+def read_frontier_share(path: str, res: int, mod: int,
+                        with_search: bool) -> tuple[Any, dict[str, int] | None]:
+    """Share ``res`` of ``mod`` of a spilled top (:func:`spill_frontier`): its roots (rank
+    ``res`` modulo ``mod``), the shallow candidates for share 0, and the top's statistics when
+    ``with_search``; only this share's nodes are kept in memory."""
+    import struct
+
+    from polyloops.enumerate.arrangements import Arrangement, Frontier
+
+    roots, shallow = [], []
+    with open(path, "rb") as fh:
+        if fh.read(len(TOP_MAGIC)) != TOP_MAGIC:
+            raise ValueError(f"{path}: not a spilled top of the loops search")
+        (size,) = struct.unpack("<I", fh.read(4))
+        header = json.loads(fh.read(size))
+        rank = 0
+        while kind := fh.read(1):
+            candidate, size = struct.unpack("<BI", fh.read(5))
+            code = fh.read(size)
+            if kind == b"R":
+                if rank % mod == res:
+                    roots.append(Arrangement(code, bool(candidate)))
+                rank += 1
+            elif res == 0:
+                shallow.append(Arrangement(code, bool(candidate)))
+    return Frontier(header["loops"], tuple(roots), tuple(shallow)), header["search"] if with_search else None
 
 
 def share_of(top: Any, res: int, mod: int) -> Any:
