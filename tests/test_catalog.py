@@ -554,3 +554,24 @@ def test_a_toy_generator_builds_a_catalog_through_the_pipeline(tmp_path):
     assert reference.summary["counts"]["12"] == built.summary["counts"]["12"]  # the 2x1x1 boxes
     assert again.summary == built.summary and sorted(p.name for p in (tmp_path / "toy" / "parts").iterdir()) \
         == [f"toy-{n}to{n}-0of1.json" for n in (10, 12, 14, 16, 8)]
+
+
+def test_crosschecks_agree_with_the_shipped_catalog_and_catch_a_gap(tmp_path):
+    """The sampled plantri comparison and the reachability comparison find nothing missing in
+    the shipped catalog, and both notice a class taken out of a copy of it."""
+    import shutil
+
+    from polyloops.enumerate.crosscheck import plantri_sample, reach_agreement
+
+    assert plantri_sample(SHIPPED, 20, mod=4, k=4, seed=7).agrees
+    reach = reach_agreement(SHIPPED, 20)
+    assert reach.agrees and sum(reach.reached.values()) == sum(
+        json.loads((SHIPPED / "summary.json").read_text())["counts"][str(n)]["full"] for n in range(8, 21))
+    cut = tmp_path / "cut"
+    shutil.copytree(SHIPPED, cut)
+    lines = (cut / "catalog.jsonl").read_text().splitlines()
+    gone = next(json.loads(line) for line in lines if json.loads(line)["name"] == "P20.3")
+    kept = [line for line in lines if json.loads(line)["name"] != "P20.3"]
+    (cut / "catalog.jsonl").write_text("\n".join(kept) + "\n")
+    assert plantri_sample(cut, 20, mod=4, k=4, seed=7).missing == (gone["signature"],)
+    assert reach_agreement(cut, 20).missing == (gone["signature"],)

@@ -288,6 +288,15 @@ def _state(row: tuple[Any, ...]) -> State:
     return State(sig, corners, distance, parent, None if move is None else Move.from_json(json.loads(move)))
 
 
+def stored_signatures(store_dir: Path) -> list[str]:
+    """The signatures of every state stored in ``store_dir/reach.sqlite``, by distance."""
+    con = sqlite3.connect(read_only_uri(store_dir / "reach.sqlite"), uri=True)
+    try:
+        return [sig for (sig,) in con.execute("SELECT signature FROM states ORDER BY distance, signature")]
+    finally:
+        con.close()
+
+
 def path_to(store_dir: Path, signature: str) -> list[State]:
     """The stored states from the start to ``signature``, following parents; each state's
     move applies to ``from_signature`` of the state before it."""
