@@ -197,3 +197,21 @@ def test_the_architecture_page_states_these_layers():
         named = re.findall(r"`(\w+)`", allowed)
         assert named == list(LAYERS[:i]) or (allowed.strip().startswith("all of the above") and i > 3) \
             or (i == 0 and "nothing" in allowed), (name, allowed)
+
+
+def test_the_command_pins_blas_threads_and_the_library_does_not():
+    """``polyloops`` and ``python -m polyloops`` start with one BLAS thread (numpy's OpenBLAS
+    would start a spinning thread per core); ``import polyloops`` in a program leaves it alone."""
+    import os
+
+    blas = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
+    env = {k: v for k, v in os.environ.items() if k not in blas}
+    show = "import os, polyloops; print(os.environ.get('OPENBLAS_NUM_THREADS'))"
+
+    def run(code: str) -> str:
+        done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env,
+                              check=True)
+        return done.stdout.strip()
+
+    assert run(show) == "None"  # a program that imports polyloops
+    assert run("import sys; sys.argv = ['/usr/bin/polyloops', 'verify']; " + show) == "1"  # the command

@@ -19,6 +19,8 @@ from __future__ import annotations
 import importlib
 from typing import Any
 
+import polyloops._startup  # noqa: F401  (first: before numpy loads, the command pins BLAS threads)
+
 __version__ = "0.1.0"
 
 from polyloops.core.canonical import canonical_form, from_signature, is_isomorphic, signature
