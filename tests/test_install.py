@@ -17,7 +17,9 @@ ROOT = Path(__file__).resolve().parent.parent
 
 def tracked_files() -> list[str]:
     try:
-        out = subprocess.run(["git", "ls-files", "-z"], cwd=ROOT, capture_output=True, check=True)
+        # tracked files, and new ones git does not ignore: what a clean clone holds once committed
+        out = subprocess.run(["git", "ls-files", "-z", "--cached", "--others", "--exclude-standard"],
+                             cwd=ROOT, capture_output=True, check=True)
     except (OSError, subprocess.CalledProcessError):
         pytest.skip("not a git checkout: the tracked files are unknown")
     return [name for name in out.stdout.decode().split("\0") if name]
@@ -26,7 +28,7 @@ def tracked_files() -> list[str]:
 @pytest.fixture(scope="module")
 def installed(tmp_path_factory) -> Path:
     clone = tmp_path_factory.mktemp("clone")
-    for name in tracked_files():
+    for name in sorted(set(tracked_files())):
         source = ROOT / name
         target = clone / name
         target.parent.mkdir(parents=True, exist_ok=True)
