@@ -575,3 +575,44 @@ def test_crosschecks_agree_with_the_shipped_catalog_and_catch_a_gap(tmp_path):
     (cut / "catalog.jsonl").write_text("\n".join(kept) + "\n")
     assert plantri_sample(cut, 20, mod=4, k=4, seed=7).missing == (gone["signature"],)
     assert reach_agreement(cut, 20).missing == (gone["signature"],)
+
+
+def test_shipping_a_larger_run_keeps_the_old_counts_and_checks_everything(tmp_path):
+    """tools/ship_catalog.py: a run that extends the shipped catalog replaces it only after
+    agreeing with it record for record, keeps the numbers of plantri's maps it cannot count,
+    and writes a certificate that checks; a run that disagrees is refused."""
+    import importlib.util
+    import shutil
+
+    from polyloops.enumerate.catalog_run import build_catalog
+    from polyloops.enumerate.conjecture import check_certificate
+
+    spec = importlib.util.spec_from_file_location("ship_catalog", ROOT / "tools" / "ship_catalog.py")
+    tool = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(tool)
+    into = tmp_path / "shipped"
+    shutil.copytree(SHIPPED, into)
+    lines = [line for line in (into / "catalog.jsonl").read_text().splitlines()
+             if json.loads(line)["corners"] <= 20]
+    (into / "catalog.jsonl").write_text("\n".join(lines) + "\n")
+    old = json.loads((into / "summary.json").read_text())
+    cut = {table: {n: v for n, v in old[table].items() if int(n) <= 20}
+           for table in ("counts", "quadrangulations", "simple_strips")}
+    (into / "summary.json").write_text(json.dumps({**old, **cut}))
+    run = tmp_path / "run"
+    build_catalog(run, 24, generator="loops")
+    report = tool.ship(run, into, slack=10)
+    summary = json.loads((into / "summary.json").read_text())
+    assert report["max_corners"] == 24 and report["unsettled"] == []
+    assert summary["quadrangulations"]["20"] == old["quadrangulations"]["20"]
+    assert summary["quadrangulations"]["24"] is None
+    assert summary["counts"]["24"] == old["counts"]["24"]
+    assert (into / "catalog.jsonl").read_text() == (run / "catalog.jsonl").read_text()
+    lines = (into / "reachability-certificate.jsonl").read_text().splitlines()
+    assert check_certificate(lines, into).valid
+    bad = tmp_path / "bad"
+    shutil.copytree(run, bad)
+    records = (bad / "catalog.jsonl").read_text().splitlines()
+    (bad / "catalog.jsonl").write_text("\n".join(records[1:]) + "\n")
+    with pytest.raises(tool.ShipError):
+        tool.ship(bad, into)

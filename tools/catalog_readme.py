@@ -17,7 +17,8 @@ def table(summary: dict) -> str:
              "| up to rotation and reflection |", "|---:|---:|---:|---:|---:|---:|"]
     for n, c in summary["counts"].items():
         maps = summary["quadrangulations"][n]
-        lines.append(f"| {n} | {'-' if maps is None else maps} | {summary['simple_strips'][n]} "
+        strips = summary["simple_strips"][n]
+        lines.append(f"| {n} | {'-' if maps is None else maps} | {'-' if strips is None else strips} "
                      f"| {c['labelled']} | {c['rotation']} | {c['full']} |")
     return "\n".join(lines)
 

@@ -20,8 +20,8 @@ SIMPLE_STRIPS = ("simple quadrangulations of the sphere with n vertices and mini
 
 def bfile(summary: dict, mode: str) -> str:
     """OEIS b-file: 'n a(n)' per line, n the number of corners."""
-    if mode == "simple-strips":
-        return "".join(f"{n} {c}\n" for n, c in summary["simple_strips"].items())
+    if mode == "simple-strips":  # counted by plantri's generator only: as far as it went
+        return "".join(f"{n} {c}\n" for n, c in summary["simple_strips"].items() if c is not None)
     return "".join(f"{n} {c[mode]}\n" for n, c in summary["counts"].items())
 
 
@@ -43,13 +43,14 @@ def page(summary: dict) -> str:
     ]
     for n, c in summary["counts"].items():
         if int(n) % 2 == 0:
+            maps, strips = summary["quadrangulations"][n], summary["simple_strips"][n]
             lines.append(f"| {n} | {c['labelled']} | {c['rotation']} | {c['full']} "
-                         f"| {summary['quadrangulations'][n]} | {summary['simple_strips'][n]} |")
+                         f"| {'-' if maps is None else maps} | {'-' if strips is None else strips} |")
     lines += ["", "As sequences (even numbers of corners from 8), for submission:", ""]
     for mode, text in SEQUENCES.items():
         values = [c[mode] for n, c in summary["counts"].items() if int(n) % 2 == 0]
         lines.append(f"- {text}: {', '.join(map(str, values))} ([b-file](bfiles/{mode}.txt))")
-    strips = [c for n, c in summary["simple_strips"].items() if int(n) % 2 == 0]
+    strips = [c for n, c in summary["simple_strips"].items() if int(n) % 2 == 0 and c is not None]
     lines.append(f"- {SIMPLE_STRIPS}: {', '.join(map(str, strips))} ([b-file](bfiles/simple-strips.txt))")
     lines += ["", "The b-files list `n a(n)` for every number of corners `n` in range, zeros included.",
               "*Quadrangulations* are those plantri generates (`plantri -qc2 n`: simple, minimum",

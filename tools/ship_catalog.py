@@ -1,0 +1,111 @@
+"""Ship a larger catalog run as the package's genus-0 catalog, checked, with its certificate.
+
+    python tools/ship_catalog.py RUN_DIR [--into src/polyloops/catalogs/genus0] [--slack 10]
+
+RUN_DIR is a finished ``polyloops catalog`` run (full classes) that goes further than the
+shipped catalog. Before anything is replaced, the run must agree with the shipped catalog
+over the shipped range, record for record and count for count. The run's summary keeps the
+numbers of plantri's maps the shipped catalog counted (the loops generator does not visit
+them: larger corner counts stay ``null``). Then the reachability certificate is made for the
+whole range and checked with ``conjecture check``'s checker, and the docs' tables
+(docs/counts.md, the b-files, catalogs/README.md) are written again.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib.util
+import json
+import shutil
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+SHIPPED = ROOT / "src" / "polyloops" / "catalogs" / "genus0"
+
+
+class ShipError(Exception):
+    """The run does not extend the shipped catalog faithfully."""
+
+
+def merged_summary(old: dict, new: dict) -> dict:
+    """The run's summary, with the counts of maps the old catalog knew (where the run has
+    none) kept; the two must agree on the classes over the old range."""
+    top = max(int(n) for n in old["counts"])
+    if max(int(n) for n in new["counts"]) < top or min(int(n) for n in new["counts"]) > 8:
+        raise ShipError("the run does not cover the shipped range")
+    for n, row in old["counts"].items():
+        if new["counts"][n] != row:
+            raise ShipError(f"{n} corners: the run counts {new['counts'][n]}, the shipped catalog {row}")
+    out = dict(new)
+    for table in ("quadrangulations", "simple_strips"):
+        out[table] = {n: (old[table].get(n) if v is None and n in old[table] else v)
+                      for n, v in new[table].items()}
+    return out
+
+
+def check_records(old_dir: Path, new_dir: Path) -> None:
+    top = max(int(n) for n in json.loads((old_dir / "summary.json").read_text())["counts"])
+    old = (old_dir / "catalog.jsonl").read_text().splitlines()
+    new = [line for line in (new_dir / "catalog.jsonl").read_text().splitlines()
+           if json.loads(line)["corners"] <= top]
+    if old != new:
+        raise ShipError(f"the run's records through {top} corners differ from the shipped ones")
+
+
+def ship(run: Path, into: Path = SHIPPED, slack: int = 10, workers: int = 1) -> dict:
+    """Check ``run`` against ``into`` and replace ``into``'s catalog with it; returns the
+    certificate check's summary."""
+    from polyloops.enumerate.conjecture import certificate_lines, check_certificate, settle_catalog
+    from polyloops.io.files import write_atomic
+
+    check_records(into, run)
+    summary = merged_summary(json.loads((into / "summary.json").read_text()),
+                             json.loads((run / "summary.json").read_text()))
+    for name in ("catalog.jsonl", "catalog.sqlite"):
+        shutil.copyfile(run / name, into / f".{name}.new")
+        (into / f".{name}.new").replace(into / name)
+    write_atomic(into / "summary.json", json.dumps(summary, indent=1) + "\n")
+    top = max(int(n) for n in summary["counts"])
+    result = settle_catalog(into, top, slack, workers)
+    lines = list(certificate_lines(result))
+    check = check_certificate(lines, into)
+    if not check.valid:
+        raise ShipError(f"the certificate does not check: {check.problems[0]}")
+    write_atomic(into / "reachability-certificate.jsonl", "\n".join(lines) + "\n")
+    return {"max_corners": top, "classes": check.records,
+            "unsettled": [r.signature for r in result.unsettled],
+            "by_corners": [row.to_json() for row in result.table()]}
+
+
+def _tool(name: str):
+    spec = importlib.util.spec_from_file_location(name, ROOT / "tools" / f"{name}.py")
+    module = importlib.util.module_from_spec(spec)  # type: ignore[arg-type]
+    spec.loader.exec_module(module)  # type: ignore[union-attr]
+    return module
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("run", type=Path)
+    parser.add_argument("--into", type=Path, default=SHIPPED)
+    parser.add_argument("--slack", type=int, default=10)
+    parser.add_argument("--workers", type=int, default=1)
+    args = parser.parse_args()
+    try:
+        report = ship(args.run, args.into, args.slack, args.workers)
+    except ShipError as err:
+        sys.exit(f"ship_catalog: {err}")
+    print(json.dumps(report, indent=1))
+    if args.into.resolve() == SHIPPED.resolve():
+        summary = json.loads((SHIPPED / "summary.json").read_text())
+        for path, text in _tool("counts_page").write_all(summary).items():
+            path.write_text(text)
+        readme = ROOT / "catalogs" / "README.md"
+        tool = _tool("catalog_readme")
+        rows = tool.certificate_rows(SHIPPED / "reachability-certificate.jsonl")
+        readme.write_text(tool.render(readme.read_text(), summary, rows))
+
+
+if __name__ == "__main__":
+    main()
