@@ -65,6 +65,8 @@ typedef struct {
     int nloops;             /* the parent's loops */
     int loop_crossings[MAXL];  /* crossings of each parent loop in the parent */
     int deletable[MAXL];    /* 1 when deleting the loop leaves the parent connected */
+    uint64_t parent_adj[MAXL];  /* the parent loops each parent loop crosses, a bit each */
+    uint64_t crossed;       /* the parent loops the curve being drawn has crossed, a bit each */
     int crossings_with[MAXL];  /* crossings of the curve being drawn with each parent loop */
     int colour_cut;         /* cut 4: drop children whose crossing graph is not 3-colourable */
     PyObject *out;          /* the list of children found */
@@ -291,35 +293,36 @@ static int child_is_candidate(const Child *h)
  * three colours (loops of one axis never cross), and deleting a loop keeps a colouring, so
  * every arrangement on the canonical construction path of a candidate that carries a polycube
  * is 3-colourable.  Backtracking over the loops, most crossed first, colour bits per loop. */
-static int colour_from(const Child *h, const int *order, int i, unsigned char *colour)
+static int colour_from(int n, const uint64_t *adj, const int *order, int i, unsigned char *colour)
 {
-    if (i == h->nloops) return 1;
+    if (i == n) return 1;
     int l = order[i];
     unsigned used = 0;
-    for (int m = 0; m < h->nloops; m++)
-        if ((h->adj[l] >> m & 1) && colour[m]) used |= 1u << colour[m];
+    for (int m = 0; m < n; m++)
+        if ((adj[l] >> m & 1) && colour[m]) used |= 1u << colour[m];
     for (unsigned char k = 1; k <= 3; k++) {
         if (used >> k & 1) continue;
         colour[l] = k;
-        if (colour_from(h, order, i + 1, colour)) return 1;
+        if (colour_from(n, adj, order, i + 1, colour)) return 1;
     }
     colour[l] = 0;
     return 0;
 }
 
-static int colourable3(const Child *h)
+/* Whether the graph on n vertices with neighbour masks adj is properly 3-colourable. */
+static int colourable3(int n, const uint64_t *adj)
 {
-    int order[MAXL], deg[MAXL];
-    unsigned char colour[MAXL] = {0};
-    for (int l = 0; l < h->nloops; l++) {
+    int order[MAXL + 1], deg[MAXL + 1];
+    unsigned char colour[MAXL + 1] = {0};
+    for (int l = 0; l < n; l++) {
         order[l] = l;
-        deg[l] = __builtin_popcountll(h->adj[l]);
+        deg[l] = __builtin_popcountll(adj[l]);
     }
-    for (int i = 1; i < h->nloops; i++)   /* most crossed first: the tightest choices early */
+    for (int i = 1; i < n; i++)   /* most crossed first: the tightest choices early */
         for (int j = i; j > 0 && deg[order[j]] > deg[order[j - 1]]; j--) {
             int t = order[j]; order[j] = order[j - 1]; order[j - 1] = t;
         }
-    return colour_from(h, order, 0, colour);
+    return colour_from(n, adj, order, 0, colour);
 }
 
 static PyObject *code_bytes(const Child *h)
@@ -346,7 +349,7 @@ static void emit(Ctx *c, int newdart)
     }
     if (child_faces(h) > c->limit) { c->bounded++; return; }
     if (child_loops(h) < 0) { c->failed = 2; return; }
-    if (c->colour_cut && !colourable3(h)) { c->uncolourable++; return; }
+    if (c->colour_cut && !colourable3(h->nloops, h->adj)) { c->uncolourable++; return; }
     int newloop = h->loop[id[newdart]];
     /* candidates: deletable loops with the fewest crossings */
     uint64_t cand = 0;
@@ -387,6 +390,19 @@ static int label_all(Ctx *c)
         sum += 2 * need(s);
     }
     return sum;
+}
+
+/* Cut 4 while drawing: the curve being drawn will cross at least the loops it has crossed so
+ * far, so if the parent's crossing graph with a new vertex joined to those loops is not
+ * 3-colourable, no way of finishing the curve gives a child that is (a path is abandoned as
+ * soon as a first crossing with a loop makes it so). */
+static int curve_colourable(const Ctx *c)
+{
+    uint64_t adj[MAXL + 1];
+    int n = c->nloops;
+    for (int l = 0; l < n; l++) adj[l] = c->parent_adj[l] | ((c->crossed >> l & 1) ? (uint64_t)1 << n : 0);
+    adj[n] = c->crossed;
+    return colourable3(n + 1, adj);
 }
 
 static void dfs(Ctx *c, int x, int y0, int cr, int base2)
@@ -468,9 +484,15 @@ static void dfs(Ctx *c, int x, int y0, int cr, int base2)
         c->flabel[b] = l1; c->fsize[b] = s1;
         for (int m = i + 1; m < k; m++) { c->flabel[face[m]] = l2; c->fsize[face[m]] = s2; }
         c->flabel[e2] = l2; c->fsize[e2] = s2; c->flabel[a] = l2; c->fsize[a] = s2;
-        c->crossings_with[l]++;
+        uint64_t before = c->crossed;
+        if (c->nloops && !c->crossings_with[l]++) {
+            c->crossed |= (uint64_t)1 << l;
+            if (c->colour_cut && !curve_colourable(c)) { c->uncolourable++; goto undo; }
+        }
         dfs(c, e1, y0, cr + 1, gob[j]);
-        c->crossings_with[l]--;
+    undo:
+        if (c->nloops) c->crossings_with[l]--;
+        c->crossed = before;
         unchord(c, x, e2);
         unsubdivide(c, d, e1);
         for (int m = 0; m < k; m++) { c->flabel[face[m]] = lg; c->fsize[face[m]] = sg; }
@@ -547,6 +569,7 @@ static int parent_loops(Ctx *c)
         c->loop_crossings[c->loop_of[d]]++;
         adj[c->loop_of[d]] |= (uint64_t)1 << c->loop_of[c->rot[d]];
     }
+    memcpy(c->parent_adj, adj, sizeof(uint64_t) * (size_t)c->nloops);
     for (int l = 0; l < c->nloops; l++) {
         c->loop_crossings[l] /= 2;
         uint64_t all = 0, seen, frontier;
@@ -630,6 +653,7 @@ static PyObject *children(PyObject *self, PyObject *args)
         c->near = e;
         c->near_twin = e1;
         c->crossings_with[l]++;
+        c->crossed = c->nloops ? (uint64_t)1 << l : 0;
         dfs(c, e1, e2, 1, base2);
         c->crossings_with[l]--;
         unsubdivide(c, e, e1);
