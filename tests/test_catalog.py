@@ -214,6 +214,8 @@ def test_catalog_readme_table_is_the_summary():
     readme = (ROOT / "catalogs" / "README.md").read_text()
     rows = mod.certificate_rows(SHIPPED / "reachability-certificate.jsonl")
     assert mod.render(readme, summary, rows) == readme, "run: python tools/catalog_readme.py"
+    page = (ROOT / "docs" / "reachability.md").read_text()
+    assert mod._replace(page, mod.REACH_BEGIN, mod.REACH_END, mod.reach_table(rows)) == page
     rows = len((SHIPPED / "catalog.jsonl").read_text().splitlines())
     assert rows == sum(c["full"] for c in summary["counts"].values())
 

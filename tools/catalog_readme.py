@@ -68,9 +68,16 @@ def certificate_rows(path: Path) -> list[dict]:
     return [row.to_json() for row in result.table()]
 
 
-if __name__ == "__main__":
+def write_all() -> None:
+    """catalogs/README.md (both tables) and docs/reachability.md (the certificate's table)."""
     readme = ROOT / "catalogs" / "README.md"
     summary = json.loads((ROOT / "catalogs" / "genus0" / "summary.json").read_text())
     rows = certificate_rows(ROOT / "catalogs" / "genus0" / "reachability-certificate.jsonl")
     readme.write_text(render(readme.read_text(), summary, rows))
-    print(f"wrote {readme}")
+    page = ROOT / "docs" / "reachability.md"
+    page.write_text(_replace(page.read_text(), REACH_BEGIN, REACH_END, reach_table(rows)))
+    print(f"wrote {readme} and {page}")
+
+
+if __name__ == "__main__":
+    write_all()

@@ -101,10 +101,7 @@ def main() -> None:
         summary = json.loads((SHIPPED / "summary.json").read_text())
         for path, text in _tool("counts_page").write_all(summary).items():
             path.write_text(text)
-        readme = ROOT / "catalogs" / "README.md"
-        tool = _tool("catalog_readme")
-        rows = tool.certificate_rows(SHIPPED / "reachability-certificate.jsonl")
-        readme.write_text(tool.render(readme.read_text(), summary, rows))
+        _tool("catalog_readme").write_all()
 
 
 if __name__ == "__main__":
