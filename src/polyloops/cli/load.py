@@ -27,9 +27,9 @@ from polyloops.io.registry import (
     BY_NAME,
     Source,
     UnknownExampleError,
-    format_for,
+    labelled,
     open_source,
-    sniff,
+    source_of,
     write_structure,
 )
 
@@ -47,11 +47,9 @@ def open_input(arg: str, given: str | None = None) -> Source:
     one-line :class:`CliError`\ s naming it."""
     from polyloops.core.canonical import SignatureError
 
-    if arg == "-":  # standard input can be read once: keep it for a second look
-        arg_data = read_bytes_file("-")
-        fmt = format_for("-", given)
-        return Source("-", arg_data, sniff(arg_data) or fmt if given is None else fmt)
     try:
+        if arg == "-":  # standard input can be read once: kept for a second look
+            return source_of("-", read_bytes_file("-"), given)
         return open_source(arg, given)
     except UnknownExampleError as err:
         raise CliError(f"{arg}: {err}; 'polyloops examples' lists them") from None
@@ -70,35 +68,24 @@ def read_document(arg: str, given: str | None = None, source: Source | None = No
         doc = source.document()
     except FormatError as err:
         raise CliError(f"{arg}: {err}") from None
-    if doc.kind == "map":
-        doc = _map_document(arg, doc)
+    doc = _labelled(arg, doc)
     for note in doc.notes:
         print(f"{arg}: note: {note}", file=sys.stderr)
     return doc
 
 
-def _map_document(arg: str, doc: Document) -> Document:
-    """A map without labels (planar code), read as its only polycube loop structure."""
-    from polyloops.core.halfedge import HalfEdgeMap
-    from polyloops.core.labellings import MapStructureError, only_structure_on
+def _labelled(arg: str, doc: Document) -> Document:
+    """:func:`polyloops.io.registry.labelled`: a map that carries no structure is invalid
+    (exit 1), one that carries several is ambiguous input (exit 2)."""
+    from polyloops.core.labellings import MapStructureError
 
     try:
-        ls = only_structure_on(HalfEdgeMap.from_faces(doc.faces))
+        return labelled(doc)
     except MapStructureError as err:
         raise CliError(f"{arg}: {err}", EXIT_INVALID if err.count == 0 else EXIT_USAGE) from None
-    return Document.of(ls, notes=("planar code has no axis labels; read the map's only polycube "
-                                  "loop structure (up to symmetry)",))
 
 
 FORMATS = tuple(BY_NAME)
-
-
-def format_of(path: str, given: str | None = None, writing: bool = False) -> str:
-    """The format named by ``given`` (``--from``/``--to``), else by the file's extension."""
-    try:
-        return format_for(path, given, writing=writing).name
-    except FormatError as err:
-        raise CliError(str(err)) from None
 
 
 def read_text_file(arg: str, limit: int = MAX_FILE_BYTES) -> str:

@@ -287,14 +287,6 @@ def read_only_uri(path: str | os.PathLike[str]) -> str:
     return Path(os.path.abspath(path)).as_uri() + "?mode=ro"
 
 
-def is_regular(path: str | os.PathLike[str]) -> bool:
-    """Whether ``path`` (links followed) is a regular file."""
-    try:
-        return stat.S_ISREG(os.stat(path).st_mode)
-    except OSError:
-        return False
-
-
 __all__ = ["MAX_FILE_BYTES", "STDIO", "InputError", "Output", "OutputError", "Pending", "Sink",
-           "check_regular", "is_regular", "read_bytes", "read_only_uri", "read_text", "resolve_output",
+           "check_regular", "read_bytes", "read_only_uri", "read_text", "resolve_output",
            "write_atomic", "writing"]

@@ -226,9 +226,7 @@ def read_labelled_mesh(mesh: str | os.PathLike[str], labels: str | os.PathLike[s
 def _triangles(name: str, path: str) -> tuple[tuple[Point, ...], tuple[Triangle, ...]]:
     try:
         return read_triangle_mesh(path)
-    except LabelledMeshError as err:
-        raise LabelledMeshError(str(err), where=name) from None
-    except FormatError as err:
+    except FormatError as err:  # LabelledMeshError among them
         raise LabelledMeshError(str(err), where=name) from None
     except OSError as err:
         raise LabelledMeshError(f"cannot read: {err.strerror or err}", where=name) from None

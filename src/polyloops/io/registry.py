@@ -145,7 +145,7 @@ def sniff(data: bytes) -> FileFormat | None:
     return None
 
 
-def parse_bytes(data: bytes, fmt: FileFormat, where: str = "") -> Document:
+def parse_bytes(data: bytes, fmt: FileFormat) -> Document:
     """A document from a file's bytes in format ``fmt``.  Planar code gives a document of kind
     ``map`` (faces only): it has no axis labels, and finding the map's polycube loop structure
     is a search (:func:`polyloops.core.labellings.only_structure_on`).
@@ -233,11 +233,40 @@ def open_source(name: str | os.PathLike[str], given: str | None = None) -> Sourc
         if example not in EXAMPLES:
             raise UnknownExampleError(f"unknown example {example!r}")
         return Source(text, example_text(example).encode(), BY_NAME["json"])
-    data = read_bytes(text)
-    fmt = format_for(text, given)
-    if given is None and os.path.splitext(text)[1].lower() not in BY_SUFFIX:
+    return source_of(text, read_bytes(text), given)
+
+
+def source_of(name: str, data: bytes, given: str | None = None) -> Source:
+    """The source of bytes already read from ``name``: format ``given``, else by extension,
+    else by content (:func:`sniff`).
+
+    >>> source_of("-", b'{"polyloops": 1}').format.name
+    'json'
+    """
+    fmt = format_for(name, given)
+    if given is None and os.path.splitext(name)[1].lower() not in BY_SUFFIX:
         fmt = sniff(data) or fmt
-    return Source(text, data, fmt)
+    return Source(name, data, fmt)
+
+
+MAP_NOTE = "planar code has no axis labels; read the map's only polycube loop structure (up to symmetry)"
+
+
+def labelled(doc: Document) -> Document:
+    """A document with labels: a ``map`` document (planar code) becomes the map's only polycube
+    loop structure; any other is returned as it is.
+
+    Raises
+    ------
+    polyloops.core.labellings.MapStructureError
+        When the map carries no polycube loop structure, or several.
+    """
+    if doc.kind != "map":
+        return doc
+    from polyloops.core.halfedge import HalfEdgeMap
+    from polyloops.core.labellings import only_structure_on
+
+    return Document.of(only_structure_on(HalfEdgeMap.from_faces(doc.faces)), notes=(MAP_NOTE,))
 
 
 def read_document(path: str | os.PathLike[str], given: str | None = None) -> Document:
@@ -253,7 +282,7 @@ def read_document(path: str | os.PathLike[str], given: str | None = None) -> Doc
     return open_source(path, given).document()
 
 
-def serialize(obj: Structure, fmt: FileFormat, where: str = "") -> str | bytes:
+def serialize(obj: Structure, fmt: FileFormat) -> str | bytes:
     """The text or bytes of ``obj`` in a format polyloops writes without meshio."""
     if fmt.name == "obj":
         return to_obj(obj)  # type: ignore[arg-type]
@@ -291,7 +320,7 @@ def write_structure(obj: Structure, path: str | os.PathLike[str], given: str | N
         write_polycube_mesh(obj, name, fmt.name)  # type: ignore[arg-type]
         return fmt
     try:
-        data = serialize(obj, fmt, name)
+        data = serialize(obj, fmt)
     except FormatError:
         raise
     except ValueError as err:
@@ -335,17 +364,9 @@ def read(path: str | os.PathLike[str], format: str | None = None) -> Structure:
     ...     signature(read(os.path.join(tmp, "l.ply"))) == signature(load_example("l-shape"))
     True
     """
-    from polyloops.io.formats import Document, FormatError
-    from polyloops.io.registry import read_document
-
     name = os.fspath(path)
     try:
-        doc = read_document(name, format)
-        if doc.kind == "map":
-            from polyloops.core.halfedge import HalfEdgeMap
-            from polyloops.core.labellings import only_structure_on
-
-            doc = Document.of(only_structure_on(HalfEdgeMap.from_faces(doc.faces)))
+        doc = labelled(read_document(name, format))
     except FormatError as err:
         raise type(err)(f"{name}: {err}") from None
     return doc.build()
