@@ -100,7 +100,8 @@ def cmd_add(args: argparse.Namespace) -> int:
     except InvalidMoveError as err:
         raise CliError(f"{args.file}: {err}", EXIT_INVALID) from None
     except MoveError as err:
-        raise CliError(f"{args.file}: {err} ('polyloops moves {args.file}' lists them)") from None
+        advice = f"'polyloops moves {args.file}' lists the valid additions"
+        raise CliError(f"{args.file}: {err} ({advice})") from None
     text = write_output(args.output, add_loop(ls, move))
     if text is not None:
         print(text, end="")
