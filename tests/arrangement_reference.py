@@ -202,6 +202,14 @@ def three_colourable(code: tuple[int, ...]) -> bool:
     differ: every assignment tried (the arrangements of the tests have few loops)."""
     from itertools import product
 
+    loop, rot = _loops_of_code(code)
+    n, count = len(code), max(loop) + 1
+    pairs = {(min(loop[d], loop[rot[d]]), max(loop[d], loop[rot[d]])) for d in range(n)}
+    return any(all(c[a] != c[b] for a, b in pairs) for c in product(range(3), repeat=count))
+
+
+def _loops_of_code(code: tuple[int, ...]) -> tuple[list[int], list[int]]:
+    """Per dart of a canonical code (four darts a crossing in order), its loop; and the rot."""
     n = len(code)
     rot = [4 * (d // 4) + (d + 1) % 4 for d in range(n)]
     loop = [-1] * n
@@ -209,9 +217,31 @@ def three_colourable(code: tuple[int, ...]) -> bool:
     for d in range(n):
         if loop[d] < 0:
             e = d
-            while loop[e] < 0:  # straight on: the dart opposite at the next crossing
+            while loop[e] < 0:
                 loop[e] = loop[code[e]] = count
                 e = rot[rot[code[e]]]
             count += 1
-    pairs = {(min(loop[d], loop[rot[d]]), max(loop[d], loop[rot[d]])) for d in range(n)}
-    return any(all(c[a] != c[b] for a, b in pairs) for c in product(range(3), repeat=count))
+    return loop, rot
+
+
+def most_sides_on_one_loop(code: tuple[int, ...]) -> list[tuple[int, int]]:
+    """Per region of the arrangement with canonical code ``code``: its number of sides and the
+    most of them that lie on one loop."""
+    loop, rot = _loops_of_code(code)
+    out = []
+    for face in faces(rot, list(code)):
+        counts: dict[int, int] = {}
+        for d in face:
+            counts[loop[d]] = counts.get(loop[d], 0) + 1
+        out.append((len(face), max(counts.values())))
+    return out
+
+
+def meeting_bound(code: tuple[int, ...]) -> int:
+    """Cut 5's bound: crossings plus, per region, the larger of cut 1's need and the pieces
+    beyond the first that its sides on one loop must be cut into."""
+    return len(code) // 4 + sum(max(need(s), k - 1) for s, k in most_sides_on_one_loop(code))
+
+
+def meets_each_loop_once(code: tuple[int, ...]) -> bool:
+    return all(k == 1 for _, k in most_sides_on_one_loop(code))

@@ -12,7 +12,13 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from arrangement_reference import canonical_code, reference_arrangements, three_colourable
+from arrangement_reference import (
+    canonical_code,
+    meeting_bound,
+    meets_each_loop_once,
+    reference_arrangements,
+    three_colourable,
+)
 from polyloops.core.halfedge import HalfEdgeMap
 from polyloops.enumerate.arrangements import (
     Arrangement,
@@ -47,22 +53,47 @@ def reference_code(a: Arrangement) -> tuple[int, ...]:
     return canonical_code(list(a.rot), list(a.twin))
 
 
-@pytest.mark.parametrize("colour_cut", [True, False])
-@pytest.mark.parametrize("max_corners", [12, 14, pytest.param(16, marks=pytest.mark.slow)])
-def test_search_visits_exactly_what_the_slow_twin_finds(max_corners, colour_cut, monkeypatch):
-    """The compiled search (canonical construction, every cut) visits each connected
-    arrangement of simple loops that passes the counting bound once: the slow twin's list,
-    made with no canonical construction, another canonical code and only the final bound; with
-    cut 4, those of them whose crossing graph is 3-colourable (the twin tries every colouring)."""
+CUTS = [(False, False), (True, False), (True, True)]  # (cut 4, cut 5)
+
+
+def set_cuts(monkeypatch, colour_cut: bool, meet_cut: bool) -> None:
     import polyloops.enumerate.arrangements as arrangements_module
 
     monkeypatch.setattr(arrangements_module, "COLOUR_CUT", colour_cut)
+    monkeypatch.setattr(arrangements_module, "MEET_CUT", meet_cut)
+
+
+def expected_under(cuts: tuple[bool, bool], max_corners: int,
+                   found: dict[tuple[int, ...], bool]) -> dict[tuple[int, ...], bool]:
+    """The slow twin's arrangements (code -> candidate) that the search visits with the cuts:
+    cut 4 keeps the 3-colourable ones, cut 5 those within its bound, whose candidates meet
+    each loop once in each region."""
+    colour_cut, meet_cut = cuts
+    out = {}
+    for code, candidate in found.items():
+        if colour_cut and not three_colourable(code):
+            continue
+        if meet_cut:
+            if meeting_bound(code) > max_corners - 2:
+                continue
+            candidate = candidate and meets_each_loop_once(code)
+        out[code] = candidate
+    return out
+
+
+@pytest.mark.parametrize("cuts", CUTS)
+@pytest.mark.parametrize("max_corners", [12, 14, pytest.param(16, marks=pytest.mark.slow)])
+def test_search_visits_exactly_what_the_slow_twin_finds(max_corners, cuts, monkeypatch):
+    """The compiled search (canonical construction, every cut) visits each connected
+    arrangement of simple loops that passes the counting bound once: the slow twin's list,
+    made with no canonical construction, another canonical code and only the final bound; with
+    cut 4, those of them whose crossing graph is 3-colourable (the twin tries every colouring);
+    with cut 5 too, those within its bound (the twin counts each region's sides per loop)."""
+    set_cuts(monkeypatch, *cuts)
     tree = whole_tree(max_corners)
     codes = [reference_code(a) for a in tree]
     assert len(set(codes)) == len(codes)  # no arrangement twice
-    expected = reference_arrangements(max_corners)
-    if colour_cut:
-        expected = {code: candidate for code, candidate in expected.items() if three_colourable(code)}
+    expected = expected_under(cuts, max_corners, reference_arrangements(max_corners))
     assert set(codes) == set(expected)
     assert {c: a.candidate for c, a in zip(codes, tree, strict=True)} == expected
 
@@ -122,22 +153,22 @@ def test_children_give_back_their_parent(a):
                                pytest.param(26, marks=pytest.mark.slow)])
 def test_candidates_are_plantris(n, monkeypatch):
     """The candidate maps with n corners are those plantri's filter keeps, map for map; with
-    cut 4, those of them whose crossing graph is 3-colourable (every colouring tried)."""
-    import polyloops.enumerate.arrangements as arrangements_module
-
+    cut 4, those of them whose crossing graph is 3-colourable (every colouring tried); with cut
+    5 too, those of these where no region has two sides on one loop."""
     theirs = {Arrangement.of(m) for m in candidate_maps(n, find_plantri())}
-    monkeypatch.setattr(arrangements_module, "COLOUR_CUT", False)
-    every = [a for a in candidate_arrangements(n) if a.corners == n]
-    assert len(set(every)) == len(every) and set(every) == theirs
-    monkeypatch.setattr(arrangements_module, "COLOUR_CUT", True)
-    cut = [a for a in candidate_arrangements(n) if a.corners == n]
-    assert set(cut) == {a for a in theirs if three_colourable(reference_code(a))}
+    found = {}
+    for cuts in CUTS:
+        set_cuts(monkeypatch, *cuts)
+        found[cuts] = [a for a in candidate_arrangements(n) if a.corners == n]
+        assert len(set(found[cuts])) == len(found[cuts])
+    assert set(found[False, False]) == theirs
+    colourable = {a for a in theirs if three_colourable(reference_code(a))}
+    assert set(found[True, False]) == colourable
+    assert set(found[True, True]) == {a for a in colourable if meets_each_loop_once(reference_code(a))}
 
 
 def test_quad_mesh_round_trip(monkeypatch):
-    import polyloops.enumerate.arrangements as arrangements_module
-
-    monkeypatch.setattr(arrangements_module, "COLOUR_CUT", False)  # every candidate map
+    set_cuts(monkeypatch, False, False)  # every candidate map
     found = list(candidate_arrangements(20))
     maps = sum(1 for _ in candidate_maps(20, find_plantri()))  # what plantri's filter keeps
     assert Counter(a.corners for a in found)[20] == maps == 60
@@ -157,22 +188,22 @@ def test_shares_partition_the_search():
     def add(s: SearchStats) -> None:
         total[0] = total[0] + s
 
-    whole = list(candidate_arrangements(20, on_stats=add))
+    whole = list(candidate_arrangements(26, on_stats=add))
     parts, split = [], [SearchStats()]
 
     def add_split(s: SearchStats) -> None:
         split[0] = split[0] + s
 
-    top = frontier(20)
+    top = frontier(26)
     for res in range(3):
-        parts.append(list(candidate_arrangements(20, res, 3, on_stats=add_split)))
+        parts.append(list(candidate_arrangements(26, res, 3, on_stats=add_split)))
         one.extend(parts[-1])
     assert sorted(one, key=lambda a: a.twin) == sorted(whole, key=lambda a: a.twin)
     assert len(one) == len(set(one))
     assert split[0] == total[0]
-    assert len(top.roots) > 3 and all(len(r.loops()) == 3 for r in top.roots)
+    assert len(top.roots) > 3 and all(len(r.loops()) == top.loops for r in top.roots)
     with pytest.raises(ArrangementError):
-        next(candidate_arrangements(20, 3, 3))
+        next(candidate_arrangements(26, 3, 3))
 
 
 def test_bad_arrays_are_refused():

@@ -12,13 +12,13 @@
  * `limit` - (parent crossings) times, as a path that crosses one edge at a time and splits the
  * faces it passes, and returns each child that
  *   - can still grow into an arrangement with at most `limit` crossings whose regions have 3 to
- *     6 sides (the counting bound `need`), and
+ *     6 sides (the counting bound `need`) and, with cut 5, meet each loop at most once, and
  *   - has the new curve as its canonical loop to delete: among loops whose deletion leaves
  *     the arrangement connected, those with the fewest crossings, and of these the one met
  *     first in the canonical numbering (McKay's canonical construction path),
  * as its canonical twin array (uint16), with a flag telling whether the child is itself a
  * candidate (regions of 3 to 6 sides, no two regions sharing two edges or one region on both
- * sides of an edge).  A parent with two darts is the single loop, with one marker vertex.
+ * sides of an edge, and with cut 5 no region with two sides on one loop).  A parent with two darts is the single loop, with one marker vertex.
  *
  * canonical(rot, twin) gives the canonical twin array and the candidate flag of one
  * arrangement.
@@ -69,10 +69,13 @@ typedef struct {
     uint64_t crossed;       /* the parent loops the curve being drawn has crossed, a bit each */
     int crossings_with[MAXL];  /* crossings of the curve being drawn with each parent loop */
     int colour_cut;         /* cut 4: drop children whose crossing graph is not 3-colourable */
+    int meet_cut;           /* cut 5: a region must end meeting each loop at most once */
+    int pextra2[MAXD + 1];  /* twice what cut 5 adds to cut 1's need, per parent face label */
+    unsigned nparent_faces; /* the parent's faces carry labels 1..nparent_faces */
     PyObject *out;          /* the list of children found */
     int failed;             /* 1: a Python error is set; 2: a child with too many loops */
-    long long nodes, closed, bounded, rejected, uncolourable;  /* statistics: curves drawn,
-                                       closed, over the bound, not canonical, not 3-colourable */
+    long long nodes, closed, bounded, rejected, uncolourable, met_twice;  /* statistics: curves
+                   drawn, closed, over the bound, not canonical, not 3-colourable, over cut 5's */
 } Ctx;
 
 static inline int need(int s)
@@ -146,6 +149,8 @@ typedef struct {
     int rot[MAXD], irot[MAXD], twin[MAXD];  /* as in Ctx */
     int face[MAXD];         /* the face on a dart's left */
     int face_size[MAXD];    /* sides of each face */
+    int face_dart[MAXD];    /* a dart of each face */
+    int meets_once;         /* no face has two sides on one loop (set by meeting_need) */
     int loop[MAXD];         /* the loop a dart lies on */
     int nfaces, nloops;
     int loop_crossings[MAXL];  /* crossings of each loop */
@@ -218,6 +223,7 @@ static int child_faces(Child *h)
         if (h->face[d] >= 0) continue;
         int k = 0, e = d;
         do { h->face[e] = h->nfaces; k++; e = h->irot[h->twin[e]]; } while (e != d);
+        h->face_dart[h->nfaces] = d;
         h->face_size[h->nfaces++] = k;
         total += need(k);
     }
@@ -247,6 +253,35 @@ static int child_loops(Child *h)
     }
     for (int l = 0; l < h->nloops; l++) h->loop_crossings[l] /= 2;
     return 0;
+}
+
+/* Cut 5 of docs/catalog.md: in a genus-0 polycube no corner meets a strip twice (the loop
+ * separates the sphere, so both edges would leave the corner in the same direction), and a
+ * region with k sides on one loop must be cut into at least k pieces, which takes k - 1 of the
+ * later crossings' shares.  Returns what this adds to cut 1's bound (the sum over regions of
+ * max(0, k - 1 - need(s)), k the most sides on one loop), and sets h->meets_once. */
+static int meeting_need(Child *h)
+{
+    static unsigned stamp[MAXL], count[MAXL], now;
+    int extra = 0;
+    h->meets_once = 1;
+    for (int f = 0; f < h->nfaces; f++) {
+        unsigned most = 0;
+        int d = h->face_dart[f], e = d;
+        now++;
+        do {
+            int l = h->loop[e];
+            if (stamp[l] != now) { stamp[l] = now; count[l] = 0; }
+            if (++count[l] > most) most = count[l];
+            e = h->irot[h->twin[e]];
+        } while (e != d);
+        if (most > 1) {
+            int more = (int)most - 1 - need(h->face_size[f]);
+            h->meets_once = 0;
+            if (more > 0) extra += more;
+        }
+    }
+    return extra;
 }
 
 /* The least code over the roots of least invariant, into h->best; returns whether some root
@@ -347,8 +382,10 @@ static void emit(Ctx *c, int newdart)
         h->twin[id[d]] = id[t];
         h->rot[id[d]] = id[c->rot[d]];             /* markers are never on a crossing */
     }
-    if (child_faces(h) > c->limit) { c->bounded++; return; }
+    int bound = child_faces(h);
+    if (bound > c->limit) { c->bounded++; return; }
     if (child_loops(h) < 0) { c->failed = 2; return; }
+    if (c->meet_cut && bound + meeting_need(h) > c->limit) { c->met_twice++; return; }
     if (c->colour_cut && !colourable3(h->nloops, h->adj)) { c->uncolourable++; return; }
     int newloop = h->loop[id[newdart]];
     /* candidates: deletable loops with the fewest crossings */
@@ -362,6 +399,7 @@ static void emit(Ctx *c, int newdart)
     if (!(cand >> newloop & 1) || !child_code(h, cand, newloop)) { c->rejected++; return; }
     int final = child_is_candidate(h);
     if (final < 0) { c->failed = 2; return; }
+    if (c->meet_cut && !h->meets_once) final = 0;
     PyObject *code = code_bytes(h);
     PyObject *item = code ? Py_BuildValue("(Ni)", code, final) : NULL;
     if (!item || PyList_Append(c->out, item) < 0) c->failed = 1;
@@ -378,17 +416,37 @@ static void label_face(Ctx *c, int d, unsigned label, int size)
     do { c->flabel[e] = label; c->fsize[e] = size; e = fnext(c, e); } while (e != d);
 }
 
-/* The parent's faces labelled; returns twice their needs. */
+/* Twice cut 5's addition to the need of a face whose label is lab: a parent face keeps its
+ * sides until the curve enters it; the pieces the curve makes are counted by size alone. */
+static inline int extra2(const Ctx *c, unsigned lab) { return lab <= c->nparent_faces ? c->pextra2[lab] : 0; }
+
+/* The parent's faces labelled; returns twice their needs (with cut 5's, when it is on). */
 static int label_all(Ctx *c)
 {
+    static unsigned stamp[MAXL], count[MAXL], now;
     int st = ++c->stamp, sum = 0;
     for (int d = 0; d < c->n; d++) {
         if (c->seen[d] == st) continue;
         int s = 0, e = d;
-        do { c->seen[e] = st; s += !is_marker(c, e); e = fnext(c, e); } while (e != d);
-        label_face(c, d, ++c->next_label, s);
-        sum += 2 * need(s);
+        unsigned most = 0;
+        now++;
+        do {
+            c->seen[e] = st;
+            s += !is_marker(c, e);
+            if (c->nloops) {
+                int l = c->loop_of[e];
+                if (stamp[l] != now) { stamp[l] = now; count[l] = 0; }
+                if (++count[l] > most) most = count[l];
+            }
+            e = fnext(c, e);
+        } while (e != d);
+        unsigned lab = ++c->next_label;
+        label_face(c, d, lab, s);
+        int more = c->meet_cut && most > 1 ? (int)most - 1 - need(s) : 0;
+        c->pextra2[lab] = more > 0 ? 2 * more : 0;
+        sum += 2 * need(s) + c->pextra2[lab];
     }
+    c->nparent_faces = c->next_label;
     return sum;
 }
 
@@ -458,7 +516,7 @@ static void dfs(Ctx *c, int x, int y0, int cr, int base2)
         if (c->on_curve[d] || c->parent_edge[c->parent_dart[d]] < c->first_edge || d == c->near || d == c->near_twin) continue;
         int t = c->twin[d], z = c->flabel[t] == lz;   /* is the face across the closing face? */
         int s1 = corner[i + 1] + 1, s2 = corner[k] - corner[i + 1] + 2, sh = c->fsize[t];
-        int nb2 = base2 + 2 - (z ? 0 : 2 * need(sh)), next2;
+        int nb2 = base2 + 2 - (z ? 0 : 2 * need(sh) + extra2(c, c->flabel[t])), next2;
         if (closable) {   /* the piece with the closing angle stays open */
             int keep = at <= i ? s1 : s2, cut = at <= i ? s2 : s1;
             nb2 += 2 * need(cut);
@@ -590,8 +648,8 @@ static int parent_loops(Ctx *c)
 static PyObject *children(PyObject *self, PyObject *args)
 {
     Py_buffer rb, tb;
-    int limit, colour_cut = 1;
-    if (!PyArg_ParseTuple(args, "y*y*i|p", &rb, &tb, &limit, &colour_cut)) return NULL;
+    int limit, colour_cut = 1, meet_cut = 1;
+    if (!PyArg_ParseTuple(args, "y*y*i|pp", &rb, &tb, &limit, &colour_cut, &meet_cut)) return NULL;
     Ctx *c = &ctx;
     int n = (int)(tb.len / 2), implicit = rb.len == 0;
     static uint16_t blocks[MAXD];   /* an empty rot: four darts a crossing, in order */
@@ -611,6 +669,7 @@ static PyObject *children(PyObject *self, PyObject *args)
     }
     memset(c, 0, sizeof(*c));
     c->colour_cut = colour_cut;
+    c->meet_cut = meet_cut;
     c->n = n;
     for (int d = 0; d < n; d++) {
         c->rot[d] = rot[d]; c->twin[d] = twin[d]; c->parent_dart[d] = d; c->origin[d] = -1;
@@ -648,7 +707,8 @@ static PyObject *children(PyObject *self, PyObject *args)
         /* the faces on either side of e gain the start as a corner; they are the open ones */
         label_face(c, e, la, sa + 1);
         label_face(c, e1, lb, sb + 1);
-        int base2 = 2 * (c->parent_crossings + 1) + needs2 - 2 * need(sa) - 2 * need(sb);
+        int base2 = 2 * (c->parent_crossings + 1) + needs2 - 2 * need(sa) - 2 * need(sb)
+                    - extra2(c, la) - extra2(c, lb);
         /* the start is the new loop's crossing on e nearest to e's origin */
         c->near = e;
         c->near_twin = e1;
@@ -665,15 +725,16 @@ static PyObject *children(PyObject *self, PyObject *args)
         if (c->failed == 2) return PyErr_Format(PyExc_ValueError, "more than %d loops", MAXL);
         return NULL;
     }
-    PyObject *res = Py_BuildValue("(N(LLLLL))", c->out, c->nodes, c->closed, c->bounded, c->rejected,
-                                  c->uncolourable);
+    PyObject *res = Py_BuildValue("(N(LLLLLL))", c->out, c->nodes, c->closed, c->bounded, c->rejected,
+                                  c->uncolourable, c->met_twice);
     return res;
 }
 
 static PyObject *canonical(PyObject *self, PyObject *args)
 {
     Py_buffer rb, tb;
-    if (!PyArg_ParseTuple(args, "y*y*", &rb, &tb)) return NULL;
+    int meet_cut = 1;
+    if (!PyArg_ParseTuple(args, "y*y*|p", &rb, &tb, &meet_cut)) return NULL;
     Child *h = &child;
     int n = (int)(rb.len / 2), bad = rb.len != tb.len || rb.len % 2 || n < 4 || n % 4 || n > MAXD;
     const uint16_t *rot = rb.buf, *twin = tb.buf;
@@ -709,19 +770,22 @@ static PyObject *canonical(PyObject *self, PyObject *args)
     child_faces(h);
     if (child_loops(h) < 0) return PyErr_Format(PyExc_ValueError, "a loop crosses itself (or more than %d loops)", MAXL);
     child_code(h, 0, -1);
-    int final = child_is_candidate(h);
-    return Py_BuildValue("(Ni)", code_bytes(h), final > 0);
+    meeting_need(h);
+    int final = child_is_candidate(h) > 0 && (!meet_cut || h->meets_once);
+    return Py_BuildValue("(Ni)", code_bytes(h), final);
 }
 
 static PyMethodDef methods[] = {
     {"canonical", canonical, METH_VARARGS,
-     "canonical(rot, twin) -> (canonical twin array, is_candidate) of an arrangement"},
+     "canonical(rot, twin, meet_cut=True) -> (canonical twin array, is_candidate) of an\n"
+     "arrangement; with meet_cut a candidate also has no region with two sides on one loop"},
     {"children", children, METH_VARARGS,
-     "children(rot, twin, limit, colour_cut=True) -> (children, (curves drawn, closed, over the\n"
-     "bound, not canonical, not 3-colourable)): the children of an arrangement (rot and twin as\n"
+     "children(rot, twin, limit, colour_cut=True, meet_cut=True) -> (children, (curves drawn,\n"
+     "closed, over the bound, not canonical, not 3-colourable, over cut 5's bound)): the children of an arrangement (rot and twin as\n"
      "uint16 arrays; an empty rot means the rot of a canonical arrangement, four darts a\n"
      "crossing), each as (canonical twin array, is_candidate), with at most limit crossings\n"
-     "after every cut; colour_cut applies cut 4 (crossing graphs must be 3-colourable)"},
+     "after every cut; colour_cut applies cut 4 (crossing graphs must be 3-colourable), meet_cut\n"
+     "cut 5 (a region must end with at most one side on each loop)"},
     {NULL, NULL, 0, NULL},
 };
 

@@ -17,12 +17,14 @@ independent subtrees (``res``/``mod``).  Deleting a loop keeps loops simple but 
 sizes, so intermediate arrangements have bigons and large regions; a counting bound prunes
 those that cannot grow into a candidate within the corner budget (``docs/catalog.md`` proves
 it).  Arrangements whose graph of crossing loops is not 3-colourable carry no polycube, nor
-does anything built from them, so they are not built either (cut 4, :data:`COLOUR_CUT`).  The
-search itself is the compiled extension ``_arrangements``.
+does anything built from them, so they are not built either (cut 4, :data:`COLOUR_CUT`); and no
+corner of a genus-0 polycube meets a strip twice, so a region with several sides on one loop
+must still be cut into pieces, which joins the counting bound, and a candidate map has no such
+region (cut 5, :data:`MEET_CUT`).  The search itself is the compiled extension ``_arrangements``.
 
 >>> from collections import Counter
 >>> sorted(Counter(a.corners for a in candidate_arrangements(16)).items())
-[(8, 1), (12, 1), (14, 2), (16, 3)]
+[(8, 1), (12, 1), (16, 2)]
 >>> cube = next(candidate_arrangements(8))
 >>> cube.crossings, cube.quad_mesh().num_corners
 (6, 8)
@@ -96,7 +98,7 @@ class Arrangement:
         if any(len(f) != 4 for f in m.faces):
             raise ArrangementError("not a quad mesh: a face is not a quad")
         try:
-            code, candidate = _module().canonical(_pack(m.next), _pack(m.twin))
+            code, candidate = _module().canonical(_pack(m.next), _pack(m.twin), MEET_CUT)
         except ValueError as err:
             raise ArrangementError(str(err)) from None
         return cls(code, bool(candidate))
@@ -181,7 +183,7 @@ class Arrangement:
         new_rot = [index[rot[d]] for d in keep]
         new_twin = [index[through(twin[d])] for d in keep]
         try:
-            code, candidate = _module().canonical(_pack(new_rot), _pack(new_twin))
+            code, candidate = _module().canonical(_pack(new_rot), _pack(new_twin), MEET_CUT)
         except ValueError as err:
             raise ArrangementError(f"deleting loop {i}: {err}") from None
         out = Arrangement(code, bool(candidate))
@@ -205,8 +207,9 @@ class Arrangement:
 class SearchStats:
     """What a search did: curves drawn (partial paths), closed curves, closed curves over the
     bound, closed curves that were not the canonical loop to delete, arrangements kept (the
-    objects visited), candidate maps among them, and closed curves whose arrangement cut 4
-    dropped (a crossing graph that is not 3-colourable)."""
+    objects visited), candidate maps among them, closed curves whose arrangement cut 4
+    dropped (a crossing graph that is not 3-colourable), and those over cut 5's bound (regions
+    with several sides on one loop)."""
 
     curves: int = 0
     closed: int = 0
@@ -215,6 +218,7 @@ class SearchStats:
     arrangements: int = 0
     candidates: int = 0
     not_colourable: int = 0  # closed curves cut 4 dropped (crossing graph not 3-colourable)
+    meets_loop_twice: int = 0  # closed curves over cut 5's bound (a region meets a loop twice)
 
     def __add__(self, other: SearchStats) -> SearchStats:
         return SearchStats(*(a + b for a, b in zip(astuple(self), astuple(other), strict=True)))
@@ -231,19 +235,25 @@ SINGLE_LOOP = (_pack([1, 0]), _pack([1, 0]))  # one loop, one marker vertex on i
 # are then those of plantri's filter whose crossing graph is 3-colourable, and the catalog's
 # records are the same.  False visits every candidate map (the tests compare both with plantri).
 COLOUR_CUT = True
+# Cut 5 (docs/catalog.md): no corner of a genus-0 polycube meets a strip twice, so a region with
+# k sides on one loop must still be cut into k pieces; this joins cut 1's bound, and a candidate
+# map has no region with two sides on one loop.  The catalog's records are the same; False
+# gives the candidate maps of cut 4 alone.
+MEET_CUT = True
 IMPLICIT = b""  # a canonical arrangement's rotation, which the search works out itself
 
 
 def _children(parent: Arrangement | None, max_corners: int) -> tuple[list[Arrangement], tuple[int, ...]]:
     rot, twin = SINGLE_LOOP if parent is None else (IMPLICIT, parent.code)
-    found, counts = _module().children(rot, twin, max_corners - 2, COLOUR_CUT)
-    curves, closed, over, rejected, uncolourable = counts
+    found, counts = _module().children(rot, twin, max_corners - 2, COLOUR_CUT, MEET_CUT)
+    curves, closed, over, rejected, uncolourable, met_twice = counts
     kids, seen = [], set()
     for code, candidate in found:
         if code not in seen:
             seen.add(code)
             kids.append(Arrangement(code, bool(candidate)))
-    return kids, (curves, closed, over, rejected, len(kids), sum(k.candidate for k in kids), uncolourable)
+    return kids, (curves, closed, over, rejected, len(kids), sum(k.candidate for k in kids), uncolourable,
+                  met_twice)
 
 
 def children(parent: Arrangement | None, max_corners: int) -> tuple[list[Arrangement], SearchStats]:
@@ -263,7 +273,11 @@ class Frontier:
     shallow: tuple[Arrangement, ...]
 
 
-SPLIT_LOOPS = 3  # at 24 corners 7,151 roots, the largest subtree 9% of the arrangements
+# With cuts 4 and 5 the candidates gather below few arrangements of three to five loops (at 30
+# corners every one below a single root of three loops, and of four); below seven loops they
+# spread evenly over the shares (at 30 corners 8,516 roots, 9 to 49 candidates in each of 16
+# shares), and the top costs 1.3 times the top to three loops.
+SPLIT_LOOPS = 7
 
 Expander = Callable[[list["Arrangement | None"], int], list[tuple[list["Arrangement"], "SearchStats"]]]
 
@@ -277,10 +291,10 @@ def frontier(max_corners: int, loops: int = SPLIT_LOOPS,
              on_stats: Callable[[SearchStats], None] | None = None,
              expander: Expander = expand) -> Frontier:
     """The top of the search tree, down to the arrangements with ``loops`` loops: the roots of
-    the subtrees that shares of a split search take (at 24 corners, below three loops the
-    largest subtree holds 9% of the arrangements, below two loops nearly all).  The top costs
-    a tenth of the search at 24 corners; ``expander`` may spread each level over workers (it
-    must return :func:`expand`'s answer)."""
+    the subtrees that shares of a split search take (see :data:`SPLIT_LOOPS`).  Its first two
+    levels (the second and third loops, drawn with the whole budget) are most of the top's
+    cost; ``expander`` may spread each level over workers (it must return :func:`expand`'s
+    answer)."""
     level: list[Arrangement | None] = [None]
     shallow: list[Arrangement] = []
     for _ in range(loops - 1):

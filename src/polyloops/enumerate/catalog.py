@@ -20,6 +20,8 @@ different maps never coincide: classes are counted map by map.
 
 from __future__ import annotations
 
+from typing import Any
+
 from polyloops.core.canonical import CanonicalForm, canonical_form
 from polyloops.core.corners import CATEGORIES, corner_histogram
 from polyloops.core.directions import Axis
@@ -48,12 +50,16 @@ def map_classes(m: HalfEdgeMap) -> dict[str, list[CatalogRecord]]:
         form = canonical_form(ls, "labelled")
         labelled.setdefault(form.signature, (ls, form))
     out: dict[str, dict[str, CatalogRecord]] = {mode: {} for mode in MODES}
+    # The corner categories and the removable loops are the same for every image of a class
+    # under a symmetry: worked out once a full class, not once a labelled one.
+    invariants: dict[str, tuple[Any, int]] = {}
     for ls, form in labelled.values():
         full = canonical_form(ls, "full")
         chiral = not full.achiral
         forms = {"labelled": form, "rotation": canonical_form(ls, "rotation"), "full": full}
-        _, categories, _ = corner_histogram(ls)
-        removable = len(removals(ls))  # the same for every image under a symmetry
+        if full.signature not in invariants:
+            invariants[full.signature] = (corner_histogram(ls)[1], len(removals(ls)))
+        categories, removable = invariants[full.signature]
         for mode, form in forms.items():
             key = form.signature
             if key not in out[mode]:

@@ -167,7 +167,8 @@ def execute(generator: Generator, jobs: list[Job], out: Path, workers: int = 1, 
 def summarize(generator: Generator, results: list[JobResult], min_n: int, max_n: int,
               partial: tuple[int, int] | None = None) -> dict[str, Any]:
     """The counts of a run by corners, in all three modes, with the numbers of maps the
-    generator read (``None`` where it does not count them) and its summed statistics."""
+    generator read (``None`` where it does not count them), the maps by the number of classes
+    they carry, and the generator's summed statistics."""
     corners = [str(n) for n in range(min_n, max_n + 1)]
     counts = {n: dict.fromkeys(MODES, 0) for n in corners}
     # Odd counts are not generated (no polycube has them): their number of maps is unknown.
@@ -176,6 +177,7 @@ def summarize(generator: Generator, results: list[JobResult], min_n: int, max_n:
     maps: dict[str, list[int | None]] = {n: [] for n in corners}
     strips: dict[str, list[int | None]] = {n: [] for n in corners}
     statistics: dict[str, int] = {}
+    carrying: dict[str, dict[int, int]] = {n: {} for n in corners}
     for r in results:
         for key, value in r.statistics.items():
             statistics[key] = statistics.get(key, 0) + value
@@ -186,6 +188,8 @@ def summarize(generator: Generator, results: list[JobResult], min_n: int, max_n:
                     counts[n][mode] += len(c.records[str(mode)])
                 maps[n].append(c.maps)
                 strips[n].append(c.simple_strips)
+                for k, v in c.carrying.items():
+                    carrying[n][k] = carrying[n].get(k, 0) + v
 
     def total(values: list[int | None]) -> int | None:  # known only when every job counted it
         return None if not values or None in values else sum(v for v in values if v is not None)
@@ -194,8 +198,12 @@ def summarize(generator: Generator, results: list[JobResult], min_n: int, max_n:
     simple = {n: 0 if int(n) % 2 else total(strips[n]) for n in corners}
     # quadrangulations: plantri's simple ones with minimum degree 3; simple_strips: those of
     # them whose strips are all simple closed curves (any degrees).
+    # maps_by_classes[n][k]: the candidate maps with n corners that carry exactly k >= 1
+    # polycube classes up to all symmetries (each class lies on one map).
     out: dict[str, Any] = {"genus": 0, "counts": counts, "quadrangulations": quads,
-                           "simple_strips": simple}
+                           "simple_strips": simple,
+                           "maps_by_classes": {n: {str(k): v for k, v in sorted(carrying[n].items())}
+                                               for n in corners}}
     if generator.statistics_key is not None:
         out["generator"] = generator.name
         out[generator.statistics_key] = statistics

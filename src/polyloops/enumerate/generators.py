@@ -26,20 +26,23 @@ from __future__ import annotations
 import json
 import time
 from abc import ABC, abstractmethod
+from collections import Counter
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 from polyloops.core.halfedge import HalfEdgeMap
+from polyloops.core.symmetry import Symmetry
 from polyloops.enumerate.catalog import MODES, map_classes
 from polyloops.enumerate.records import CatalogRecord
 
 __all__ = ["GENERATORS", "CornerResult", "Generator", "Job", "JobResult", "LoopsGenerator",
            "PlantriGenerator", "Tally", "register", "run_job"]
 
-# Version 5: one shape of result for every generator.  Parts of older versions are recomputed.
-SCHEMA_VERSION = 5
+# Version 6: per corner count, the maps by the number of classes they carry.  Parts of older
+# versions are recomputed.
+SCHEMA_VERSION = 6
 
 
 @dataclass(frozen=True)
@@ -83,13 +86,15 @@ class Tally:
 
 @dataclass(frozen=True)
 class CornerResult:
-    """One corner count of a job: its candidate maps, its classes in every mode, and the maps
-    the generator read there (``None`` when it does not count them)."""
+    """One corner count of a job: its candidate maps, its classes in every mode, the maps the
+    generator read there (``None`` when it does not count them), and ``carrying[k]``, how many
+    of its candidate maps carry exactly ``k >= 1`` polycube classes up to all symmetries."""
 
     candidates: int
     records: dict[str, tuple[CatalogRecord, ...]]
     maps: int | None = None
     simple_strips: int | None = None
+    carrying: dict[int, int] = field(default_factory=dict)
 
 
 @dataclass(frozen=True)
@@ -108,6 +113,7 @@ class JobResult:
                 "statistics": self.statistics, "seconds": self.seconds,
                 "corners": {str(n): {"candidates": c.candidates, "maps": c.maps,
                                      "simple_strips": c.simple_strips,
+                                     "carrying": {str(k): v for k, v in c.carrying.items()},
                                      "records": {str(m): [r.to_json() for r in recs]
                                                  for m, recs in c.records.items()}}
                             for n, c in self.corners.items()}}
@@ -121,7 +127,8 @@ class JobResult:
         corners = {int(n): CornerResult(int(c["candidates"]),
                                         {m: tuple(CatalogRecord.from_json(r) for r in recs)
                                          for m, recs in c["records"].items()},
-                                        c["maps"], c["simple_strips"])
+                                        c["maps"], c["simple_strips"],
+                                        {int(k): int(v) for k, v in c["carrying"].items()})
                    for n, c in data["corners"].items()}
         return cls(Job.from_json(data), corners, {k: int(v) for k, v in data["statistics"].items()},
                    int(data["visited"]), float(data["seconds"]))
@@ -204,13 +211,18 @@ def run_job(task: tuple[Generator, Job, Any]) -> JobResult:
     tally = Tally()
     counts = dict.fromkeys(generator.corner_counts(job), 0)
     records: dict[int, dict[str, list[CatalogRecord]]] = {n: {str(m): [] for m in MODES} for n in counts}
+    carrying: dict[int, Counter[int]] = {n: Counter() for n in counts}
     for m in generator.candidates(job, context, tally):
         if m.num_corners in counts:
             counts[m.num_corners] += 1
-            for mode, recs in map_classes(m).items():
+            classes = map_classes(m)
+            for mode, recs in classes.items():
                 records[m.num_corners][str(mode)].extend(recs)
+            if classes[Symmetry.FULL]:
+                carrying[m.num_corners][len(classes[Symmetry.FULL])] += 1
     corners = {n: CornerResult(count, {m: tuple(r) for m, r in records[n].items()},
-                               tally.maps.get(n), tally.simple_strips.get(n))
+                               tally.maps.get(n), tally.simple_strips.get(n),
+                               dict(sorted(carrying[n].items())))
                for n, count in counts.items()}
     return JobResult(job, corners, dict(tally.statistics), tally.visited, time.perf_counter() - start)
 
@@ -415,7 +427,8 @@ def spill_frontier(max_n: int, workers: int, dask: str | None, where: Path) -> P
     from polyloops.io.files import writing
 
     path = where / f"loops-top-{max_n}.bin"
-    made_by = {"version": SCHEMA_VERSION, "colour_cut": arrangements.COLOUR_CUT}
+    made_by = {"version": SCHEMA_VERSION, "colour_cut": arrangements.COLOUR_CUT,
+               "meet_cut": arrangements.MEET_CUT}
     if path.is_file():  # a top written by a run of this search: read, not recomputed
         with open(path, "rb") as fh:
             try:
