@@ -353,6 +353,46 @@ def test_csv_export(tmp_path):
     assert main(["catalog", "export", str(tmp_path), "--csv"]) == 2
 
 
+# OEIS A078666 (simple quadrangulations of the sphere with minimum degree 3, mirror images
+# identified), offset 6, indexed by faces: an outside count to compare plantri's with.
+A078666 = [1, 0, 1, 1, 3, 3, 12, 19, 64, 155, 510, 1514, 5146, 16966, 58782, 203269, 716607, 2536201,
+           9062402, 32533568, 117498072, 426212952, 1553048548]
+
+
+def test_quadrangulation_counts_are_oeis_a078666():
+    """The shipped counts of quadrangulations (plantri -qc2, by corners = vertices) are
+    A078666(n - 2) wherever they are known, and docs/counts.md cites that range."""
+    summary = json.loads((ROOT / "catalogs" / "genus0" / "summary.json").read_text())
+    known = {int(n): c for n, c in summary["quadrangulations"].items() if c is not None}
+    assert known and max(known) == 30
+    for n, c in known.items():
+        assert c == A078666[n - 2 - 6], n
+    page = (ROOT / "docs" / "counts.md").read_text()
+    assert "A078666](https://oeis.org/A078666)`(n - 2)`" in page
+    assert f"from {min(known)} to {max(known)}" in page
+
+
+def test_maps_by_classes_agree_with_the_records():
+    """summary.json's count of maps by the classes they carry, made per map while the catalog
+    was built, equals a count from the records alone: each record's map found again from its
+    signature (its quad mesh's canonical arrangement), records grouped by map."""
+    from collections import Counter
+
+    from polyloops.core.canonical import from_signature
+    from polyloops.enumerate.arrangements import Arrangement
+
+    summary = json.loads((ROOT / "catalogs" / "genus0" / "summary.json").read_text())
+    per_map: Counter[tuple[int, bytes]] = Counter()
+    for line in (ROOT / "catalogs" / "genus0" / "catalog.jsonl").read_text().splitlines():
+        record = json.loads(line)
+        per_map[record["corners"], Arrangement.of(from_signature(record["signature"]).map).code] += 1
+    derived: dict[str, Counter[str]] = {n: Counter() for n in summary["counts"]}
+    for (n, _), k in per_map.items():
+        derived[str(n)][str(k)] += 1
+    assert summary["maps_by_classes"] == {n: dict(sorted(c.items(), key=lambda kv: int(kv[0])))
+                                          for n, c in derived.items()}
+
+
 def test_counts_page_and_bfiles_are_the_summary():
     import importlib.util
 

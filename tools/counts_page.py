@@ -60,7 +60,73 @@ def page(summary: dict) -> str:
               "lists 0 there.",
               "The up-to-rotation count equals the up-to-all-symmetries count plus the number of",
               "chiral classes, at every `n` (tested on the catalog).", ""]
+    lines += quadrangulation_note(summary) + carrying_section(summary) + drafts(summary)
     return "\n".join(lines)
+
+
+def quadrangulation_note(summary: dict) -> list[str]:
+    known = [int(n) for n, c in summary["quadrangulations"].items() if c is not None and int(n) % 2 == 0]
+    return ["## Conventions", "",
+            "- *Polycube*: Definition 1 of the paper, a closed quad mesh of genus 0 whose corners",
+            "  have integer coordinates and whose edges are parallel to the axes, with pairwise",
+            "  different directions at each corner; it may intersect itself. *Corners* are the",
+            "  mesh's vertices (the regions of its loop structure).",
+            "- *Order-equivalence* (Definition 2): two polycubes are the same when a bijection of",
+            "  their meshes keeps, along each axis, the order of the corners' coordinates. A",
+            "  polycube and its inverse (every face reversed) are identified.",
+            "- *Labelled*: axes fixed, no symmetry; *up to rotation*: the 24 rotations of the cube",
+            "  act on the axes; *up to rotation and reflection*: all 48 signed permutations.",
+            "- *Quadrangulations*: the number of corners `n` is the number of vertices; the column",
+            "  is OEIS [A078666](https://oeis.org/A078666)`(n - 2)` (indexed by faces) at every",
+            f"  even `n` from {min(known)} to {max(known)} (a test compares them); odd `n` was not",
+            "  generated here (no polycube has an odd number of corners).", ""]
+
+
+def carrying_section(summary: dict) -> list[str]:
+    rows = {n: c for n, c in summary.get("maps_by_classes", {}).items() if int(n) % 2 == 0}
+    if not rows:
+        return []
+    most = max((int(k) for c in rows.values() for k in c), default=1)
+    first = next((n for n, c in rows.items() if any(int(k) >= 2 for k in c)), None)
+    lines = ["## Maps that carry several polycubes", "",
+             "Each class lies on one quadrangulation (its quad mesh, mirror images identified);",
+             "how many classes (up to all symmetries) the candidate maps carry:", "",
+             "| corners | " + " | ".join(f"maps with {k}" for k in range(1, most + 1)) + " |",
+             "|---:|" + "---:|" * most]
+    for n, c in rows.items():
+        lines.append(f"| {n} | " + " | ".join(str(c.get(str(k), 0)) for k in range(1, most + 1)) + " |")
+    top = max(int(n) for n in rows)
+    lines += ["", f"Through {top} corners " + (
+        "every quadrangulation carries at most one polycube class." if first is None else
+        f"the first quadrangulations with two or more classes have {first} corners."), ""]
+    return lines
+
+
+def drafts(summary: dict) -> list[str]:
+    top = max(int(n) for n in summary["counts"])
+    lines = ["## Draft OEIS entries", "",
+             "Offset 8; the terms are `a(n)` for even `n` (odd `n` gives 0 and is left out, as in the",
+             "lists above). Program: `polyloops catalog --max-corners N -o DIR` (Python package",
+             "polyloops), whose `summary.json` holds the three counts; `docs/catalog.md` says how",
+             "the catalog is made and checked.", ""]
+    count = {int(n): c for n, c in summary["counts"].items()}
+    chiral = count[20]["rotation"] - count[20]["full"]
+    examples = {"labelled": f"a(12) = {count[12]['labelled']}: the 2 x 1 x 1 box along each of the "
+                            "three axes.",
+                "rotation": f"a(16) = {count[16]['rotation']}: the 3 x 1 x 1 box and the L of three cubes.",
+                "full": f"a(20) = {count[20]['full']} (up to rotation {count[20]['rotation']}: "
+                        f"{chiral} {'class is' if chiral == 1 else 'classes are'} chiral)."}
+    for mode, text in SEQUENCES.items():
+        values = [c[mode] for n, c in summary["counts"].items() if int(n) % 2 == 0]
+        lines += [f"### {mode}", "",
+                  f"- Name: Number of {text}, for even n.",
+                  f"- Data (n = 8, 10, ..., {top}): {', '.join(map(str, values))}",
+                  "- Comments: polycubes may intersect themselves; the count is of polycube loop",
+                  "  structures (Definition 4), which are in bijection with polycubes up to",
+                  "  order-equivalence (Theorems 1 and 2 of Snoep, Speckmann and Verbeek).",
+                  f"- Example: {examples[mode]}",
+                  f"- b-file: [bfiles/{mode}.txt](bfiles/{mode}.txt)", ""]
+    return lines
 
 
 def write_all(summary: dict) -> dict[Path, str]:
