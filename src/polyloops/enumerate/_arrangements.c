@@ -49,6 +49,8 @@ typedef struct {
     unsigned char on_curve[MAXD];  /* 1 for the darts of the curve being drawn */
     int seen[MAXD];         /* a stamp per dart, for walks that visit each face once */
     int fsize[MAXD];        /* the number of corners of the face on the dart's left */
+    int fneed2[MAXD];       /* twice the need the running bound counts for that face (cut 1's
+                               need, or cut 5's when larger; open faces: not counted) */
     unsigned flabel[MAXD], next_label;  /* a label per face (on its darts); reset with each parent */
     int stamp;              /* the current value for seen[] */
     int n, nv, nv0;         /* darts, vertices now, vertices of the parent */
@@ -70,8 +72,6 @@ typedef struct {
     int crossings_with[MAXL];  /* crossings of the curve being drawn with each parent loop */
     int colour_cut;         /* cut 4: drop children whose crossing graph is not 3-colourable */
     int meet_cut;           /* cut 5: a region must end meeting each loop at most once */
-    int pextra2[MAXD + 1];  /* twice what cut 5 adds to cut 1's need, per parent face label */
-    unsigned nparent_faces; /* the parent's faces carry labels 1..nparent_faces */
     PyObject *out;          /* the list of children found */
     int failed;             /* 1: a Python error is set; 2: a child with too many loops */
     long long nodes, closed, bounded, rejected, uncolourable, met_twice;  /* statistics: curves
@@ -410,20 +410,31 @@ static void emit(Ctx *c, int newdart)
  * (lab, fs).  A step changes three faces only (the current one splits in two, the one across
  * the crossed edge gains a corner), so a node updates those and restores them on the way back;
  * the bound of the faces that are not open (base2) comes from the parent. */
-static void label_face(Ctx *c, int d, unsigned label, int size)
+static void label_face(Ctx *c, int d, unsigned label, int size, int need2)
 {
     int e = d;
-    do { c->flabel[e] = label; c->fsize[e] = size; e = fnext(c, e); } while (e != d);
+    do { c->flabel[e] = label; c->fsize[e] = size; c->fneed2[e] = need2; e = fnext(c, e); } while (e != d);
 }
 
-/* Twice cut 5's addition to the need of a face whose label is lab: a parent face keeps its
- * sides until the curve enters it; the pieces the curve makes are counted by size alone. */
-static inline int extra2(const Ctx *c, unsigned lab) { return lab <= c->nparent_faces ? c->pextra2[lab] : 0; }
+/* Cut 5's need of a face with s sides, at most k of them on one loop: max(need(s), k - 1). */
+static inline int need5(const Ctx *c, int s, int k)
+{
+    return c->meet_cut && k - 1 > need(s) ? k - 1 : need(s);
+}
+
+/* The loop a dart of the partial map lies on: the parent's, or the new one (id nloops; the
+ * single loop's parent has no loop numbering: its loop is 0 and the new one 1). */
+static inline int dart_loop(const Ctx *c, int d)
+{
+    int p = c->parent_dart[d];
+    if (p < 0) return c->nloops ? c->nloops : 1;
+    return c->nloops ? c->loop_of[p] : 0;
+}
 
 /* The parent's faces labelled; returns twice their needs (with cut 5's, when it is on). */
 static int label_all(Ctx *c)
 {
-    static unsigned stamp[MAXL], count[MAXL], now;
+    static unsigned stamp[MAXL + 2], count[MAXL + 2], now;
     int st = ++c->stamp, sum = 0;
     for (int d = 0; d < c->n; d++) {
         if (c->seen[d] == st) continue;
@@ -432,21 +443,18 @@ static int label_all(Ctx *c)
         now++;
         do {
             c->seen[e] = st;
-            s += !is_marker(c, e);
-            if (c->nloops) {
-                int l = c->loop_of[e];
+            if (!is_marker(c, e)) {  /* a dart from a corner starts a side */
+                int l = dart_loop(c, e);
+                s++;
                 if (stamp[l] != now) { stamp[l] = now; count[l] = 0; }
                 if (++count[l] > most) most = count[l];
             }
             e = fnext(c, e);
         } while (e != d);
-        unsigned lab = ++c->next_label;
-        label_face(c, d, lab, s);
-        int more = c->meet_cut && most > 1 ? (int)most - 1 - need(s) : 0;
-        c->pextra2[lab] = more > 0 ? 2 * more : 0;
-        sum += 2 * need(s) + c->pextra2[lab];
+        int n2 = 2 * need5(c, s, (int)most);
+        label_face(c, d, ++c->next_label, s, n2);
+        sum += n2;
     }
-    c->nparent_faces = c->next_label;
     return sum;
 }
 
@@ -479,7 +487,7 @@ static void dfs(Ctx *c, int x, int y0, int cr, int base2)
     } while (e != x);
     int sg = corner[k];
     unsigned lg = ++c->next_label;
-    for (int i = 0; i < k; i++) { c->flabel[face[i]] = lg; c->fsize[face[i]] = sg; }
+    for (int i = 0; i < k; i++) { c->flabel[face[i]] = lg; c->fsize[face[i]] = sg; c->fneed2[face[i]] = 0; }
     int closable = at >= 0, sz = c->fsize[y0];
     unsigned lz = c->flabel[y0];
     /* A loop of the parent that stays deletable (the new loop meets another loop too) must
@@ -508,28 +516,57 @@ static void dfs(Ctx *c, int x, int y0, int cr, int base2)
         }
     }
     if (cr >= c->budget || c->n + 4 > MAXD) return;
+    /* Cut 5 for the two pieces a chord to a new point on face[i] makes: most sides on one loop
+     * in face[0..i] and the chord (m1), and in the rest of face[i] (from the new point),
+     * face[i+1..k-1] and the chord (m2); a dart from a marker continues a side. */
+    static unsigned stamp[MAXL + 2], count[MAXL + 2], now;
+    int m1[MAXD], m2[MAXD], newl = c->nloops ? c->nloops : 1;
+    if (c->meet_cut) {
+        unsigned most = 1;
+        now++;
+        stamp[newl] = now; count[newl] = 1;
+        for (int i = 0; i < k; i++) {
+            if (!is_marker(c, face[i])) {
+                int l = dart_loop(c, face[i]);
+                if (stamp[l] != now) { stamp[l] = now; count[l] = 0; }
+                if (++count[l] > most) most = count[l];
+            }
+            m1[i] = (int)most;
+        }
+        most = 1;
+        now++;
+        stamp[newl] = now; count[newl] = 1;
+        for (int i = k - 1; i >= 0; i--) {
+            int l = dart_loop(c, face[i]);
+            if (stamp[l] != now) { stamp[l] = now; count[l] = 0; }
+            m2[i] = (int)(count[l] + 1 > most ? count[l] + 1 : most);
+            if (!is_marker(c, face[i]) && ++count[l] > most) most = count[l];
+        }
+    }
     /* The chord to a new point on an edge d of the current face cuts it in two and enters the
      * face across d: the child's bound, before drawing it. */
-    int go[MAXD], gob[MAXD], goi[MAXD], ngo = 0;
+    int go[MAXD], gob[MAXD], goi[MAXD], gn1[MAXD], gn2[MAXD], ngo = 0;
     for (int i = 0; i < k; i++) {
         int d = face[i];
         if (c->on_curve[d] || c->parent_edge[c->parent_dart[d]] < c->first_edge || d == c->near || d == c->near_twin) continue;
         int t = c->twin[d], z = c->flabel[t] == lz;   /* is the face across the closing face? */
         int s1 = corner[i + 1] + 1, s2 = corner[k] - corner[i + 1] + 2, sh = c->fsize[t];
-        int nb2 = base2 + 2 - (z ? 0 : 2 * need(sh) + extra2(c, c->flabel[t])), next2;
+        int nb2 = base2 + 2 - (z ? 0 : c->fneed2[t]), next2;
+        int n1 = 2 * need5(c, s1, c->meet_cut ? m1[i] : 0), n2 = 2 * need5(c, s2, c->meet_cut ? m2[i] : 0);
         if (closable) {   /* the piece with the closing angle stays open */
-            int keep = at <= i ? s1 : s2, cut = at <= i ? s2 : s1;
-            nb2 += 2 * need(cut);
+            int keep = at <= i ? s1 : s2;
+            if (at <= i) n1 = 0; else n2 = 0;
+            nb2 += n1 + n2;
             next2 = nb2 + half2(keep) + half2(sh + 1);
         } else {
-            nb2 += 2 * need(s1) + 2 * need(s2);
+            nb2 += n1 + n2;
             next2 = nb2 + (z ? both2(sz + 1) : half2(sh + 1) + half2(sz));
         }
-        if (next2 <= limit2) { go[ngo] = d; gob[ngo] = nb2; goi[ngo++] = i; }
+        if (next2 <= limit2) { go[ngo] = d; gob[ngo] = nb2; goi[ngo] = i; gn1[ngo] = n1; gn2[ngo++] = n2; }
     }
     for (int j = 0; j < ngo; j++) {
         int d = go[j], i = goi[j], e1, e2, l = c->nloops ? c->loop_of[c->parent_dart[d]] : 0;
-        int t = c->twin[d], sh = c->fsize[t];
+        int t = c->twin[d], sh = c->fsize[t], nh = c->fneed2[t];
         unsigned lh = c->flabel[t];
         subdivide(c, d, &e1, &e2);
         chord(c, x, e2);
@@ -538,10 +575,12 @@ static void dfs(Ctx *c, int x, int y0, int cr, int base2)
         unsigned l1 = ++c->next_label, l2 = ++c->next_label;
         int s1 = corner[i + 1] + 1, s2 = corner[k] - corner[i + 1] + 2;
         int a = c->n - 2, b = c->n - 1;
-        for (int m = 0; m <= i; m++) { c->flabel[face[m]] = l1; c->fsize[face[m]] = s1; }
-        c->flabel[b] = l1; c->fsize[b] = s1;
-        for (int m = i + 1; m < k; m++) { c->flabel[face[m]] = l2; c->fsize[face[m]] = s2; }
-        c->flabel[e2] = l2; c->fsize[e2] = s2; c->flabel[a] = l2; c->fsize[a] = s2;
+        int n1 = gn1[j], n2 = gn2[j];   /* what the bound counts for each piece (0: open) */
+        for (int m = 0; m <= i; m++) { c->flabel[face[m]] = l1; c->fsize[face[m]] = s1; c->fneed2[face[m]] = n1; }
+        c->flabel[b] = l1; c->fsize[b] = s1; c->fneed2[b] = n1;
+        for (int m = i + 1; m < k; m++) { c->flabel[face[m]] = l2; c->fsize[face[m]] = s2; c->fneed2[face[m]] = n2; }
+        c->flabel[e2] = l2; c->fsize[e2] = s2; c->fneed2[e2] = n2;
+        c->flabel[a] = l2; c->fsize[a] = s2; c->fneed2[a] = n2;
         uint64_t before = c->crossed;
         if (c->nloops && !c->crossings_with[l]++) {
             c->crossed |= (uint64_t)1 << l;
@@ -553,8 +592,8 @@ static void dfs(Ctx *c, int x, int y0, int cr, int base2)
         c->crossed = before;
         unchord(c, x, e2);
         unsubdivide(c, d, e1);
-        for (int m = 0; m < k; m++) { c->flabel[face[m]] = lg; c->fsize[face[m]] = sg; }
-        label_face(c, t, lh, sh);
+        for (int m = 0; m < k; m++) { c->flabel[face[m]] = lg; c->fsize[face[m]] = sg; c->fneed2[face[m]] = 0; }
+        label_face(c, t, lh, sh, nh);
     }
 }
 
@@ -700,15 +739,14 @@ static PyObject *children(PyObject *self, PyObject *args)
     for (int e = 0; e < n && !c->failed; e++) {
         if (!is_min[e]) continue;
         int e1, e2, l = c->nloops ? c->loop_of[e] : 0, te = c->twin[e];
-        int sa = c->fsize[e], sb = c->fsize[te];
+        int sa = c->fsize[e], sb = c->fsize[te], na = c->fneed2[e], nb = c->fneed2[te];
         unsigned la = c->flabel[e], lb = c->flabel[te];
         c->first_edge = e;
         subdivide(c, e, &e1, &e2);
         /* the faces on either side of e gain the start as a corner; they are the open ones */
-        label_face(c, e, la, sa + 1);
-        label_face(c, e1, lb, sb + 1);
-        int base2 = 2 * (c->parent_crossings + 1) + needs2 - 2 * need(sa) - 2 * need(sb)
-                    - extra2(c, la) - extra2(c, lb);
+        label_face(c, e, la, sa + 1, 0);
+        label_face(c, e1, lb, sb + 1, 0);
+        int base2 = 2 * (c->parent_crossings + 1) + needs2 - na - nb;
         /* the start is the new loop's crossing on e nearest to e's origin */
         c->near = e;
         c->near_twin = e1;
@@ -717,8 +755,8 @@ static PyObject *children(PyObject *self, PyObject *args)
         dfs(c, e1, e2, 1, base2);
         c->crossings_with[l]--;
         unsubdivide(c, e, e1);
-        label_face(c, e, la, sa);
-        label_face(c, te, lb, sb);
+        label_face(c, e, la, sa, na);
+        label_face(c, te, lb, sb, nb);
     }
     if (c->failed) {
         Py_DECREF(c->out);
