@@ -96,9 +96,12 @@ def carrying_section(summary: dict) -> list[str]:
     for n, c in rows.items():
         lines.append(f"| {n} | " + " | ".join(str(c.get(str(k), 0)) for k in range(1, most + 1)) + " |")
     top = max(int(n) for n in rows)
-    lines += ["", f"Through {top} corners " + (
-        "every quadrangulation carries at most one polycube class." if first is None else
-        f"the first quadrangulations with two or more classes have {first} corners."), ""]
+    if first is None:
+        lines += ["", f"Through {top} corners every quadrangulation carries at most one polycube class.", ""]
+    else:
+        several = sum(v for k, v in rows[first].items() if int(k) >= 2)
+        lines += ["", f"Through {top} corners the smallest quadrangulations that carry two or more classes "
+                  f"have {first} corners ({several} {'map' if several == 1 else 'maps'} there).", ""]
     return lines
 
 
