@@ -264,6 +264,7 @@ def test_reach_from_a_zone_with_a_handle_stays_valid():
         assert check_polycube_loop_structure(child).valid
 
 
+@pytest.mark.slow  # test_certificates.py checks the whole shipped certificate in the default run
 def test_shipped_certificate_checks():
     lines = (CATALOG / "reachability-certificate.jsonl").read_text().splitlines()
     check = check_certificate(lines, CATALOG)
