@@ -126,6 +126,26 @@ def test_query(capsys, small_catalog):
     assert "bad query" in capsys.readouterr().err
 
 
+def test_query_without_the_database_reads_the_records(tmp_path, capsys, small_catalog):
+    """A catalog without ``catalog.sqlite`` (as shipped) answers queries and exports from
+    ``catalog.jsonl`` with the same rows and columns as its database."""
+    bare = tmp_path / "bare"
+    shutil.copytree(small_catalog, bare, ignore=shutil.ignore_patterns("catalog.sqlite", "parts"))
+    assert not (SHIPPED / "catalog.sqlite").exists()
+    for where in ("corners = 16", "1", "chiral OR irreducible"):
+        answers = []
+        for directory in (small_catalog, bare):
+            assert main(["catalog", "query", str(directory), where, "--json"]) == 0
+            answers.append(json.loads(capsys.readouterr().out))
+        assert answers[0] == answers[1] and answers[0]
+    csvs = [main(["catalog", "export", str(d), "--csv", "-o", str(tmp_path / f"{d.name}.csv")]) for d in
+            (small_catalog, bare)]
+    assert csvs == [0, 0]
+    assert (tmp_path / "bare.csv").read_bytes() == (tmp_path / f"{small_catalog.name}.csv").read_bytes()
+    assert main(["catalog", "query", str(bare), "nonsense ((("]) == 2
+    assert "bad query" in capsys.readouterr().err
+
+
 def test_resume_and_no_half_written_files(tmp_path, capsys):
     out = tmp_path / "c"
     assert main(["catalog", "--max-corners", "18", "-o", str(out)]) == 0

@@ -62,9 +62,11 @@ def ship(run: Path, into: Path = SHIPPED, slack: int = 10, workers: int = 1) -> 
     check_records(into, run)
     summary = merged_summary(json.loads((into / "summary.json").read_text()),
                              json.loads((run / "summary.json").read_text()))
-    for name in ("catalog.jsonl", "catalog.sqlite"):
-        shutil.copyfile(run / name, into / f".{name}.new")
-        (into / f".{name}.new").replace(into / name)
+    # The records ship once: queries of a catalog without catalog.sqlite build the table in
+    # memory from catalog.jsonl (census.query), so the database is not copied.
+    shutil.copyfile(run / "catalog.jsonl", into / ".catalog.jsonl.new")
+    (into / ".catalog.jsonl.new").replace(into / "catalog.jsonl")
+    (into / "catalog.sqlite").unlink(missing_ok=True)
     write_atomic(into / "summary.json", json.dumps(summary, indent=1) + "\n")
     top = max(int(n) for n in summary["counts"])
     result = settle_catalog(into, top, slack, workers)

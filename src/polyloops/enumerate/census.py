@@ -2,7 +2,8 @@
 
 A catalog directory (written by :func:`polyloops.enumerate.catalog_run.build_catalog`) holds
 ``catalog.jsonl`` (one record per class, in one symmetry mode), ``catalog.sqlite`` (the same
-rows as a table, for SQL queries) and ``summary.json`` (counts in every mode).  This module
+rows as a table, for SQL queries; the shipped catalog leaves it out and its queries build the
+table in memory) and ``summary.json`` (counts in every mode).  This module
 is the one place that reads them.
 
 >>> census = read_catalog()
@@ -148,19 +149,30 @@ def summary_problem(summary: Any) -> str | None:
 
 
 def query(out: Path, where: str) -> tuple[list[str], list[tuple[Any, ...]]]:
-    """Rows of ``DIR/catalog.sqlite`` matching an SQL WHERE clause
+    """Rows of ``DIR/catalog.sqlite`` (or, where the directory has none, of the same table built
+    in memory from ``DIR/catalog.jsonl``) matching an SQL WHERE clause
     (:func:`polyloops.enumerate.records.query`).
 
     >>> columns, rows = query(default_catalog(), "corners = 16")
     >>> columns[:3], [r[0] for r in rows]
     (['name', 'signature', 'corners'], ['P16.1', 'P16.2'])
     """
-    return records.query(Path(out) / "catalog.sqlite", where)
+    return records.query(Path(out) / "catalog.sqlite", where, _entries_without_database(Path(out)))
 
 
 def export_csv(out: Path) -> str:
     """The whole ``polycubes`` table of ``DIR/catalog.sqlite`` as CSV text."""
-    return records.csv_text(Path(out) / "catalog.sqlite")
+    return records.csv_text(Path(out) / "catalog.sqlite", _entries_without_database(Path(out)))
+
+
+def _entries_without_database(out: Path) -> list[CatalogEntry] | None:
+    """The records of a catalog that has ``catalog.jsonl`` but no ``catalog.sqlite`` (the
+    shipped catalog: the table is built in memory, so the package carries each record once);
+    ``None`` when the database is there (or neither is, and the query says so)."""
+    database = out / "catalog.sqlite"
+    if database.exists() or database.is_symlink() or not (out / "catalog.jsonl").exists():
+        return None
+    return read_entries(out)
 
 
 @dataclass(frozen=True)

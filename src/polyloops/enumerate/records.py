@@ -31,7 +31,7 @@ from polyloops.core.symmetry import Symmetry
 from polyloops.io.files import InputError, check_regular, read_only_uri, write_atomic, writing
 
 __all__ = ["COLUMNS", "NAME_PREFIX", "CatalogEntry", "CatalogError", "CatalogRecord", "class_names",
-           "csv_text", "query", "row", "write_jsonl", "write_sqlite"]
+           "csv_text", "fill_tables", "query", "row", "write_jsonl", "write_sqlite"]
 
 
 class CatalogError(PolyloopsError, ValueError):
@@ -149,27 +149,36 @@ def write_jsonl(path: str | os.PathLike[str], entries: Iterable[CatalogEntry]) -
     write_atomic(path, "\n".join(lines) + ("\n" if lines else ""))
 
 
+def fill_tables(con: sqlite3.Connection, entries: Iterable[CatalogEntry], symmetry: Symmetry) -> None:
+    """Create and fill table ``polycubes`` (primary key ``signature``, unique ``name``, an index
+    on ``corners``) and ``meta(key, value)`` with the symmetry mode: the one schema of
+    ``catalog.sqlite`` and of the table queried in memory when a catalog ships without it."""
+    cols = ", ".join(f"{c} {'TEXT' if c in ('name', 'signature') else 'INTEGER'}" for c in COLUMNS)
+    con.execute(f"CREATE TABLE polycubes ({cols}, PRIMARY KEY (signature))")
+    con.execute("CREATE UNIQUE INDEX by_name ON polycubes (name)")
+    con.executemany(f"INSERT INTO polycubes VALUES ({', '.join('?' * len(COLUMNS))})",
+                    [row(e) for e in entries])
+    con.execute("CREATE TABLE meta (key TEXT PRIMARY KEY, value TEXT)")
+    con.execute("INSERT INTO meta VALUES ('symmetry', ?)", (str(symmetry),))
+    con.execute("CREATE INDEX by_corners ON polycubes (corners)")
+    con.commit()
+
+
 def write_sqlite(path: str | os.PathLike[str], entries: Iterable[CatalogEntry], symmetry: Symmetry) -> None:
-    """``catalog.sqlite``: table ``polycubes`` (primary key ``signature``, unique ``name``, an
-    index on ``corners``) and ``meta(key, value)`` with the symmetry mode, built in a temporary
-    file and put in place whole."""
+    """``catalog.sqlite`` (:func:`fill_tables`), built in a temporary file and put in place
+    whole."""
     with writing(path) as pending:
         con = sqlite3.connect(pending.path)
-        cols = ", ".join(f"{c} {'TEXT' if c in ('name', 'signature') else 'INTEGER'}" for c in COLUMNS)
-        con.execute(f"CREATE TABLE polycubes ({cols}, PRIMARY KEY (signature))")
-        con.execute("CREATE UNIQUE INDEX by_name ON polycubes (name)")
-        con.executemany(f"INSERT INTO polycubes VALUES ({', '.join('?' * len(COLUMNS))})",
-                        [row(e) for e in entries])
-        con.execute("CREATE TABLE meta (key TEXT PRIMARY KEY, value TEXT)")
-        con.execute("INSERT INTO meta VALUES ('symmetry', ?)", (str(symmetry),))
-        con.execute("CREATE INDEX by_corners ON polycubes (corners)")
-        con.commit()
+        fill_tables(con, entries, symmetry)
         con.close()
 
 
-def query(path: str | os.PathLike[str], where: str) -> tuple[list[str], list[tuple[Any, ...]]]:
+def query(path: str | os.PathLike[str], where: str,
+          entries: Sequence[CatalogEntry] | None = None) -> tuple[list[str], list[tuple[Any, ...]]]:
     """Rows of the ``catalog.sqlite`` at ``path`` matching an SQL WHERE clause (read-only
-    connection): the column names and the rows, by corners then signature.
+    connection): the column names and the rows, by corners then signature.  Given
+    ``entries`` (a catalog shipped without its database), the same table is built in memory
+    from them and ``path`` only names it in messages.
 
     Raises
     ------
@@ -178,13 +187,17 @@ def query(path: str | os.PathLike[str], where: str) -> tuple[list[str], list[tup
         is bad.
     """
     name = os.fspath(path)
-    if not (os.path.exists(name) or os.path.islink(name)):
-        raise CatalogError(f"{name}: no catalog here")
-    try:
-        check_regular(name, limit=None)
-    except InputError as err:
-        raise CatalogError(str(err)) from None
-    con = sqlite3.connect(read_only_uri(name), uri=True)
+    if entries is not None:
+        con = sqlite3.connect(":memory:")
+        fill_tables(con, entries, entries[0].symmetry if entries else Symmetry.FULL)
+    else:
+        if not (os.path.exists(name) or os.path.islink(name)):
+            raise CatalogError(f"{name}: no catalog here")
+        try:
+            check_regular(name, limit=None)
+        except InputError as err:
+            raise CatalogError(str(err)) from None
+        con = sqlite3.connect(read_only_uri(name), uri=True)
     try:
         try:
             tables = {t for (t,) in con.execute("SELECT name FROM sqlite_master WHERE type = 'table'")}
@@ -200,10 +213,10 @@ def query(path: str | os.PathLike[str], where: str) -> tuple[list[str], list[tup
         con.close()
 
 
-def csv_text(path: str | os.PathLike[str]) -> str:
-    """The whole ``polycubes`` table of a ``catalog.sqlite`` as CSV text (a header line, then
-    one row per class)."""
-    columns, rows = query(path, "1")
+def csv_text(path: str | os.PathLike[str], entries: Sequence[CatalogEntry] | None = None) -> str:
+    """The whole ``polycubes`` table of a ``catalog.sqlite`` (or of ``entries``, as in
+    :func:`query`) as CSV text (a header line, then one row per class)."""
+    columns, rows = query(path, "1", entries)
     buf = io.StringIO()
     writer = csv.writer(buf, lineterminator="\n")
     writer.writerow(columns)
