@@ -49,6 +49,17 @@ class Census:
         """The genus of the catalog's polycubes."""
         return int(self.summary.get("genus", 0))
 
+    def through(self, max_corners: int) -> Census:
+        """The census cut at ``max_corners``: its entries and counts up to that size.
+
+        >>> small = read_catalog().through(16)
+        >>> [e.name for e in small.entries], small.max_corners
+        (['P8.1', 'P12.1', 'P16.1', 'P16.2'], 16)
+        """
+        counts = {n: row for n, row in self.summary.get("counts", {}).items() if int(n) <= max_corners}
+        return Census(self.directory, tuple(e for e in self.entries if e.corners <= max_corners),
+                      {**self.summary, "counts": counts})
+
     @cached_property
     def by_name(self) -> dict[str, CatalogEntry]:
         """Entries by their short name (``P16.2``)."""
@@ -260,7 +271,7 @@ def orbit_counts(census: Census) -> dict[int, OrbitCounts]:
     ``automorphisms``, ``chiral`` and the three counts together.  The group orders come from
     :func:`~polyloops.core.symmetry.symmetry_group`.
 
-    >>> counts = orbit_counts(read_catalog())
+    >>> counts = orbit_counts(read_catalog().through(20))
     >>> counts[16]
     OrbitCounts(corners=16, labelled=15, rotation=2, full=2)
     """

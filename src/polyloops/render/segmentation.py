@@ -6,26 +6,20 @@ from __future__ import annotations
 import os
 from itertools import pairwise
 
-from matplotlib.collections import PolyCollection
+import numpy as np
 from matplotlib.patches import Patch
 
 from polyloops.core.directions import Direction
 from polyloops.render.colours import direction_colour
 from polyloops.render.figure import new_figure, save_figure
 from polyloops.render.projection import View
+from polyloops.render.raster import triangle_buffer
 
 WITNESS_COLOUR = "#d7191c"
 VIEWS = (View(35.0, 28.0), View(215.0, -28.0))
 
 
-def _normal(points, tri) -> tuple[float, float, float]:
-    a, b, c = (points[i] for i in tri)
-    u = [b[k] - a[k] for k in range(3)]
-    v = [c[k] - a[k] for k in range(3)]
-    return (u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0])
-
-
-SUBDIVISIONS = 6  # each triangle drawn as 36 small ones, so that far-to-near order holds
+PIXELS = 480  # the depth buffer of one view is PIXELS on its longer side (a little over the axes')
 
 
 def _tint(colour: str) -> tuple[float, float, float]:
@@ -36,80 +30,91 @@ def _tint(colour: str) -> tuple[float, float, float]:
     return (0.5 * a[0] + 0.5 * b[0], 0.5 * a[1] + 0.5 * b[1], 0.5 * a[2] + 0.5 * b[2])
 
 
-def draw_segmentation(ax, report, view: View) -> None:
-    """Draw one view.  Front-facing triangles are cut into small ones and drawn far to near,
-    chart boundaries with them (red where they belong to the witness or a violation); charts
-    that break a local rule of their own are tinted red, and witness corners marked."""
+def _neighbours(ids: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Every pair of neighbouring pixels (a pixel and the one right of it or below it), as
+    flat indices, for chart boundaries, outlines and witness edges to compare."""
+    h, w = ids.shape
+    flat = np.arange(h * w).reshape(h, w)
+    return (np.concatenate([flat[:, :-1].ravel(), flat[:-1, :].ravel()]),
+            np.concatenate([flat[:, 1:].ravel(), flat[1:, :].ravel()]))
+
+
+def draw_segmentation(ax, report, view: View, pixels: int = PIXELS) -> None:
+    """Draw one view from a depth buffer of the mesh's front-facing triangles
+    (:func:`~polyloops.render.raster.triangle_buffer`): each pixel shows the nearest triangle
+    in its label's colour (charts that break a local rule of their own tinted red), a pixel
+    is a chart boundary where its neighbour shows another chart (red, and thicker, where
+    either triangle lies on the witness or a violation), and the witness corners that are
+    visible are marked.  Everything is decided per pixel, so nothing hidden shows through,
+    and the cost grows with the triangles plus the pixels, not their product."""
+    from matplotlib.colors import to_rgb
+
     seg = report.segmentation
-    mesh, m = seg.mesh, seg.map
+    mesh = seg.mesh
     witness = report.global_.witness
     hot_charts: set[int] = set()
-    hot_edges: set[frozenset[int]] = set()
     hot_boundaries = set(witness.all_boundaries()) if witness is not None else set()
     for v in report.local.violations:
         hot_boundaries |= set(v.boundaries)
         hot_charts |= set(v.charts) if v.rule in ("few-boundaries", "chart-handle") else set()
-    for b in hot_boundaries:
-        vs = seg.boundaries[b].vertices
-        hot_edges |= {frozenset(e) for e in pairwise(vs)}
-    chart_of = seg.chart_of_triangle
-    items: list[tuple[float, list[tuple[float, float]], object, object, float]] = []
-    n = SUBDIVISIONS
-    front = [f for f, tri in enumerate(mesh.triangles) if view.facing(_normal(mesh.points, tri)) > 0]
-    for f in front:
-        a, b, c = (mesh.points[i] for i in mesh.triangles[f])
-        colour = direction_colour(mesh.labels[f])
-        fill = _tint(colour) if chart_of[f] in hot_charts else colour
-
-        def at(i: int, j: int, a=a, b=b, c=c) -> tuple[float, float, float]:
-            x, y, z = (a[k] + i / n * (b[k] - a[k]) + j / n * (c[k] - a[k]) for k in range(3))
-            return (x, y, z)
-
-        edge_kind: list[tuple[str, float] | None] = []
-        for k in range(3):
-            d = m.face_start[f] + k
-            if chart_of[m.face_of[m.twin[d]]] == chart_of[f]:
-                edge_kind.append(None)
-            else:
-                hot = frozenset((m.origin(d), m.target(d))) in hot_edges
-                edge_kind.append((WITNESS_COLOUR, 3.0) if hot else ("black", 1.0))
-        for i in range(n):
-            for j in range(n - i):
-                pieces = [((i, j), (i + 1, j), (i, j + 1))]
-                if i + j <= n - 2:
-                    pieces.append(((i + 1, j), (i + 1, j + 1), (i, j + 1)))
-                for piece in pieces:
-                    pts = [at(*ij) for ij in piece]
-                    depth = sum(view.depth(p) for p in pts) / 3
-                    # An edge in the fill colour hides the seams between the small pieces.
-                    items.append((depth, [view.project(p) for p in pts], fill, fill, 0.6))
-                # The upright piece next to an edge of the triangle carries that edge's piece.
-                sides = []
-                if j == 0:
-                    sides.append((0, (i, 0), (i + 1, 0)))
-                if i + j == n - 1:
-                    sides.append((1, (i + 1, j), (i, j + 1)))
-                if i == 0:
-                    sides.append((2, (0, j + 1), (0, j)))
-                for k, p, q in sides:
-                    kind = edge_kind[k]
-                    if kind is not None:
-                        pts = [at(*p), at(*q)]
-                        depth = sum(view.depth(x) for x in pts) / 2 + 1e-6
-                        colour_k, width = kind
-                        items.append((depth, [view.project(x) for x in pts], "none", colour_k, width))
-    items.sort(key=lambda item: item[0])
-    ax.add_collection(PolyCollection([it[1] for it in items], facecolors=[it[2] for it in items],
-                                     edgecolors=[it[3] for it in items], linewidths=[it[4] for it in items],
-                                     closed=False))
+    hot_edges = {frozenset(e) for b in hot_boundaries for e in pairwise(seg.boundaries[b].vertices)}
+    points = np.asarray(mesh.points, dtype=float).reshape(-1, 3)
+    tris = np.asarray(mesh.triangles, dtype=np.int64).reshape(-1, 3)
+    right, up, toward = (np.asarray(a) for a in (view.right, view.up, view.toward))
+    pu, pv, pd = points @ right, points @ up, points @ toward
+    p = points[tris]
+    normals = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
+    front = np.flatnonzero(normals @ toward > 0)
+    lo_u, hi_u, lo_v, hi_v = pu.min(initial=0), pu.max(initial=1), pv.min(initial=0), pv.max(initial=1)
+    pad = 0.02 * max(hi_u - lo_u, hi_v - lo_v, 1e-12)
+    lo_u, hi_u, lo_v, hi_v = lo_u - pad, hi_u + pad, lo_v - pad, hi_v + pad
+    step = max(hi_u - lo_u, hi_v - lo_v) / pixels
+    shape = (max(1, int(np.ceil((hi_v - lo_v) / step))), max(1, int(np.ceil((hi_u - lo_u) / step))))
+    seen, _ = triangle_buffer((pu - lo_u) / step, (hi_v - pv) / step, pd, tris[front], shape)
+    ids = np.where(seen >= 0, front[np.maximum(seen, 0)], -1)
+    chart_of = np.asarray(seg.chart_of_triangle, dtype=np.int64)
+    fills = {d: to_rgb(direction_colour(d)) for d in Direction}
+    fill = np.array([fills[label] for label in mesh.labels]).reshape(-1, 3)
+    for f in (np.flatnonzero(np.isin(chart_of, list(hot_charts))) if hot_charts else ()):
+        fill[f] = _tint(direction_colour(mesh.labels[f]))
+    image = np.ones((*shape, 4))
+    image[..., 3] = 0.0
+    shown = ids >= 0
+    image[shown, :3] = fill[ids[shown]]
+    image[shown, 3] = 1.0
+    a, b = _neighbours(ids)
+    ta, tb = ids.ravel()[a], ids.ravel()[b]
+    both = (ta >= 0) & (tb >= 0)
+    # Lines two pixels wide: both pixels of a pair that differs are drawn.
+    edge = both & (chart_of[np.maximum(ta, 0)] != chart_of[np.maximum(tb, 0)])
+    outline = (ta >= 0) != (tb >= 0)
+    hot_tri = np.zeros(len(tris), dtype=bool)
+    if hot_edges:
+        hot_tri = np.array([any(frozenset((t[k], t[(k + 1) % 3])) in hot_edges for k in range(3))
+                            for t in mesh.triangles], dtype=bool)
+    hot_pair = edge & (hot_tri[np.maximum(ta, 0)] | hot_tri[np.maximum(tb, 0)])
+    flat = image.reshape(-1, 4)
+    for mask in (edge, outline):
+        flat[np.concatenate([a[mask], b[mask]])] = (0.0, 0.0, 0.0, 1.0)
+    hot = np.zeros(shape[0] * shape[1], dtype=bool)
+    hot[np.concatenate([a[hot_pair], b[hot_pair]])] = True
+    hot = hot.reshape(shape)
+    for axis in (0, 1):  # the witness's lines a little wider than the others
+        hot = hot | np.roll(hot, 1, axis)
+    image[hot & shown] = (*to_rgb(WITNESS_COLOUR), 1.0)
+    ax.imshow(image, extent=(lo_u, lo_u + shape[1] * step, hi_v - shape[0] * step, hi_v),
+              interpolation="nearest")
     if witness is not None and witness.corners:
-        visible = {i for f in front for i in mesh.triangles[f]}
-        xy = [view.project(mesh.points[seg.corners[c].vertex]) for c in witness.corners
-              if seg.corners[c].vertex in visible]
+        xy = []
+        for c in witness.corners:
+            vertex = seg.corners[c].vertex
+            j, i = int((pu[vertex] - lo_u) / step), int((hi_v - pv[vertex]) / step)
+            near = ids[max(0, i - 1):i + 2, max(0, j - 1):j + 2].ravel()
+            if any(vertex in mesh.triangles[t] for t in near[near >= 0]):  # visible: drawn there
+                xy.append((pu[vertex], pv[vertex]))
         if xy:
-            ax.scatter([p[0] for p in xy], [p[1] for p in xy], s=40, color=WITNESS_COLOUR, zorder=5,
+            ax.scatter([q[0] for q in xy], [q[1] for q in xy], s=40, color=WITNESS_COLOUR, zorder=5,
                        edgecolors="white", linewidths=0.8)
-    ax.autoscale_view()
     ax.set_aspect("equal")
     ax.axis("off")
 
