@@ -377,3 +377,41 @@ def test_any_labelling_gets_a_verdict_and_a_valid_verdict_is_backed(q, palette, 
         assert report.global_.witness is not None
     if report.valid is None:
         assert report.reason
+
+
+@st.composite
+def obj_lines(draw):
+    """Lines of a small OBJ triangle mesh, sometimes with one odd line put in (anything a file
+    may hold: comments, other keywords, other polygons, bad or forward references)."""
+    number = st.sampled_from(["0", "1", "-2.5", "3e2", "0.1", "7"])
+    n = draw(st.integers(1, 6))
+    lines = ["v " + " ".join(draw(st.lists(number, min_size=3, max_size=3))) for _ in range(n)]
+    index = st.integers(1, n).map(str)
+    lines += ["f " + " ".join(draw(st.lists(index, min_size=3, max_size=3)))
+              for _ in range(draw(st.integers(0, 5)))]
+    odd = st.sampled_from(["", "# note", "vn 0 0 1", "  v 1 2 3", "v\t1\t2\t3", "f 1 2 3 4", "f 1 2",
+                           "v 1 2", "v 1 2 3 1", "o thing", "f  1  2  3", "f -1 -2 -3", "f 1/1 2/2 3/3",
+                           "v 1e999 0 0", "v nan 0 0", "f 0 1 2", "f 1 2 99", "v x 0 0", "f", "v"])
+    for _ in range(draw(st.integers(0, 2))):
+        lines.insert(draw(st.integers(0, len(lines))), draw(odd))
+    return lines
+
+
+@settings(max_examples=300, deadline=None)
+@given(lines=obj_lines())
+def test_numpy_obj_reader_agrees_with_the_line_reader(lines):
+    """Where the numpy reader takes a text, the line-by-line reader reads the same vertices
+    and triangles from it; where the line reader refuses a text, the numpy reader does too."""
+    from polyloops.io.exchange import ExchangeError, obj_polygons, obj_triangles
+
+    text = "\n".join(lines) + "\n"
+    fast = obj_triangles(text)
+    try:
+        points, faces = obj_polygons(text)
+    except ExchangeError:
+        assert fast is None
+        return
+    if fast is None:
+        return
+    assert fast[0].tolist() == [list(p) for p in points]
+    assert fast[1].tolist() == [ids for _, ids in faces]

@@ -34,6 +34,8 @@ from __future__ import annotations
 import math
 from collections import deque
 
+import numpy as np
+
 from polyloops.core.directions import Axis, Direction
 from polyloops.core.polycube import Polycube
 from polyloops.io.formats import Document, FormatError, Structure, to_obj
@@ -208,6 +210,45 @@ def obj_polygons(text: str) -> tuple[list[tuple[float, float, float]], list[tupl
                 ids.append(i)
             faces.append((number, ids))
     return vertices, faces
+
+
+def obj_triangles(text: str) -> tuple[np.ndarray, np.ndarray] | None:
+    """The vertices and triangles of a plain Wavefront OBJ triangle mesh, read with numpy: the
+    fast path of :func:`obj_polygons` for files of ``v x y z`` and ``f a b c`` lines (other
+    keywords and comments ignored).  ``None`` for anything else (slashes, negative or forward
+    references, other polygons, bad numbers), which :func:`obj_polygons` then reads line by
+    line and names the line at fault; where both read a text they agree (tested).
+
+    >>> points, triangles = obj_triangles("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+    >>> points.shape, triangles.tolist()
+    ((3, 3), [[0, 1, 2]])
+    """
+    text = text.removeprefix("\ufeff")
+    vertex_words: list[str] = []
+    face_words: list[str] = []
+    defined: list[int] = []  # vertices defined before each face
+    for line in text.splitlines():
+        if line.startswith(("v ", "f ")):
+            words = line[2:].split()
+            if len(words) != 3:  # a 4-gon and a 2-gon must not pass as two triangles
+                return None
+            if line[0] == "v":
+                vertex_words += words
+            else:
+                face_words += words
+                defined.append(len(vertex_words) // 3)
+        elif (words := line.split()) and words[0] in ("v", "f"):
+            return None  # indented or tab-separated: the line reader takes these
+    try:
+        points = np.array(vertex_words, dtype=float).reshape(-1, 3)
+        ids = np.array(face_words, dtype=np.int64).reshape(-1, 3)
+    except ValueError:
+        return None
+    if not np.isfinite(points).all():
+        return None
+    if ids.size and (ids.min() < 1 or (ids.max(axis=1) > np.asarray(defined)).any()):
+        return None
+    return points, ids - 1
 
 
 def parse_obj(text: str) -> Document:

@@ -25,7 +25,7 @@ from dataclasses import dataclass
 
 from polyloops.core.directions import Direction
 from polyloops.core.polycube import Polycube
-from polyloops.io.exchange import obj_polygons
+from polyloops.io.exchange import obj_polygons, obj_triangles
 from polyloops.io.formats import FormatError
 
 __all__ = ["LabelledMesh", "LabelledMeshError", "labelled_mesh_from_polycube", "labels_text",
@@ -86,17 +86,23 @@ def labels_text(mesh: LabelledMesh) -> str:
 def read_triangle_mesh(path: str | os.PathLike[str]) -> tuple[tuple[Point, ...], tuple[Triangle, ...]]:
     """Points and triangles of an OBJ, STL or MEDIT ``.mesh`` file, faces in file order.
 
-    OBJ is read by the same reader as OBJ quad meshes (so errors name the line); STL and
+    OBJ is read with numpy when it is plain (:func:`~polyloops.io.exchange.obj_triangles`),
+    otherwise by the same reader as OBJ quad meshes (so errors name the line); STL and
     ``.mesh`` by meshio.  Only triangles may bound the surface: other faces are refused, and
     the volume and line cells a ``.mesh`` file may hold are ignored.
     """
     if os.fspath(path).lower().endswith(".obj"):
         with open(path, encoding="utf-8-sig", errors="replace") as fh:  # a byte-order mark is not text
-            points, faces = obj_polygons(fh.read())
-        for number, ids in faces:
-            if len(ids) != 3:
-                raise LabelledMeshError(f"line {number}: a face must be a triangle, not a {len(ids)}-gon")
-        triangles = [(a, b, c) for _, (a, b, c) in faces]
+            text = fh.read()
+        fast = obj_triangles(text)
+        if fast is not None:
+            points, triangles = list(map(tuple, fast[0].tolist())), list(map(tuple, fast[1].tolist()))
+        else:
+            points, faces = obj_polygons(text)
+            for number, ids in faces:
+                if len(ids) != 3:
+                    raise LabelledMeshError(f"line {number}: a face must be a triangle, not a {len(ids)}-gon")
+            triangles = [(a, b, c) for _, (a, b, c) in faces]
     else:
         points, triangles = _read_with_meshio(path)
     if not triangles:
