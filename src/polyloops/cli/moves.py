@@ -32,7 +32,7 @@ def _count_additions(ls: Any, axes: list[Axis], args: argparse.Namespace) -> Any
 
 
 def cmd_moves(args: argparse.Namespace) -> int:
-    from polyloops.core.moves import check_removal
+    from polyloops.core.moves import RemovalCheck, check_removal, removals
     from polyloops.enumerate.listing import list_additions
 
     if sum(map(bool, (args.count, args.shortest is not None, args.sample is not None))) > 1:
@@ -58,7 +58,7 @@ def cmd_moves(args: argparse.Namespace) -> int:
                 why = "the time limit" if args.time_limit is not None and args.limit is None else "a limit"
                 lines.append(f"(>=: stopped by {why}; a lower bound)")
         if want_remove:
-            data["removals"] = sum(1 for lp in ls.loops if check_removal(ls, lp.id).valid)
+            data["removals"] = len(removals(ls))
             lines.append(f"removals  {data['removals']}")
         emit(args, data, "\n".join(lines))
         return EXIT_OK
@@ -79,8 +79,10 @@ def cmd_moves(args: argparse.Namespace) -> int:
         data["additions"], data["complete"] = rows, listing.complete
     if want_remove:
         removal_rows = []
+        removable = set(removals(ls))
         for lp in ls.loops:
-            check = check_removal(ls, lp.id)
+            # The reasons come from the loop-by-loop test, asked only where the verdict is no.
+            check = RemovalCheck(lp.id, True) if lp.id in removable else check_removal(ls, lp.id)
             removal_rows.append({"loop": lp.id, "axis": str(ls.axes[lp.id]), "segments": list(lp.edges),
                                  "removable": check.valid, "reason": check.reason})
             stream(args, f"remove {lp.id:>3}  {ls.axes[lp.id]}-loop of {len(lp)} segments: "

@@ -41,6 +41,8 @@ from dataclasses import dataclass
 from functools import cached_property
 from itertools import islice
 
+from polyloops.core import removal_arrays
+from polyloops.core.arrays import use_arrays
 from polyloops.core.directions import Axis, Direction
 from polyloops.core.disjoint_sets import DisjointSets
 from polyloops.core.errors import PolyloopsError
@@ -665,12 +667,19 @@ def check_removal(ls: LoopStructure, loop: int, arcs: _LevelArcs | None = None) 
     # path from {u, v} back to {u, v} along the other arcs; in an acyclic graph, exactly
     # another path from u to v.
     axis = ls.axes[loop]
-    arcs = arcs or _level_arcs_of(ls)
+    if closes_cycle(ls, loop, arcs or _level_arcs_of(ls)):
+        return RemovalCheck(loop, False, f"the {axis}-graph would get a cycle through the merged zone")
+    return RemovalCheck(loop, True)
+
+
+def closes_cycle(ls: LoopStructure, loop: int, arcs: _LevelArcs) -> bool:
+    """Whether contracting ``loop``'s arc closes a cycle of its level graph: another path
+    joins the arc's ends (from the bit sets, when the graph is acyclic), or else a search from
+    the merged zone returns to it."""
+    axis = ls.axes[loop]
     bypassed = arcs.bypassed(axis)
     if bypassed is not None:
-        if loop in bypassed:
-            return RemovalCheck(loop, False, f"the {axis}-graph would get a cycle through the merged zone")
-        return RemovalCheck(loop, True)
+        return loop in bypassed
     left, right = ls.zones(axis).sides[loop]
     merged = {left, right}
     succ = arcs.successors(axis)
@@ -679,11 +688,11 @@ def check_removal(ls: LoopStructure, loop: int, arcs: _LevelArcs | None = None) 
     while stack:
         z = stack.pop()
         if z in merged:
-            return RemovalCheck(loop, False, f"the {axis}-graph would get a cycle through the merged zone")
+            return True
         if z not in seen_zones:
             seen_zones.add(z)
             stack.extend(head for head, _ in succ.get(z, ()))
-    return RemovalCheck(loop, True)
+    return False
 
 
 def removable(ls: LoopStructure, loop: int) -> bool:
@@ -717,6 +726,8 @@ def removals(ls: LoopStructure) -> list[int]:
     [2, 3]
     """
     arcs = _level_arcs_of(ls)
+    if use_arrays(ls.map.num_darts) and removal_arrays.applies(ls):
+        return [i for i, ok in enumerate(removal_arrays.removable_loops(ls).tolist()) if ok]
     return [lp.id for lp in ls.loops if check_removal(ls, lp.id, arcs).valid]
 
 
