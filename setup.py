@@ -1,12 +1,23 @@
-"""Builds the optional compiled parts of the catalog: the strip filter and the arrangement
-search.  Without a C compiler the install still succeeds: without the arrangement search the
-catalog uses plantri's generator, without the strip filter that generator uses its numpy
-filter (the same records either way), and ``polyloops catalog`` says so when it runs."""
+"""Builds the optional compiled parts: the catalog's strip filter and arrangement search, and
+the kernel's canonical form of small structures.  Without a C compiler the install still
+succeeds: without the arrangement search the catalog uses plantri's generator, without the
+strip filter that generator uses its numpy filter (the same records either way), and
+``polyloops catalog`` says so when it runs; without the compiled canonical form the same
+canonical forms and signatures are computed in Python, several times slower."""
 
 import sys
 
 from setuptools import Extension, setup
 from setuptools.command.build_ext import build_ext
+
+CATALOG_NOTE = " (the same records, slower); 'polyloops catalog' says so when it runs"
+INSTEAD = {
+    "_strips": ("the compiled strip filter", "plantri's generator will use the numpy filter" + CATALOG_NOTE),
+    "_arrangements": ("the compiled arrangement search",
+                      "the catalog will use plantri's generator" + CATALOG_NOTE),
+    "_canonical": ("the compiled canonical form",
+                   "canonical forms of small structures are computed in Python (the same forms, slower)"),
+}
 
 
 class OptionalBuildExt(build_ext):
@@ -14,29 +25,24 @@ class OptionalBuildExt(build_ext):
         try:
             super().run()
         except Exception as exc:  # no compiler, no Python headers
-            self._skip("neither compiled part (strip filter, arrangement search) was built", exc,
-                       "the catalog will use plantri's generator with the numpy filter")
+            self._skip("no compiled part (strip filter, arrangement search, canonical form) was built", exc,
+                       "everything runs in Python" + CATALOG_NOTE)
 
     def build_extension(self, ext: Extension) -> None:
         try:
             super().build_extension(ext)
         except Exception as exc:
-            if "_strips" in ext.name:
-                self._skip("the compiled strip filter was not built", exc,
-                           "plantri's generator will use the numpy filter")
-            else:
-                self._skip("the compiled arrangement search was not built", exc,
-                           "the catalog will use plantri's generator")
+            what, instead = INSTEAD[ext.name.rsplit(".", 1)[1]]
+            self._skip(f"{what} was not built", exc, instead)
 
     @staticmethod
     def _skip(what: str, exc: Exception, instead: str) -> None:
-        print(f"polyloops: {what} ({exc}); {instead} (the same records, slower); "
-              "'polyloops catalog' says so when it runs", file=sys.stderr)
+        print(f"polyloops: {what} ({exc}); {instead}", file=sys.stderr)
 
 
 setup(
-    ext_modules=[Extension(f"polyloops.enumerate.{name}", [f"src/polyloops/enumerate/{name}.c"],
+    ext_modules=[Extension(f"polyloops.{name.replace('/', '.')}", [f"src/polyloops/{name}.c"],
                            extra_compile_args=["-O2"], optional=True)
-                 for name in ("_strips", "_arrangements")],
+                 for name in ("enumerate/_strips", "enumerate/_arrangements", "core/_canonical")],
     cmdclass={"build_ext": OptionalBuildExt},
 )

@@ -27,7 +27,7 @@ from polyloops.io.formats import loads
 from polyloops.verify import check_polycube, check_polycube_loop_structure
 from polyloops.verify.loop_structure import cycle_violations
 from polyloops.verify.report import ReportBuilder
-from strategies import polycubes
+from strategies import grown_structures, polycubes
 
 
 def corner_graph(ls, avoid=None):
@@ -394,3 +394,25 @@ def test_moves_options_that_do_not_go_together(argv, capsys):
     assert code == 2
     err = capsys.readouterr().err
     assert len(err.strip().splitlines()) == 1 and "Traceback" not in err
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.one_of(grown_structures(max_moves=3), polycubes(max_size=7).map(lambda q: q.dualize())))
+def test_children_built_without_checks_are_the_checked_ones(ls):
+    """Every addition (the first few of each axis) and every valid removal builds the same
+    structure without re-checking (the search's hot path) as with every check of
+    ``from_edge_labels``; and each child is a polycube loop structure (Definition 4)."""
+    from polyloops.core import moves
+    from polyloops.verify import check_polycube_loop_structure
+
+    trials = [(moves.add_loop, mv) for axis in Axis for mv in moves.additions(ls, axis, limit=4)]
+    trials += [(moves.remove_loop, i) for i in moves.removals(ls)]
+    for build, move in trials:
+        fast = build(ls, move, checked=False)
+        with pytest.MonkeyPatch.context() as mp:
+            mp.setattr(moves, "VERIFY_CHILDREN", True)
+            checked = build(ls, move, checked=False)
+        assert checked == build(ls, move)
+        assert fast == checked
+        assert fast.map.loop_system == checked.map.loop_system
+        assert check_polycube_loop_structure(fast).valid

@@ -24,9 +24,10 @@ True
 
 from __future__ import annotations
 
+from array import array
 from collections import Counter
 from dataclasses import dataclass
-from functools import cached_property
+from functools import cache, cached_property
 
 import numpy as np
 
@@ -37,6 +38,13 @@ from polyloops.core.halfedge import faces_from_next, permutation_orbits
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LoopStructure
 from polyloops.core.symmetry import SIGNED_PERMUTATIONS, SYMMETRY_MODES, SignedPermutation, Symmetry
+
+try:  # the compiled twin of the tuple code (optional: built when a C compiler is present)
+    from polyloops.core import _canonical as _compiled
+
+    COMPILED = True  # the tests switch it off to run the Python code as the twin
+except ImportError:  # pragma: no cover - depends on the install
+    COMPILED = False
 
 MODES = SYMMETRY_MODES
 ALPHABET = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789-_"
@@ -76,11 +84,8 @@ _ON_DIRECTIONS = {g: tuple(int(g(d)) for d in Direction) for g in SIGNED_PERMUTA
 _ON_AXES = {g: tuple(int(g.axis(a)) for a in Axis) for g in SIGNED_PERMUTATIONS}
 
 
-def _base_labels(ls: LoopStructure) -> list[int]:
-    m = ls.map
-    if ls.oriented:
-        return [int(ls.direction(d)) for d in range(m.num_darts)]
-    return [int(ls.axis_of_dart(d)) for d in range(m.num_darts)]
+def _base_labels(ls: LoopStructure) -> tuple[int, ...]:
+    return ls.direction_code_list
 
 
 def _code(nxt: list[int], twin: list[int], lab: list[int], root: int,
@@ -362,6 +367,8 @@ def canonical_form(obj: LoopStructure | Polycube, mode: Symmetry | str = Symmetr
     m = ls.map
     if use_arrays(m.num_darts):
         return _canonical_form_arrays(ls, mode)
+    if COMPILED:
+        return _canonical_form_compiled(ls, mode)
     nxt = list(m.next)
     twin = list(m.twin)
     n = m.num_darts
@@ -414,6 +421,30 @@ def canonical_form(obj: LoopStructure | Polycube, mode: Symmetry | str = Symmetr
     # hit with det < 0 would ask about h, which depends on the input's position.)
     achiral = len({g.det for g, _ in hits}) == 2 if mode == "full" else None
     return CanonicalForm(best, ls.oriented, len(hits), mode, achiral)
+
+
+@cache
+def _group_tables(mode: Symmetry, oriented: bool) -> tuple[bytes, bytes]:
+    """The elements of a mode for the compiled code: their actions on labels (six int32 each;
+    axes use the first three) and their determinants."""
+    tables, dets = array("i"), array("i")
+    for g in MODES[mode]:
+        row = (_ON_DIRECTIONS if oriented else _ON_AXES)[g]
+        tables.extend(list(row) + [0] * (6 - len(row)))
+        dets.append(g.det)
+    return tables.tobytes(), dets.tobytes()
+
+
+def _canonical_form_compiled(ls: LoopStructure, mode: Symmetry) -> CanonicalForm:
+    """:func:`canonical_form`'s tuple code, compiled (``_canonical.c``): the same roots,
+    codes and counts."""
+    m = ls.map
+    tables, dets = _group_tables(mode, ls.oriented)
+    code, hits, dets_hit = _compiled.canonical(
+        array("i", m.next).tobytes(), array("i", m.twin).tobytes(), array("i", m.prev).tobytes(),
+        array("i", _base_labels(ls)).tobytes(), tables, dets)
+    achiral = dets_hit == 3 if mode == "full" else None
+    return CanonicalForm(tuple(array("i", code)), ls.oriented, hits, mode, achiral)
 
 
 def signature(obj: LoopStructure | Polycube, mode: Symmetry | str = Symmetry.FULL) -> str:
@@ -509,6 +540,8 @@ def _encode(code: tuple[int, ...], oriented: bool) -> str:
         w += 1
     if use_arrays(n):
         return _encode_arrays(np.fromiter(code, dtype=np.int64, count=len(code)), oriented, w)
+    if COMPILED:
+        return _compiled.encode(array("i", code).tobytes(), oriented)
     parts = [SIGNATURE_VERSION, "o" if oriented else "l", ALPHABET[w], _digits(n, w)]
     seen = 1  # darts discovered so far: the root
     for i in range(n):

@@ -242,6 +242,41 @@ class HalfEdgeMap:
         return cls(tuple(map(tuple, faces)), n, _given_arrays=arrays)
 
     @classmethod
+    def from_trusted_faces(cls, faces: Sequence[Sequence[int]]) -> HalfEdgeMap:
+        """The map of a face list already known to be a closed connected oriented surface
+        (a loop move's result, built from a valid structure): :meth:`from_faces` without its
+        checks, for the search's hot path.  Given anything else the result is undefined;
+        ``polyloops.core.moves.VERIFY_CHILDREN`` routes moves through :meth:`from_faces`
+        instead, and a test compares the two.
+
+        >>> faces = [[0, 1, 2, 3], [3, 2, 1, 0]]
+        >>> HalfEdgeMap.from_trusted_faces(faces) == HalfEdgeMap.from_faces(faces)
+        True
+        """
+        fs = tuple(map(tuple, faces))
+        if use_arrays(sum(map(len, fs))):
+            return cls.from_faces(fs)
+        origin: list[int] = []
+        face_of: list[int] = []
+        nxt: list[int] = []
+        prv: list[int] = []
+        face_start: list[int] = []
+        for f, face in enumerate(fs):
+            base = len(origin)
+            face_start.append(base)
+            k = len(face)
+            origin.extend(face)
+            face_of.extend([f] * k)
+            nxt.extend(range(base + 1, base + k))
+            nxt.append(base)
+            prv.append(base + k - 1)
+            prv.extend(range(base, base + k - 1))
+        dart_of = {(origin[d], origin[nxt[d]]): d for d in range(len(origin))}
+        twin = [dart_of[(origin[nxt[d]], origin[d])] for d in range(len(origin))]
+        return cls(fs, max(origin) + 1, (tuple(origin), tuple(face_of), tuple(nxt), tuple(prv),
+                                         tuple(twin), tuple(face_start)))
+
+    @classmethod
     def _from_faces_tuples(cls, faces: list[Sequence[int]]) -> HalfEdgeMap:
         fs = _validate_faces(faces)
         origin: list[int] = []

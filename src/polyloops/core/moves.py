@@ -462,10 +462,11 @@ def is_valid_addition(ls: LoopStructure, move: Addition) -> bool:
             and separates_zone(ls, move))
 
 
-def add_loop(ls: LoopStructure, move: Addition) -> LoopStructure:
+def add_loop(ls: LoopStructure, move: Addition, *, checked: bool = True) -> LoopStructure:
     """Insert the loop of an addition (see the module docstring for the numbering of the result).
     It does not check validity: use :func:`is_valid_addition` or take moves from
-    :func:`additions`.
+    :func:`additions`.  With ``checked=False`` (for moves :func:`additions` gave, on a valid
+    structure) the result is built without re-checking that it is a loop structure at all.
 
     Parameters
     ----------
@@ -473,6 +474,8 @@ def add_loop(ls: LoopStructure, move: Addition) -> LoopStructure:
         An oriented loop structure.
     move:
         The addition: its axis and the cycle of corners the new loop walks past.
+    checked:
+        Check that the result is a loop structure (the default); see :func:`_child`.
 
     Returns
     -------
@@ -514,7 +517,21 @@ def add_loop(ls: LoopStructure, move: Addition) -> LoopStructure:
             labels.setdefault((face[j], face[(j + 1) % len(face)]), ls.direction(d))
     for v in cyc:
         labels[(v, plus_id[v])] = Direction.of(move.axis, 1)
-    return LoopStructure.from_edge_labels(faces, _one_per_edge(labels))
+    return _child(faces, labels, checked)
+
+
+VERIFY_CHILDREN = False  # True: every move's result is checked, even where the caller vouches for it
+
+
+def _child(faces: list[list[int]], labels: dict[tuple[int, int], Direction], checked: bool) -> LoopStructure:
+    """The structure a move leaves.  A move that the move tests accepted, from a valid
+    structure, yields a surface and labels that agree along each loop, so a caller that knows
+    this (the reachability search) asks for ``checked=False`` and the result is built without
+    re-checking (:meth:`~polyloops.core.structure.LoopStructure.from_trusted_edge_labels`);
+    :data:`VERIFY_CHILDREN` restores every check, and a test compares the two builds."""
+    if checked or VERIFY_CHILDREN:
+        return LoopStructure.from_edge_labels(faces, _one_per_edge(labels))
+    return LoopStructure.from_trusted_edge_labels(faces, labels)
 
 
 def _one_per_edge(labels: dict[tuple[int, int], Direction]) -> dict[tuple[int, int], Direction]:
@@ -731,9 +748,11 @@ def removals(ls: LoopStructure) -> list[int]:
     return [lp.id for lp in ls.loops if check_removal(ls, lp.id, arcs).valid]
 
 
-def remove_loop(ls: LoopStructure, loop: int) -> LoopStructure:
+def remove_loop(ls: LoopStructure, loop: int, *, checked: bool = True) -> LoopStructure:
     """Remove a loop (see the module docstring for the numbering of the result).  It does not
-    check Definition 4: use :func:`check_removal` or :func:`removals` first.
+    check Definition 4: use :func:`check_removal` or :func:`removals` first.  With
+    ``checked=False`` (for a removal they accepted) the result is built without re-checking
+    that it is a loop structure at all.
 
     Parameters
     ----------
@@ -741,6 +760,8 @@ def remove_loop(ls: LoopStructure, loop: int) -> LoopStructure:
         An oriented loop structure.
     loop:
         The id of the loop to remove.
+    checked:
+        Check that the result is a loop structure (the default).
 
     Returns
     -------
@@ -771,7 +792,7 @@ def remove_loop(ls: LoopStructure, loop: int) -> LoopStructure:
         if (u, v) in labels and labels[(u, v)] != ls.direction(d):
             raise LabelError(f"merged edges ({u}, {v}) disagree in direction")
         labels[(u, v)] = ls.direction(d)
-    return LoopStructure.from_edge_labels(faces, _one_per_edge(labels))
+    return _child(faces, labels, checked)
 
 
 def try_remove(ls: LoopStructure, loop: int) -> LoopStructure | None:

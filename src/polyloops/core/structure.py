@@ -83,6 +83,38 @@ class LoopStructure:
         return cls._from_edge_labels_tuples(m, labels)
 
     @classmethod
+    def from_trusted_edge_labels(cls, faces: Sequence[Sequence[int]],
+                                 labels: Mapping[tuple[int, int], Direction]) -> LoopStructure:
+        """:meth:`from_edge_labels` for faces and labels already known to form a loop structure
+        (a loop move's result): the map is built without its checks
+        (:meth:`~polyloops.core.halfedge.HalfEdgeMap.from_trusted_faces`) and each loop takes
+        its axis and sign from one of its edges, without comparing the others.
+
+        >>> from polyloops.io.examples import load_example
+        >>> ls = load_example("cube").dualize()
+        >>> m = ls.map
+        >>> labels = {(m.origin(d), m.target(d)): ls.direction(d) for d in m.edge_darts}
+        >>> LoopStructure.from_trusted_edge_labels(ls.map.faces, labels) == ls
+        True
+        """
+        m = HalfEdgeMap.from_trusted_faces(faces)
+        axes: list[Axis] = []
+        signs: list[int] = []
+        origin, nxt = m.origin_of, m.next
+        for lp in m.loop_system.loops:
+            d = lp.darts[0]
+            u, v = origin[d], origin[nxt[d]]
+            lab = labels.get((u, v))
+            if lab is None:
+                lab = labels[(v, u)]
+                axes.append(lab.axis)
+                signs.append(-lab.sign)
+            else:
+                axes.append(lab.axis)
+                signs.append(lab.sign)
+        return cls(m, tuple(axes), tuple(signs))
+
+    @classmethod
     @gc_paused
     def _from_valid_edge_labels_arrays(cls, m: HalfEdgeMap, labels: Mapping[tuple[int, int], Direction | Axis]
                                        ) -> LoopStructure | None:
@@ -260,14 +292,21 @@ class LoopStructure:
     def _directions(self) -> tuple[Direction, ...]:
         if self.signs is None:
             raise ValueError("a labelled loop structure has no directions; orient it first")
-        ls = self.map.loop_system
-        if use_arrays(self.map.num_darts):
-            members = list(Direction)
-            return tuple(members[c] for c in self.direction_codes.tolist())
-        return tuple(
-            Direction.of(self.axes[ls.loop_of_dart[d]], self.signs[ls.loop_of_dart[d]] * ls.side_of_dart[d])
-            for d in range(self.map.num_darts)
-        )
+        members = tuple(Direction)
+        codes = self.direction_codes.tolist() if use_arrays(self.map.num_darts) else self.direction_code_list
+        return tuple(members[c] for c in codes)
+
+    @cached_property
+    def direction_code_list(self) -> tuple[int, ...]:
+        """``int(direction)`` of every dart (``2 * axis + 1`` on the ``-`` side), as a tuple; for
+        a labelled structure, each dart's axis."""
+        system = self.map.loop_system
+        if self.signs is None:
+            return tuple(int(self.axes[loop]) for loop in system.loop_of_dart)
+        # A loop's darts point to its + side (code 2 * axis) or to its - side (2 * axis + 1).
+        plus = [2 * int(a) + (s < 0) for a, s in zip(self.axes, self.signs, strict=True)]
+        return tuple(plus[loop] ^ (side < 0) for loop, side in zip(system.loop_of_dart, system.side_of_dart,
+                                                                     strict=True))
 
     def corner_directions(self, corner: int) -> tuple[Direction, ...]:
         """Directions of the edges at a corner, counter-clockwise seen from outside."""
