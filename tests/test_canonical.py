@@ -269,3 +269,13 @@ def test_compiled_canonical_form_on_every_example():
         for mode in ("labelled", "rotation", "full"):
             form = canonical.canonical_form(ls, mode)
             assert (form, form.signature) == python_form(ls, mode), (name, mode)
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.one_of(perturbed_structures(max_size=7), polycubes(max_size=8).map(lambda q: q.dualize())),
+       st.sampled_from(["labelled", "rotation", "full"]))
+def test_unchecked_signatures_read_back_the_same_structure(ls, mode):
+    """Reading a signature without checking the map (as the reachability search reads its own
+    states) gives the structure the checked reading gives."""
+    sig = signature(ls, mode)
+    assert from_signature(sig, checked=False) == from_signature(sig)

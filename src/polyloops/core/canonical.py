@@ -661,13 +661,17 @@ def _decode(sig: str) -> tuple[list[int], list[int], list[int], bool]:
     return nxt, twin, lab, oriented
 
 
-def from_signature(sig: str) -> LoopStructure:
+def from_signature(sig: str, *, checked: bool = True) -> LoopStructure:
     """The structure a signature names: its class's canonical representative.
 
     Parameters
     ----------
     sig:
         A signature from :func:`signature` (surrounding white space is ignored).
+    checked:
+        Check that the code describes a loop structure (the default).  The reachability
+        search names its states by signatures it made itself, and passes ``False``: the
+        version and check characters are still tested, the map and its labels are not.
 
     Returns
     -------
@@ -687,6 +691,8 @@ def from_signature(sig: str) -> LoopStructure:
     """
     nxt, twin, lab, oriented = _decode(sig.strip())
     n = len(nxt)
+    if not checked and oriented:
+        return _trusted_structure(nxt, twin, lab)
     if sorted(nxt) != list(range(n)) or any(twin[twin[d]] != d or twin[d] == d for d in range(n)):
         raise SignatureError("the signature does not describe a map")
     prev = [0] * n
@@ -709,6 +715,21 @@ def from_signature(sig: str) -> LoopStructure:
         return LoopStructure.from_edge_labels(faces, labels)
     except ValueError as err:
         raise SignatureError(f"the signature does not describe a loop structure: {err}") from None
+
+
+def _trusted_structure(nxt: list[int], twin: list[int], lab: list[int]) -> LoopStructure:
+    """The oriented structure of a canonical code known to be one (see :func:`from_signature`)."""
+    n = len(nxt)
+    prev = [0] * n
+    for d, e in enumerate(nxt):
+        prev[e] = d
+    corner = [0] * n
+    for k, orbit in enumerate(permutation_orbits([twin[prev[d]] for d in range(n)])):
+        for d in orbit:
+            corner[d] = k
+    members = tuple(Direction)
+    labels = {(corner[d], corner[nxt[d]]): members[lab[d]] for d in range(n)}
+    return LoopStructure.from_trusted_edge_labels(faces_from_next(nxt, corner), labels)
 
 
 def transformed(obj: LoopStructure | Polycube, g: SignedPermutation) -> LoopStructure:

@@ -30,9 +30,10 @@ def die_with_parent() -> None:
 
 
 def run_jobs(func: Callable[[Any], T], items: Sequence[Any], workers: int = 1, dask: str | None = None,
-             ordered: bool = True) -> Iterator[T]:
+             ordered: bool = True, batch: int = 1) -> Iterator[T]:
     """``func(item)`` for every item: results in item order when ``ordered``, else as they
-    finish.  ``dask`` is a scheduler address, or ``"local"`` for a two-worker local cluster."""
+    finish.  ``dask`` is a scheduler address, or ``"local"`` for a two-worker local cluster.
+    ``batch`` items travel to a local worker in one message (for many small jobs)."""
     if dask is not None:
         yield from _run_dask(func, items, dask, ordered)
     elif workers > 1 and len(items) > 1:
@@ -40,7 +41,7 @@ def run_jobs(func: Callable[[Any], T], items: Sequence[Any], workers: int = 1, d
 
         with multiprocessing.Pool(workers, initializer=die_with_parent) as pool:
             mapper = pool.imap if ordered else pool.imap_unordered
-            yield from mapper(func, items)
+            yield from mapper(func, items, chunksize=max(1, batch))
     else:
         yield from map(func, items)
 

@@ -153,7 +153,7 @@ def expand(task: tuple[str, str, int, tuple[MoveKind, ...]]) -> list[Child]:
     """The children of one state (a job for a worker): every valid move within the bound,
     named by signature, duplicates kept in order of first appearance."""
     sig, mode, max_corners, kinds = task
-    ls = from_signature(sig)
+    ls = from_signature(sig, checked=False)  # the search's own names, checked when first made
     out: list[Child] = []
     seen: set[str] = set()
     for move, child in neighbours(ls, max_corners, kinds):
@@ -429,7 +429,10 @@ def explore(start: LoopStructure, max_corners: int, max_depth: int | None = None
         while frontier and (max_depth is None or level < max_depth):
             tasks = [(sig, mode, max_corners, kinds) for sig in frontier]
             new: list[State] = []
-            for sig, children in zip(frontier, run_jobs(expand, tasks, workers, dask), strict=True):
+            # Many small jobs: a few batches per worker, not a message per state.
+            batch = max(1, len(tasks) // (8 * max(1, workers)))
+            results = run_jobs(expand, tasks, workers, dask, batch=batch)
+            for sig, children in zip(frontier, results, strict=True):
                 for child in children:
                     if child.signature not in known:
                         known[child.signature] = (level + 1, child.corners)
