@@ -17,6 +17,8 @@ INSTEAD = {
                       "the catalog will use plantri's generator" + CATALOG_NOTE),
     "_canonical": ("the compiled canonical form",
                    "canonical forms of small structures are computed in Python (the same forms, slower)"),
+    "_cycles": ("the compiled count of additions",
+                "additions are counted in Python (the same counts, slower)"),
 }
 
 
@@ -25,7 +27,8 @@ class OptionalBuildExt(build_ext):
         try:
             super().run()
         except Exception as exc:  # no compiler, no Python headers
-            self._skip("no compiled part (strip filter, arrangement search, canonical form) was built", exc,
+            self._skip("no compiled part (strip filter, arrangement search, canonical form, addition count) "
+                       "was built", exc,
                        "everything runs in Python" + CATALOG_NOTE)
 
     def build_extension(self, ext: Extension) -> None:
@@ -43,6 +46,7 @@ class OptionalBuildExt(build_ext):
 setup(
     ext_modules=[Extension(f"polyloops.{name.replace('/', '.')}", [f"src/polyloops/{name}.c"],
                            extra_compile_args=["-O2"], optional=True)
-                 for name in ("enumerate/_strips", "enumerate/_arrangements", "core/_canonical")],
+                 for name in ("enumerate/_strips", "enumerate/_arrangements", "core/_canonical",
+                              "core/_cycles")],
     cmdclass={"build_ext": OptionalBuildExt},
 )

@@ -27,7 +27,7 @@ from polyloops.io.formats import loads
 from polyloops.verify import check_polycube, check_polycube_loop_structure
 from polyloops.verify.loop_structure import cycle_violations
 from polyloops.verify.report import ReportBuilder
-from strategies import grown_structures, polycubes
+from strategies import grown_structures, handle_zone_polycubes, polycubes
 
 
 def corner_graph(ls, avoid=None):
@@ -416,3 +416,33 @@ def test_children_built_without_checks_are_the_checked_ones(ls):
         assert fast == checked
         assert fast.map.loop_system == checked.map.loop_system
         assert check_polycube_loop_structure(fast).valid
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.one_of(grown_structures(max_moves=3), polycubes(max_size=8).map(lambda q: q.dualize()),
+                 handle_zone_polycubes().map(lambda q: q.dualize())),
+       st.sampled_from(list(Axis)), st.one_of(st.none(), st.integers(0, 12)))
+def test_counts_without_listing_equal_the_listing(ls, axis, limit):
+    """The count of additions (compiled where zones have genus 0, listed and tested where they
+    have a handle) equals the number the listing yields, with and without a limit, with the
+    compiled count and with the Python search."""
+    from polyloops.core import moves
+
+    listed = sum(1 for _ in moves.valid_additions(ls, axis))
+    want = (listed, True) if limit is None or listed <= limit else (limit, False)
+    assert moves.count_valid_additions(ls, axis, limit) == want
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(moves, "COMPILED_COUNT", False)
+        assert moves.count_valid_additions(ls, axis, limit) == want
+
+
+def test_counts_stop_at_the_deadline():
+    """A deadline already past stops the count: a lower bound, said to be incomplete."""
+    import time
+
+    from polyloops.core import moves
+    from polyloops.core.builders import box
+
+    ls = box(4, 4, 4).dualize()
+    count, complete = moves.count_valid_additions(ls, Axis.Z, deadline=time.monotonic() - 1)
+    assert not complete and count <= sum(1 for _ in moves.valid_additions(ls, Axis.Z))

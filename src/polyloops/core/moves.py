@@ -36,7 +36,7 @@ from __future__ import annotations
 
 import random
 from collections import defaultdict
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from functools import cached_property
 from itertools import islice
@@ -140,21 +140,22 @@ class _AdditionGraph:
     def ok(self, arrive: int, leave: int) -> bool:
         return arrive in self.succ and leave in self.succ[arrive]
 
-    def cycles(self, max_length: int | None = None, stop: Callable[[], bool] | None = None
-               ) -> Iterator[tuple[int, ...]]:
+    def cycles(self, max_length: int | None = None, stop: Callable[[], bool] | None = None,
+               starts: Iterable[int] | None = None) -> Iterator[tuple[int, ...]]:
         """Every simple cycle of corners (each once, walked in its direction), as corners,
         starting at its lowest corner; with ``max_length``, only those of at most that many
         corners.  A bounded search also skips every step from which the walk cannot get back
         to its start within the bound (a breadth-first search per start gives the distance
         back, ignoring simplicity: a lower bound), so it costs little more than the cycles it
         finds.  ``stop()`` is asked now and then; when it says so, :class:`SearchStopped` is
-        raised."""
+        raised.  ``starts``: only the cycles whose lowest corner is one of these (in
+        increasing order)."""
         m = self.ls.map
         limit = m.num_corners if max_length is None else max_length
         if limit < 3:
             return
         ticks = [0]
-        for start in range(m.num_corners):
+        for start in (range(m.num_corners) if starts is None else starts):
             firsts = [d for d in m.outgoing(start)
                       if self.ls.axis_of_dart(d) != self.axis and m.target(d) > start]
             if not firsts:
@@ -325,6 +326,93 @@ def valid_additions(ls: LoopStructure, axis: Axis, max_length: int | None = None
         move = Addition(axis, cycle)
         if separates_zone(ls, move):
             yield move
+
+
+try:  # the compiled count of the addition graph's cycles (optional)
+    from polyloops.core import _cycles
+
+    COMPILED_COUNT = True  # the tests switch it off to count with the Python search
+except ImportError:  # pragma: no cover - depends on the install
+    COMPILED_COUNT = False
+
+
+def count_valid_additions(ls: LoopStructure, axis: Axis, limit: int | None = None,
+                          deadline: float | None = None) -> tuple[int, bool]:
+    """How many valid ``axis``-additions there are, without building them: at most ``limit``,
+    and by ``deadline`` (a :func:`time.monotonic` time); returns the count and whether it is
+    complete (``False``: a lower bound, stopped by the limit or the deadline).
+
+    Cycles in zones of genus 0 always separate their zone (see :func:`separates_zone`), so
+    there the cycles of the addition graph are counted (compiled, ``_cycles.c``, when built);
+    cycles in zones with a handle are listed and tested one by one.  A cycle lies in the zone
+    of its corners, and is counted from its lowest corner, so the two parts do not overlap.
+
+    >>> from polyloops.io.examples import load_example
+    >>> box = load_example("box-2x1x1").dualize()
+    >>> [count_valid_additions(box, a) for a in Axis]
+    [(3, True), (6, True), (6, True)]
+    """
+    import time
+
+    if not ls.oriented:
+        raise ValueError("loop moves need an oriented loop structure")
+    m = ls.map
+    zones = ls.zones(axis)
+    handled = [zones.genera[zones.zone_of[c]] > 0 for c in range(m.num_corners)]
+    plain = [c for c in range(m.num_corners) if not handled[c]]
+    graph = _AdditionGraph(ls, axis)
+
+    def expired() -> bool:
+        return deadline is not None and time.monotonic() > deadline
+
+    found = 0
+    if expired():
+        return 0, False
+    if COMPILED_COUNT:
+        found, status = _count_compiled(graph, plain, limit, deadline)
+        if status:
+            return found, False
+    else:
+        try:
+            for _ in graph.cycles(None, expired, plain):
+                if limit is not None and found >= limit:
+                    return found, False
+                found += 1
+        except SearchStopped:
+            return found, False
+    try:
+        for cycle in graph.cycles(None, expired, [c for c in range(m.num_corners) if handled[c]]):
+            if separates_zone(ls, Addition(axis, cycle)):
+                if limit is not None and found >= limit:
+                    return found, False
+                found += 1
+    except SearchStopped:
+        return found, False
+    return found, True
+
+
+def _count_compiled(graph: _AdditionGraph, starts: list[int], limit: int | None,
+                    deadline: float | None) -> tuple[int, int]:
+    """The compiled count of the graph's cycles from ``starts``: (count, status)."""
+    import time
+    from array import array
+
+    m = graph.ls.map
+    allowed = bytes(d in graph.succ for d in range(m.num_darts))
+    indptr, succ = array("i", [0]), array("i")
+    for d in range(m.num_darts):
+        if allowed[d]:
+            succ.extend(graph.succ[d])
+        indptr.append(len(succ))
+    out_indptr, out_darts = array("i", [0]), array("i")
+    for c in range(m.num_corners):
+        out_darts.extend(m.outgoing(c))
+        out_indptr.append(len(out_darts))
+    target = array("i", (m.target(d) for d in range(m.num_darts)))
+    seconds = -1.0 if deadline is None else max(0.0, deadline - time.monotonic())
+    return _cycles.count(indptr.tobytes(), succ.tobytes(), target.tobytes(), out_indptr.tobytes(),
+                         out_darts.tobytes(), allowed, array("i", starts).tobytes(),
+                         -1 if limit is None else limit, seconds)
 
 
 def addition_index(axis: Axis, i: int) -> str:

@@ -19,9 +19,9 @@ from polyloops.core.moves import (
     SearchStopped,
     addition_index,
     additions,
+    count_valid_additions,
     sample_additions,
     shortest_additions,
-    valid_additions,
 )
 from polyloops.core.structure import LoopStructure
 
@@ -52,22 +52,9 @@ def count_additions_within(ls: LoopStructure, axes: Sequence[Axis] = tuple(Axis)
     counts = dict.fromkeys((a.name for a in axes), 0)
     complete = dict.fromkeys(counts, False)
     for a in axes:
-        expired = budget.next_share()
-        found = 0
-        try:
-            for _ in valid_additions(ls, a, None, expired):
-                if limit is not None and found >= limit:
-                    break
-                found += 1
-                if progress is not None and found % 256 == 0:
-                    progress(a.name, found)
-            else:
-                complete[a.name] = True
-        except SearchStopped:
-            pass
-        counts[a.name] = found
+        counts[a.name], complete[a.name] = count_valid_additions(ls, a, limit, budget.next_deadline())
         if progress is not None:
-            progress(a.name, found)
+            progress(a.name, counts[a.name])
     return AdditionCount(counts, complete)
 
 
@@ -85,13 +72,20 @@ class TimeShares:
         self.end = None if seconds is None else time.monotonic() + seconds
         self.left = max(parts, 1)
 
-    def next_share(self) -> Callable[[], bool]:
-        """The ``expired()`` test of the next search's share."""
+    def next_deadline(self) -> float | None:
+        """The end (a :func:`time.monotonic` time) of the next search's share, or ``None``."""
         if self.end is None:
-            return lambda: False
+            return None
         now = time.monotonic()
         deadline = now + max(self.end - now, 0.0) / self.left
         self.left = max(self.left - 1, 1)
+        return deadline
+
+    def next_share(self) -> Callable[[], bool]:
+        """The ``expired()`` test of the next search's share."""
+        deadline = self.next_deadline()
+        if deadline is None:
+            return lambda: False
         return lambda: time.monotonic() > deadline
 
 
