@@ -39,14 +39,20 @@ def cmd_moves(args: argparse.Namespace) -> int:
         raise CliError("--count, --shortest and --sample are different questions: ask one")
     if (args.shortest is not None or args.sample is not None) and args.remove:
         raise CliError("--shortest and --sample choose additions; --remove lists loops")
-    if args.seed is not None and args.sample is None:
-        raise CliError("--seed goes with --sample")
+    if args.seed is not None and args.sample is None and not args.estimate:
+        raise CliError("--seed goes with --sample or --estimate")
     ls = read_valid_structure(args.file)
     picking = args.shortest is not None or args.sample is not None
     want_add = args.add is not None or not args.remove or picking
     want_remove = not picking and (args.remove or args.add is None)
     axes = list(Axis) if args.add in (None, "all") else [Axis.parse(args.add)]
     data: dict[str, Any] = {}
+    if args.estimate and not args.count:
+        raise CliError("--estimate goes with --count")
+    if args.walks is not None and not args.estimate:
+        raise CliError("--walks goes with --estimate")
+    if args.count and args.estimate:
+        return _estimate(ls, axes if want_add else [], want_remove, args)
     if args.count:
         lines: list[str] = []
         if want_add:
@@ -90,6 +96,26 @@ def cmd_moves(args: argparse.Namespace) -> int:
         data["removals"] = removal_rows
     if args.json:
         emit(args, data, "")
+    return EXIT_OK
+
+
+def _estimate(ls: Any, axes: list[Axis], want_remove: bool, args: argparse.Namespace) -> int:
+    """``moves --count --estimate``: additions estimated by random walks, removals counted."""
+    from polyloops.core.moves import estimate_additions, removals
+    from polyloops.enumerate.listing import TimeShares
+
+    budget = TimeShares(args.time_limit, len(axes))
+    data: dict[str, Any] = {"estimates": {}}
+    lines = []
+    for a in axes:
+        est = estimate_additions(ls, a, args.walks or 10000, args.seed or 0, budget.next_share())
+        data["estimates"][a.name] = est.to_json()
+        lines.append(f"additions {a}: about {est.estimate:.4g} (95% interval {est.low:.4g} to "
+                     f"{est.high:.4g}, {est.walks} random walks)")
+    if want_remove:
+        data["removals"] = len(removals(ls))
+        lines.append(f"removals  {data['removals']}")
+    emit(args, data, "\n".join(lines))
     return EXIT_OK
 
 
@@ -142,7 +168,13 @@ def add_commands(command: AddCommand) -> None:
     p.add_argument("--sample", type=count_arg(1), metavar="N",
                    help="N different random valid additions per label (random walks: quick on large "
                    "structures, reproducible with --seed, not uniform)")
-    p.add_argument("--seed", type=count_arg(0), metavar="S", help="the seed of --sample (default 0)")
+    p.add_argument("--seed", type=count_arg(0), metavar="S",
+                   help="the seed of --sample or --estimate (default 0)")
+    p.add_argument("--estimate", action="store_true",
+                   help="with --count: estimate the additions by random walks (Knuth's estimator, "
+                   "with a 95%% interval) instead of counting them, for layouts too large to count")
+    p.add_argument("--walks", type=count_arg(1), metavar="N",
+                   help="random walks of --estimate (default 10000)")
     p = command("add", cmd_add, "add one loop: MOVE is an index from 'polyloops moves' (Y3: the "
                 "fourth valid Y-loop; a plain N counts through X, Y and Z), or AXIS:c0,c1,... (the "
                 "corners the loop walks past, + side on the right)", json_flag=False)

@@ -391,6 +391,76 @@ def count_valid_additions(ls: LoopStructure, axis: Axis, limit: int | None = Non
     return found, True
 
 
+@dataclass(frozen=True)
+class AdditionEstimate:
+    """An estimate of the number of valid additions of one label from random walks: the mean
+    of the walks' estimates, a 95% interval for it (normal approximation: the mean plus or
+    minus 1.96 standard errors, so only as good as the walks are many), and the walks taken."""
+
+    estimate: float
+    low: float
+    high: float
+    walks: int
+
+    def to_json(self) -> dict[str, float | int]:
+        """A JSON-ready dict of the estimate."""
+        return {"estimate": self.estimate, "low": self.low, "high": self.high, "walks": self.walks}
+
+
+def estimate_additions(ls: LoopStructure, axis: Axis, walks: int = 2000, seed: int = 0,
+                       stop: Callable[[], bool] | None = None) -> AdditionEstimate:
+    """Estimate how many valid ``axis``-additions there are without counting them: Knuth's
+    estimator on the search tree of :meth:`_AdditionGraph.cycles` (a walk from the root picks
+    one child uniformly at each step; the product of the numbers of children along the walk,
+    times the valid closings met at each step, is an unbiased estimate of the count).  For
+    layouts too large to count.  ``walks`` walks, reproducible for a ``seed``; ``stop()``
+    ends them early (the estimate then rests on fewer walks).
+
+    >>> from polyloops.io.examples import load_example
+    >>> est = estimate_additions(load_example("box-2x1x1").dualize(), Axis.Z, walks=500)
+    >>> est.low <= 6 <= est.high, est.walks
+    (True, 500)
+    """
+    import math
+
+    if not ls.oriented:
+        raise ValueError("loop moves need an oriented loop structure")
+    g = _AdditionGraph(ls, axis)
+    m = ls.map
+    n = m.num_corners
+    zones = ls.zones(axis)
+    roots = [(c, d) for c in range(n) for d in m.outgoing(c) if d in g.succ and m.target(d) > c]
+    rng = random.Random(seed)
+    samples: list[float] = []
+    while roots and len(samples) < walks and not (stop is not None and stop()):
+        start, first = rng.choice(roots)
+        weight, total = float(len(roots)), 0.0
+        path, on_path = [first], {start, m.target(first)}
+        handle = zones.genera[zones.zone_of[start]] > 0
+        while True:
+            options = []
+            for e in g.succ[path[-1]]:
+                w = m.target(e)
+                if w == start:
+                    if len(path) >= 2 and g.ok(e, first) and (not handle or separates_zone(
+                            ls, Addition(axis, (start, *(m.target(d) for d in path))))):
+                        total += weight
+                elif w > start and w not in on_path and len(path) + 2 <= n:
+                    options.append(e)
+            if not options:
+                break
+            weight *= len(options)
+            e = rng.choice(options)
+            path.append(e)
+            on_path.add(m.target(e))
+        samples.append(total)
+    k = len(samples)
+    mean = sum(samples) / k if k else 0.0
+    spread = math.sqrt(sum((x - mean) ** 2 for x in samples) / (k - 1)) if k > 1 else math.inf
+    half = 1.96 * spread / math.sqrt(k) if k else math.inf
+    return AdditionEstimate(mean, max(0.0, mean - half), mean + half, k)
+
+
 def _count_compiled(graph: _AdditionGraph, starts: list[int], limit: int | None,
                     deadline: float | None) -> tuple[int, int]:
     """The compiled count of the graph's cycles from ``starts``: (count, status)."""
