@@ -468,7 +468,8 @@ def test_cli_estimate(capsys):
     assert main(["moves", "example:l-shape", "--count", "--estimate", "--walks", "500", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert set(data["estimates"]) == {"X", "Y", "Z"} and data["removals"] == 2
-    assert all(e["walks"] == 500 and e["low"] <= e["estimate"] <= e["high"] for e in data["estimates"].values())
+    estimates = data["estimates"].values()
+    assert all(e["walks"] == 500 and e["low"] <= e["estimate"] <= e["high"] for e in estimates)
     for bad in (["--estimate"], ["--count", "--walks", "5"]):
         assert main(["moves", "example:l-shape", *bad]) == 2
     with pytest.raises(SystemExit) as exit_:
