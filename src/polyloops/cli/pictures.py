@@ -144,6 +144,8 @@ def cmd_sheet(args: argparse.Namespace) -> int:
             except CatalogError as err:
                 raise CliError(str(err)) from None
             for i, entry in enumerate(entries):
+                if args.limit is not None and len(items) >= args.limit:
+                    break  # the structures past the limit are not built
                 try:
                     items.append((entry.name or f"#{i} {entry.corners}c", entry.structure()))
                 except ValueError as err:  # a signature that does not decode
