@@ -514,16 +514,8 @@ def addition_at(ls: LoopStructure, index: str | int) -> Addition | None:
 def count_additions(ls: LoopStructure, limit: int | None = None,
                     axes: Sequence[Axis] = tuple(Axis)) -> dict[str, int]:
     """The number of valid additions per label (of ``axes`` only, at most ``limit`` each),
-    counted without storing them."""
-    out = {}
-    for a in axes:
-        n = 0
-        for _ in valid_additions(ls, a):
-            if limit is not None and n >= limit:
-                break
-            n += 1
-        out[a.name] = n
-    return out
+    counted without building them (:func:`count_valid_additions`)."""
+    return {a.name: count_valid_additions(ls, a, limit)[0] for a in axes}
 
 
 def shortest_additions(ls: LoopStructure, axis: Axis, k: int,
