@@ -92,7 +92,8 @@ def removable_loops(ls: LoopStructure) -> np.ndarray:
     at = np.minimum(np.searchsorted(keys, far_key), len(keys) - 1)
     far = np.where(keys[at] == far_key, group_of_node[at], count + a.target[dart])
     ok[group_loop[group[far == group]]] = False  # "an edge would join merged corner c to itself"
-    order = np.lexsort((dart, far, group))
+    # One integer key per (group, far end); a stable sort keeps each pair's darts in order.
+    order = np.argsort(group * (count + m.num_corners) + far, kind="stable")
     dart, group, far = dart[order], group[order], far[order]
     starts = np.flatnonzero(np.r_[True, (group[1:] != group[:-1]) | (far[1:] != far[:-1])][:len(dart)])
     sizes = np.diff(np.r_[starts, len(dart)])
@@ -139,7 +140,7 @@ def _mark_repeats(ok: np.ndarray, group_loop: np.ndarray, group: np.ndarray, val
     """Mark invalid the loop of every group in which some value occurs twice."""
     if not len(group):
         return
-    order = np.lexsort((value, group))
-    g, v = group[order], value[order]
-    twice = (g[1:] == g[:-1]) & (v[1:] == v[:-1])
-    ok[group_loop[g[1:][twice]]] = False
+    span = int(value.max()) + 1  # values are non-negative: one integer key per (group, value)
+    keys = np.sort(group * span + value)
+    twice = keys[1:] == keys[:-1]
+    ok[group_loop[keys[1:][twice] // span]] = False
