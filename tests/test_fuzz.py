@@ -222,7 +222,7 @@ def test_special_files_do_not_hang(tmp_path):
 def test_terminated_write_leaves_no_temporary_file(tmp_path):
     """SIGTERM during a long catalog run: workers stop and no temporary file is left."""
     out = tmp_path / "c"
-    proc = subprocess.Popen([sys.executable, "-m", "polyloops", "catalog", "--max-corners", "26",
+    proc = subprocess.Popen([sys.executable, "-m", "polyloops", "catalog", "--max-corners", "32",
                              "--workers", "2", "-o", str(out)], stdout=subprocess.DEVNULL,
                             stderr=subprocess.PIPE, stdin=subprocess.DEVNULL)
     time.sleep(4)

@@ -133,7 +133,7 @@ def cmd_sheet(args: argparse.Namespace) -> int:
     from polyloops.render.sheet import render_sheet
 
     out = picture_output(args.output)
-    items = []
+    items: list[tuple[str, Any]] = []
     for source in args.sources:
         path = Path(source)
         if not source.startswith(("sig:", "example:")) and _is_dir(path):

@@ -219,7 +219,7 @@ def obj_triangles(text: str) -> tuple[np.ndarray, np.ndarray] | None:
     references, other polygons, bad numbers), which :func:`obj_polygons` then reads line by
     line and names the line at fault; where both read a text they agree (tested).
 
-    >>> points, triangles = obj_triangles("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+    >>> points, triangles = obj_triangles("v 0 0 0\\nv 1 0 0\\nv 0 1 0\\nf 1 2 3\\n")
     >>> points.shape, triangles.tolist()
     ((3, 3), [[0, 1, 2]])
     """
