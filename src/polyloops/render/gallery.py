@@ -71,7 +71,7 @@ def build_gallery(census: Census, out: str | Path, limit: int | None = None,
     ValueError
         When a record's signature does not decode.
     """
-    from polyloops.render.polycube import render_polycube
+    from polyloops.render.polycube import write_thumbnail
     from polyloops.render.viewer import write_plotly_js, write_viewer
 
     out = Path(out)
@@ -85,7 +85,7 @@ def build_gallery(census: Census, out: str | Path, limit: int | None = None,
         if not picture.exists() or not page.exists():
             ls = entry.structure()
             if not picture.exists():
-                render_polycube(ls, picture, size=2.4)
+                write_thumbnail(ls, picture)
             if not page.exists():
                 write_viewer(ls, page, title=f"{entry.name}: {entry.corners} corners", plotly_js="directory")
         if progress is not None:

@@ -178,16 +178,50 @@ def shade(q: Polycube, buf: DepthBuffer, view: View, loops: LoopStructure | None
 
 
 def draw_polycube(ax, q: Polycube, view: View, loops: LoopStructure | None, pixels: int = 400,
-                  zones: Axis | None = None, grid: bool = False) -> DepthBuffer:
+                  zones: Axis | None = None, grid: bool = False,
+                  supersample: int = SUPERSAMPLE) -> DepthBuffer:
     """Draw ``q`` from ``view`` on matplotlib axes, hidden surfaces by a depth buffer
     (:mod:`polyloops.render.raster`) supersampled for smooth edges; returns the buffer."""
-    buf = rasterize(q, view, pixels * SUPERSAMPLE)
-    rgb = shade(q, buf, view, loops, zones, grid)
-    small = rgb.reshape(pixels, SUPERSAMPLE, pixels, SUPERSAMPLE, 3).mean(axis=(1, 3))
+    buf, small = _picture(q, view, loops, pixels, zones, grid, supersample)
     ax.imshow(small, extent=buf.extent, interpolation="antialiased", origin="upper")
     ax.set_aspect("equal")
     ax.axis("off")
     return buf
+
+
+def _picture(q: Polycube, view: View, loops: LoopStructure | None, pixels: int, zones: Axis | None,
+             grid: bool, supersample: int) -> tuple[DepthBuffer, np.ndarray]:
+    """The depth buffer at ``pixels * supersample`` and the shaded picture averaged down to
+    ``pixels`` square."""
+    buf = rasterize(q, view, pixels * supersample)
+    rgb = shade(q, buf, view, loops, zones, grid)
+    return buf, rgb.reshape(pixels, supersample, pixels, supersample, 3).mean(axis=(1, 3))
+
+
+THUMBNAIL_SUPERSAMPLE = 2  # small pictures: 2 x 2 samples a pixel look the same as 3 x 3 there
+
+
+def write_thumbnail(obj: Polycube | LoopStructure, path: str | os.PathLike[str], pixels: int = 240) -> None:
+    """A small PNG of one view with the loops, the picture alone (no figure around it): what a
+    gallery shows for each class, at a third of :func:`render_polycube`'s cost.
+
+    Raises
+    ------
+    DualityError, PictureError
+        As :func:`render_polycube`.
+    OSError
+        When the file cannot be written.
+    """
+    import matplotlib.image
+
+    from polyloops.io.files import writing
+
+    q, ls = as_polycube(obj)
+    _, small = _picture(q, choose_views(q, 1)[0], ls, pixels, None, False, THUMBNAIL_SUPERSAMPLE)
+    with writing(path, suffix=".png") as out:
+        # None drops matplotlib's version from the file, so a fixed input gives the same bytes
+        matplotlib.image.imsave(out.path, np.clip(small, 0.0, 1.0), format="png",
+                                metadata={"Software": None})  # type: ignore[dict-item]
 
 
 MAX_EXTENT = 256  # unit cells per axis that a picture draws; beyond, the compact form is drawn

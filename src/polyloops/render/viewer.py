@@ -86,6 +86,21 @@ def viewer_figure(obj: Polycube | LoopStructure, title: str | None = None):
     """
     import plotly.graph_objects as go
 
+    return go.Figure(viewer_spec(obj, title))
+
+
+def viewer_spec(obj: Polycube | LoopStructure, title: str | None = None) -> dict[str, Any]:
+    """The viewer's figure as plotly's JSON form (``{"data": [...], "layout": {...}}``):
+    what :func:`viewer_figure` wraps, and what :func:`viewer_html` writes without building
+    plotly's validated objects (most of a page's cost in a gallery of thousands).
+
+    Raises
+    ------
+    DualityError
+        When a loop structure has no polycube.
+    PictureError
+        When the polycube is too large to draw.
+    """
     q, ls = as_polycube(obj)
     xs: list[float] = []
     ys: list[float] = []
@@ -106,10 +121,10 @@ def viewer_figure(obj: Polycube | LoopStructure, title: str | None = None):
         tri += [(base, base + 1, base + 2), (base, base + 2, base + 3)]
         colours += [shade, shade]
     i, j, k = zip(*tri, strict=True)
-    traces: list[Any] = [go.Mesh3d(
-        x=xs, y=ys, z=zs, i=i, j=j, k=k, facecolor=colours, flatshading=True, hovertext=texts,
-        hoverinfo="text", name="faces", legendgroup="faces", showlegend=True,
-        lighting=dict(ambient=0.75, diffuse=0.35, specular=0.05), opacity=1.0)]
+    traces: list[dict[str, Any]] = [dict(
+        type="mesh3d", x=xs, y=ys, z=zs, i=list(i), j=list(j), k=list(k), facecolor=colours,
+        flatshading=True, hovertext=texts, hoverinfo="text", name="faces", legendgroup="faces",
+        showlegend=True, lighting=dict(ambient=0.75, diffuse=0.35, specular=0.05), opacity=1.0)]
     # Edges of the quads, as one line trace (None separates segments).
     ex: list[Any] = []
     ey: list[Any] = []
@@ -119,8 +134,8 @@ def viewer_figure(obj: Polycube | LoopStructure, title: str | None = None):
             ex.append(point[0])
             ey.append(point[1])
             ez.append(point[2])
-    traces.append(go.Scatter3d(x=ex, y=ey, z=ez, mode="lines", line=dict(color="#4d4d4d", width=2),
-                               hoverinfo="skip", name="faces", legendgroup="faces", showlegend=False))
+    traces.append(dict(type="scatter3d", x=ex, y=ey, z=ez, mode="lines", line=dict(color="#4d4d4d", width=2),
+                       hoverinfo="skip", name="faces", legendgroup="faces", showlegend=False))
     if ls is not None:
         for axis in Axis:
             first = True
@@ -129,10 +144,11 @@ def viewer_figure(obj: Polycube | LoopStructure, title: str | None = None):
                 text = f"{axis.name}-loop {loop}, {len(ls.loops[loop])} segments"
                 for stroke, colour in ((plus, AXIS_COLOUR[axis]), (minus, LIGHT_COLOUR[axis])):
                     closed = [*stroke, stroke[0]]
-                    traces.append(go.Scatter3d(
-                        x=[p[0] for p in closed], y=[p[1] for p in closed], z=[p[2] for p in closed],
-                        mode="lines", line=dict(color=colour, width=6), hoverinfo="text", hovertext=text,
-                        name=f"{axis.name}-loops", legendgroup=f"{axis.name}-loops", showlegend=first))
+                    traces.append(dict(
+                        type="scatter3d", x=[p[0] for p in closed], y=[p[1] for p in closed],
+                        z=[p[2] for p in closed], mode="lines", line=dict(color=colour, width=6),
+                        hoverinfo="text", hovertext=text, name=f"{axis.name}-loops",
+                        legendgroup=f"{axis.name}-loops", showlegend=first))
                     first = False
     corner_text = []
     for c in range(q.map.num_corners):
@@ -140,29 +156,31 @@ def viewer_figure(obj: Polycube | LoopStructure, title: str | None = None):
         about = (f"configuration {config.id} ({config.category}): {config.label}" if config is not None
                  else "no polycube corner")
         corner_text.append(f"corner {c} at {tuple(q.positions[c])}<br>degree {q.map.degree(c)}, {about}")
-    traces.append(go.Scatter3d(
-        x=[p[0] for p in q.positions], y=[p[1] for p in q.positions], z=[p[2] for p in q.positions],
-        mode="markers", marker=dict(size=3, color="#202020"), hoverinfo="text", hovertext=corner_text,
-        name="corners", legendgroup="corners", visible="legendonly" if q.map.num_corners > 400 else True))
+    traces.append(dict(
+        type="scatter3d", x=[p[0] for p in q.positions], y=[p[1] for p in q.positions],
+        z=[p[2] for p in q.positions], mode="markers", marker=dict(size=3, color="#202020"),
+        hoverinfo="text", hovertext=corner_text, name="corners", legendgroup="corners",
+        visible="legendonly" if q.map.num_corners > 400 else True))
     heading = title or (f"{q.map.num_corners} corners, {q.map.num_faces} faces, genus {q.genus}"
                         + ("" if ls is None else ", loops " + " ".join(
                             f"{a.name}:{ls.axes.count(a)}" for a in Axis)))
-    fig = go.Figure(traces)
-    fig.update_layout(
+    layout = dict(
         title=dict(text=heading, font=dict(size=14)), margin=dict(l=0, r=0, t=40, b=0),
-        scene=dict(aspectmode="data", xaxis_title="X", yaxis_title="Y", zaxis_title="Z",
-                   camera=dict(eye=dict(x=1.4, y=1.1, z=0.9))),
+        scene=dict(aspectmode="data", xaxis=dict(title=dict(text="X")), yaxis=dict(title=dict(text="Y")),
+                   zaxis=dict(title=dict(text="Z")), camera=dict(eye=dict(x=1.4, y=1.1, z=0.9))),
         legend=dict(itemclick="toggle", groupclick="togglegroup"), paper_bgcolor="white")
-    return fig
+    return {"data": traces, "layout": layout}
 
 
 def viewer_html(obj: Polycube | LoopStructure, title: str | None = None,
                 plotly_js: bool | str = True, full_html: bool = True) -> str:
     """The viewer as HTML text; ``plotly_js``: ``True`` writes plotly.js into the page,
     ``"directory"`` refers to a ``plotly.min.js`` beside it."""
-    return viewer_figure(obj, title).to_html(include_plotlyjs=plotly_js, full_html=full_html,
-                                             default_height="92vh", default_width="100%",
-                                             config={"displaylogo": False, "responsive": True})
+    import plotly.io as pio
+
+    return pio.to_html(viewer_spec(obj, title), include_plotlyjs=plotly_js, full_html=full_html,
+                       default_height="92vh", default_width="100%", validate=False,
+                       config={"displaylogo": False, "responsive": True})
 
 
 def write_viewer(obj: Polycube | LoopStructure, path: str | os.PathLike[str], title: str | None = None,
