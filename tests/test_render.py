@@ -1,6 +1,7 @@
 """Pictures: produced, not blank, deterministic; every bundled example renders."""
 
 import hashlib
+from pathlib import Path
 
 import matplotlib.image as mpimg
 import numpy as np
@@ -359,3 +360,20 @@ def test_segmentation_pictures_mark_what_is_wrong_in_red(tmp_path, capsys):
     assert red_pixels(labels, "valid.png") == 0
     labels[labels.index(Direction.PZ)] = Direction.PX
     assert red_pixels(labels, "bent.png") > 100
+
+
+def test_gallery_workers_write_the_same_site(tmp_path, capsys):
+    """Two worker processes write the same files, byte for byte, as one; a rerun keeps what
+    is there (resumable) and fills in what is missing."""
+    sites = {}
+    for workers in (1, 2):
+        site = tmp_path / f"site{workers}"
+        assert main(["gallery", "-o", str(site), "--limit", "6", "--workers", str(workers)]) == 0
+        sites[workers] = {p.relative_to(site): p.read_bytes() for p in site.rglob("*") if p.is_file()}
+    assert sites[1] == sites[2] and len(sites[1]) == 2 * 6 + 2
+    site = tmp_path / "site1"
+    (site / "img" / "P8.1.png").unlink()
+    kept = (site / "view" / "P8.1.html").stat().st_mtime_ns
+    assert main(["gallery", "-o", str(site), "--limit", "6", "--workers", "2"]) == 0
+    assert (site / "img" / "P8.1.png").read_bytes() == sites[1][Path("img/P8.1.png")]
+    assert (site / "view" / "P8.1.html").stat().st_mtime_ns == kept

@@ -93,7 +93,8 @@ def cmd_gallery(args: argparse.Namespace) -> int:
     total = len(census.entries) if args.limit is None else min(args.limit, len(census.entries))
     bar = tqdm(total=total, desc="gallery", unit="class", disable=None, file=sys.stderr)
     try:
-        built = build_gallery(census, out, args.limit, progress=lambda _: bar.update(1))
+        built = build_gallery(census, out, args.limit, progress=lambda _: bar.update(1),
+                              workers=args.workers)
     except ValueError as err:  # a record whose signature does not decode
         raise CliError(f"{census.directory}: {err}") from None
     except OSError as err:
@@ -195,6 +196,8 @@ def add_commands(command: AddCommand) -> None:
                    "catalogs/genus0)")
     p.add_argument("-o", "--output", metavar="SITE", required=True, help="the site's directory")
     p.add_argument("--limit", type=count_arg(1), metavar="N", help="only the first N classes")
+    p.add_argument("--workers", type=count_arg(1), default=1, metavar="K",
+                   help="local worker processes drawing the pictures and pages")
     p = command("sheet", cmd_sheet, "a grid of small renders with captions, from files or a catalog "
                 "directory", file_arg=False, json_flag=False)
     p.add_argument("sources", metavar="DIR|FILE", nargs="+", help="catalog directories or " + FILE_HELP)

@@ -2,7 +2,7 @@
 those columns, a button that copies the signature, and a viewer page per class.
 
 The site is a directory: ``index.html`` (the list, with the data inside it), ``img/NAME.png``
-(one picture per class, drawn by :func:`polyloops.render.polycube.render_polycube`) and
+(one picture per class, drawn by :func:`polyloops.render.polycube.write_thumbnail`) and
 ``view/NAME.html`` (one interactive viewer per class, sharing ``view/plotly.min.js``).  It
 needs no server and no network: open ``index.html``.  Pictures and viewer pages already there
 are kept, so an interrupted run resumes; every file is written through a temporary file.
@@ -46,7 +46,7 @@ def _row(entry: CatalogEntry) -> dict[str, object]:
 
 
 def build_gallery(census: Census, out: str | Path, limit: int | None = None,
-                  progress: Callable[[str], None] | None = None) -> GalleryBuild:
+                  progress: Callable[[str], None] | None = None, workers: int = 1) -> GalleryBuild:
     """Write the gallery of a catalog into directory ``out``.
 
     Parameters
@@ -59,6 +59,8 @@ def build_gallery(census: Census, out: str | Path, limit: int | None = None,
         List only the first ``limit`` classes.
     progress:
         Called with each class's name once its picture and viewer page exist.
+    workers:
+        Local worker processes drawing the classes' pictures and pages.
 
     Returns
     -------
@@ -71,8 +73,8 @@ def build_gallery(census: Census, out: str | Path, limit: int | None = None,
     ValueError
         When a record's signature does not decode.
     """
-    from polyloops.render.polycube import write_thumbnail
-    from polyloops.render.viewer import write_plotly_js, write_viewer
+    from polyloops.enumerate.parallel import run_jobs
+    from polyloops.render.viewer import write_plotly_js
 
     out = Path(out)
     entries = list(census.entries[:limit] if limit is not None else census.entries)
@@ -80,21 +82,38 @@ def build_gallery(census: Census, out: str | Path, limit: int | None = None,
     (out / "view").mkdir(exist_ok=True)
     if not (out / "view" / "plotly.min.js").exists():
         write_plotly_js(out / "view")
+    tasks = []
     for entry in entries:
         picture, page = out / "img" / f"{entry.name}.png", out / "view" / f"{entry.name}.html"
-        if not picture.exists() or not page.exists():
-            ls = entry.structure()
-            if not picture.exists():
-                write_thumbnail(ls, picture)
-            if not page.exists():
-                write_viewer(ls, page, title=f"{entry.name}: {entry.corners} corners", plotly_js="directory")
+        if picture.exists() and page.exists():
+            if progress is not None:
+                progress(entry.name)
+        else:
+            tasks.append((entry.signature, entry.name, entry.corners, str(picture), str(page)))
+    batch = max(1, min(16, len(tasks) // (4 * max(1, workers))))
+    for name in run_jobs(_draw_class, tasks, workers, ordered=False, batch=batch):
         if progress is not None:
-            progress(entry.name)
+            progress(name)
     up_to = {"full": "rotations and reflections", "rotation": "rotations", "labelled": "renumbering"}
     title = (f"Genus-{census.genus} polycubes through {census.max_corners} corners, "
              f"up to {up_to[str(census.symmetry)]}")
     write_atomic(out / "index.html", gallery_html([_row(e) for e in entries], title))
     return GalleryBuild(out, len(entries))
+
+
+def _draw_class(task: tuple[str, str, int, str, str]) -> str:
+    """One class's picture and viewer page, each only if missing (a job for a worker)."""
+    from polyloops.core.canonical import from_signature
+    from polyloops.render.polycube import write_thumbnail
+    from polyloops.render.viewer import write_viewer
+
+    signature, name, corners, picture, page = task
+    ls = from_signature(signature)
+    if not Path(picture).exists():
+        write_thumbnail(ls, picture)
+    if not Path(page).exists():
+        write_viewer(ls, page, title=f"{name}: {corners} corners", plotly_js="directory")
+    return name
 
 
 def gallery_html(rows: list[dict[str, object]], title: str) -> str:

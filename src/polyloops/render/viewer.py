@@ -175,11 +175,14 @@ def viewer_spec(obj: Polycube | LoopStructure, title: str | None = None) -> dict
 def viewer_html(obj: Polycube | LoopStructure, title: str | None = None,
                 plotly_js: bool | str = True, full_html: bool = True) -> str:
     """The viewer as HTML text; ``plotly_js``: ``True`` writes plotly.js into the page,
-    ``"directory"`` refers to a ``plotly.min.js`` beside it."""
+    ``"directory"`` refers to a ``plotly.min.js`` beside it.  A whole page (one viewer) names
+    its plot ``polyloops-viewer``, so that a fixed input gives the same bytes; a fragment (a
+    notebook shows many) keeps plotly's random name."""
     import plotly.io as pio
 
     return pio.to_html(viewer_spec(obj, title), include_plotlyjs=plotly_js, full_html=full_html,
                        default_height="92vh", default_width="100%", validate=False,
+                       div_id="polyloops-viewer" if full_html else None,
                        config={"displaylogo": False, "responsive": True})
 
 
