@@ -124,19 +124,23 @@ def shade(q: Polycube, buf: DepthBuffer, view: View, loops: LoopStructure | None
     """The colours of a depth buffer's pixels (``(H, W, 3)`` in 0..1): each visible face in
     its shade (by its normal, or by its zone along ``zones``), the quads' edges, the unit grid
     on request, and each loop as two strokes, dark on its ``+`` side and light on its ``-``
-    side, all decided from what each pixel actually sees."""
+    side, all decided from what each pixel actually sees.  Each pixel holds an index into a
+    palette (the faces' colours, then the zones', the strokes', the grid's and the edges'),
+    and the colours are looked up once at the end."""
     nf = q.map.num_faces
-    face_rgb = np.ones((nf + 1, 3))  # the last row: background
+    palette = [np.ones(3)] * (nf + 1)  # a row per face; the last: background
     light = np.ones(nf + 1)
     frames = [_face_frame(q, f) for f in range(nf)]
     mid = np.zeros((nf + 1, 3))
     in_plane = np.zeros((nf + 1, 3), dtype=bool)
     inside = np.zeros(nf + 1, dtype=bool)  # faces that show the viewer their inside
+    axis_of = np.zeros(nf + 1, dtype=np.int64)
     for f in range(nf):
         n = face_normal(q, f)
         inside[f] = n is None or view.facing(n.vector) <= 0
-        face_rgb[f] = _rgb(FACE_SHADE[n.axis] if n is not None and not inside[f] else BACK_COLOUR)
+        palette[f] = _rgb(FACE_SHADE[n.axis] if n is not None and not inside[f] else BACK_COLOUR)
         light[f] = LIGHT[n.axis] if n is not None else 1.0
+        axis_of[f] = n.axis if n is not None else 1  # LIGHT[Y] is 1.0, as for faces without normal
         frame = frames[f]
         if frame is not None:
             a, b, lo, hi = frame
@@ -144,10 +148,18 @@ def shade(q: Polycube, buf: DepthBuffer, view: View, loops: LoopStructure | None
                 in_plane[f, k] = True
                 mid[f, k] = (lo[k] + hi[k]) / 2
     fid = np.where(buf.face >= 0, buf.face, nf)
-    rgb = face_rgb[fid]
+    index = fid.copy()
     seen = buf.face >= 0
+
+    def colour(rgb: np.ndarray) -> int:
+        palette.append(rgb)
+        return len(palette) - 1
+
     if zones is not None and loops is not None:
-        shades = np.array([_rgb(c) for c in zone_shades(loops, zones)])
+        base = len(palette)
+        for shade_rgb in map(_rgb, zone_shades(loops, zones)):  # a row per (zone, face axis)
+            for a in Axis:
+                colour(shade_rgb * LIGHT[a])
         zone_of = loops.zones(zones).zone_of
         low_zone, high_zone = np.zeros(nf + 1, dtype=np.int64), np.zeros(nf + 1, dtype=np.int64)
         for f, face in enumerate(q.faces):
@@ -157,24 +169,26 @@ def shade(q: Polycube, buf: DepthBuffer, view: View, loops: LoopStructure | None
         # A face crossed by a loop of this axis is split at its midline between two zones.
         above = buf.point[..., zones] > mid[fid, zones]
         zone = np.where(in_plane[fid, zones] & above, high_zone[fid], low_zone[fid])
-        rgb = np.where((seen & ~inside[fid])[..., None], shades[zone] * light[fid][..., None], rgb)
+        index = np.where(seen & ~inside[fid], base + zone * 3 + axis_of[fid], index)
     if grid:
+        grey = colour(_rgb("#8c8c8c"))
         for k in range(3):
             frac = np.abs(buf.point[..., k] - np.round(buf.point[..., k]))
-            rgb = np.where((seen & in_plane[fid, k] & (frac < GRID))[..., None], _rgb("#8c8c8c"), rgb)
+            index = np.where(seen & in_plane[fid, k] & (frac < GRID), grey, index)
     if loops is not None:
         for k in Axis:
             d = buf.point[..., k] - mid[fid, k]
             on = seen & in_plane[fid, k]
-            rgb = np.where((on & (np.abs(d + OFFSET) < STROKE))[..., None], _rgb(LIGHT_COLOUR[k]), rgb)
-            rgb = np.where((on & (np.abs(d - OFFSET) < STROKE))[..., None], _rgb(AXIS_COLOUR[k]), rgb)
+            index = np.where(on & (np.abs(d + OFFSET) < STROKE), colour(_rgb(LIGHT_COLOUR[k])), index)
+            index = np.where(on & (np.abs(d - OFFSET) < STROKE), colour(_rgb(AXIS_COLOUR[k])), index)
     # The quads' edges: where the visible face changes between neighbouring pixels.
     edge = np.zeros_like(seen)
     edge[:, :-1] |= fid[:, :-1] != fid[:, 1:]
     edge[:, 1:] |= fid[:, :-1] != fid[:, 1:]
     edge[:-1, :] |= fid[:-1, :] != fid[1:, :]
     edge[1:, :] |= fid[:-1, :] != fid[1:, :]
-    return np.where(edge[..., None], _rgb(EDGE_COLOUR), rgb)
+    index = np.where(edge, colour(_rgb(EDGE_COLOUR)), index)
+    return np.asarray(palette)[index]
 
 
 def draw_polycube(ax, q: Polycube, view: View, loops: LoopStructure | None, pixels: int = 400,
