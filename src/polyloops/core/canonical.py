@@ -695,14 +695,7 @@ def from_signature(sig: str, *, checked: bool = True) -> LoopStructure:
         return _trusted_structure(nxt, twin, lab)
     if sorted(nxt) != list(range(n)) or any(twin[twin[d]] != d or twin[d] == d for d in range(n)):
         raise SignatureError("the signature does not describe a map")
-    prev = [0] * n
-    for d, e in enumerate(nxt):
-        prev[e] = d
-    # Corners are the orbits of rotate(d) = twin(prev(d)).
-    corner = [0] * n
-    for k, orbit in enumerate(permutation_orbits([twin[prev[d]] for d in range(n)])):
-        for d in orbit:
-            corner[d] = k
+    corner = _corners(nxt, twin)
     faces = faces_from_next(nxt, corner)
     labels: dict[tuple[int, int], Direction | Axis] = {}
     for d in range(n):
@@ -717,8 +710,8 @@ def from_signature(sig: str, *, checked: bool = True) -> LoopStructure:
         raise SignatureError(f"the signature does not describe a loop structure: {err}") from None
 
 
-def _trusted_structure(nxt: list[int], twin: list[int], lab: list[int]) -> LoopStructure:
-    """The oriented structure of a canonical code known to be one (see :func:`from_signature`)."""
+def _corners(nxt: list[int], twin: list[int]) -> list[int]:
+    """Each dart's corner: the orbits of rotate(d) = twin(prev(d)), numbered by their lowest dart."""
     n = len(nxt)
     prev = [0] * n
     for d, e in enumerate(nxt):
@@ -727,6 +720,13 @@ def _trusted_structure(nxt: list[int], twin: list[int], lab: list[int]) -> LoopS
     for k, orbit in enumerate(permutation_orbits([twin[prev[d]] for d in range(n)])):
         for d in orbit:
             corner[d] = k
+    return corner
+
+
+def _trusted_structure(nxt: list[int], twin: list[int], lab: list[int]) -> LoopStructure:
+    """The oriented structure of a canonical code known to be one (see :func:`from_signature`)."""
+    n = len(nxt)
+    corner = _corners(nxt, twin)
     members = tuple(Direction)
     labels = {(corner[d], corner[nxt[d]]): members[lab[d]] for d in range(n)}
     return LoopStructure.from_trusted_edge_labels(faces_from_next(nxt, corner), labels)

@@ -91,6 +91,28 @@ def faces_from_next(nxt: Sequence[int], origin: Sequence[int]) -> list[list[int]
     return [[int(origin[d]) for d in orbit] for orbit in permutation_orbits(nxt)]
 
 
+def _face_darts(faces: Sequence[Sequence[int]]
+                ) -> tuple[list[int], list[int], list[int], list[int], list[int]]:
+    """A face list's darts, face after face: each dart's origin, face, next and previous dart
+    around its face, and each face's first dart."""
+    origin: list[int] = []
+    face_of: list[int] = []
+    nxt: list[int] = []
+    prv: list[int] = []
+    face_start: list[int] = []
+    for f, face in enumerate(faces):
+        base = len(origin)
+        face_start.append(base)
+        k = len(face)
+        origin.extend(face)
+        face_of.extend([f] * k)
+        nxt.extend(range(base + 1, base + k))
+        nxt.append(base)
+        prv.append(base + k - 1)
+        prv.extend(range(base, base + k - 1))
+    return origin, face_of, nxt, prv, face_start
+
+
 def _validate_faces(faces: Sequence[Sequence[int]]) -> tuple[tuple[int, ...], ...]:
     out: list[tuple[int, ...]] = []
     if not faces:
@@ -256,21 +278,7 @@ class HalfEdgeMap:
         fs = tuple(map(tuple, faces))
         if use_arrays(sum(map(len, fs))):
             return cls.from_faces(fs)
-        origin: list[int] = []
-        face_of: list[int] = []
-        nxt: list[int] = []
-        prv: list[int] = []
-        face_start: list[int] = []
-        for f, face in enumerate(fs):
-            base = len(origin)
-            face_start.append(base)
-            k = len(face)
-            origin.extend(face)
-            face_of.extend([f] * k)
-            nxt.extend(range(base + 1, base + k))
-            nxt.append(base)
-            prv.append(base + k - 1)
-            prv.extend(range(base, base + k - 1))
+        origin, face_of, nxt, prv, face_start = _face_darts(fs)
         dart_of = {(origin[d], origin[nxt[d]]): d for d in range(len(origin))}
         twin = [dart_of[(origin[nxt[d]], origin[d])] for d in range(len(origin))]
         return cls(fs, max(origin) + 1, (tuple(origin), tuple(face_of), tuple(nxt), tuple(prv),
@@ -279,20 +287,7 @@ class HalfEdgeMap:
     @classmethod
     def _from_faces_tuples(cls, faces: list[Sequence[int]]) -> HalfEdgeMap:
         fs = _validate_faces(faces)
-        origin: list[int] = []
-        face_of: list[int] = []
-        nxt: list[int] = []
-        prv: list[int] = []
-        face_start: list[int] = []
-        for f, face in enumerate(fs):
-            base = len(origin)
-            face_start.append(base)
-            k = len(face)
-            for i, c in enumerate(face):
-                origin.append(c)
-                face_of.append(f)
-                nxt.append(base + (i + 1) % k)
-                prv.append(base + (i - 1) % k)
+        origin, face_of, nxt, prv, face_start = _face_darts(fs)
         n_darts = len(origin)
         by_pair: dict[tuple[int, int], list[int]] = defaultdict(list)
         for d in range(n_darts):
