@@ -37,13 +37,33 @@ def run_jobs(func: Callable[[Any], T], items: Sequence[Any], workers: int = 1, d
     if dask is not None:
         yield from _run_dask(func, items, dask, ordered)
     elif workers > 1 and len(items) > 1:
-        import multiprocessing
-
-        with multiprocessing.Pool(workers, initializer=die_with_parent) as pool:
-            mapper = pool.imap if ordered else pool.imap_unordered
-            yield from mapper(func, items, chunksize=max(1, batch))
+        yield from _run_pool(func, items, workers, ordered, batch)
     else:
         yield from map(func, items)
+
+
+def _run_pool(func: Callable[[Any], T], items: Sequence[Any], workers: int, ordered: bool,
+              batch: int) -> Iterator[T]:
+    """A local pool.  Leaving it early (an error, Ctrl-C, SIGTERM) terminates the workers at
+    once; ``Pool.terminate`` itself can wait forever for a task it is still feeding to workers
+    that are gone (its pipe full), so it gets a few seconds in a daemon thread and the
+    exception goes on regardless."""
+    import multiprocessing
+    import threading
+
+    pool = multiprocessing.Pool(workers, initializer=die_with_parent)
+    try:
+        mapper = pool.imap if ordered else pool.imap_unordered
+        yield from mapper(func, items, chunksize=max(1, batch))
+        pool.close()
+        pool.join()
+    except BaseException:
+        for child in multiprocessing.active_children():
+            child.terminate()
+        stopper = threading.Thread(target=pool.terminate, daemon=True)
+        stopper.start()
+        stopper.join(timeout=5)
+        raise
 
 
 def _run_dask(func: Callable[[Any], T], items: Iterable[Any], address: str, ordered: bool) -> Iterator[T]:
