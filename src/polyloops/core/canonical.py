@@ -84,10 +84,6 @@ _ON_DIRECTIONS = {g: tuple(int(g(d)) for d in Direction) for g in SIGNED_PERMUTA
 _ON_AXES = {g: tuple(int(g.axis(a)) for a in Axis) for g in SIGNED_PERMUTATIONS}
 
 
-def _base_labels(ls: LoopStructure) -> tuple[int, ...]:
-    return ls.direction_code_list
-
-
 def _code(nxt: list[int], twin: list[int], lab: list[int], root: int,
           best: tuple[int, ...] | None) -> tuple[int, ...] | None:
     """The BFS code from ``root``; ``None`` as soon as it is known to exceed ``best``."""
@@ -378,7 +374,7 @@ def canonical_form(obj: LoopStructure | Polycube, mode: Symmetry | str = Symmetr
     degree = [m.degree(m.origin(d)) for d in range(n)]
     face_size = [len(m.faces[m.face_of[d]]) for d in range(n)]
     candidates = []
-    base = _base_labels(ls)
+    base = ls.direction_code_list
     for g in MODES[mode]:
         table = (_ON_DIRECTIONS if ls.oriented else _ON_AXES)[g]
         lab = [table[x] for x in base]
@@ -442,7 +438,7 @@ def _canonical_form_compiled(ls: LoopStructure, mode: Symmetry) -> CanonicalForm
     tables, dets = _group_tables(mode, ls.oriented)
     code, hits, dets_hit = _compiled.canonical(
         array("i", m.next).tobytes(), array("i", m.twin).tobytes(), array("i", m.prev).tobytes(),
-        array("i", _base_labels(ls)).tobytes(), tables, dets)
+        array("i", ls.direction_code_list).tobytes(), tables, dets)
     achiral = dets_hit == 3 if mode == "full" else None
     return CanonicalForm(tuple(array("i", code)), ls.oriented, hits, mode, achiral)
 

@@ -39,7 +39,7 @@ from collections import defaultdict
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from functools import cached_property
-from itertools import islice
+from itertools import chain, islice
 
 from polyloops.core import removal_arrays
 from polyloops.core.arrays import use_arrays
@@ -372,20 +372,16 @@ def count_valid_additions(ls: LoopStructure, axis: Axis, limit: int | None = Non
         found, status = _count_compiled(graph, plain, limit, deadline)
         if status:
             return found, False
-    else:
-        try:
-            for _ in graph.cycles(None, expired, plain):
-                if limit is not None and found >= limit:
-                    return found, False
-                found += 1
-        except SearchStopped:
-            return found, False
+    # What is left to list: the plain zones' cycles (when not counted above), then the cycles
+    # in zones with a handle that separate their zone.
+    handle_cycles = (c for c in graph.cycles(None, expired, [c for c in range(m.num_corners) if handled[c]])
+                     if separates_zone(ls, Addition(axis, c)))
+    listed = handle_cycles if COMPILED_COUNT else chain(graph.cycles(None, expired, plain), handle_cycles)
     try:
-        for cycle in graph.cycles(None, expired, [c for c in range(m.num_corners) if handled[c]]):
-            if separates_zone(ls, Addition(axis, cycle)):
-                if limit is not None and found >= limit:
-                    return found, False
-                found += 1
+        for _ in listed:
+            if limit is not None and found >= limit:
+                return found, False
+            found += 1
     except SearchStopped:
         return found, False
     return found, True
