@@ -1,9 +1,9 @@
-"""Builds the optional compiled parts: the catalog's strip filter and arrangement search, and
-the kernel's canonical form of small structures.  Without a C compiler the install still
-succeeds: without the arrangement search the catalog uses plantri's generator, without the
-strip filter that generator uses its numpy filter (the same records either way), and
-``polyloops catalog`` says so when it runs; without the compiled canonical form the same
-canonical forms and signatures are computed in Python, several times slower."""
+"""Builds the optional compiled parts: the catalog's strip filter and arrangement search, the
+kernel's canonical form of small structures and count of additions, and the pictures' depth
+buffer.  Without a C compiler the install still succeeds: without the arrangement search the
+catalog uses plantri's generator, without the strip filter that generator uses its numpy
+filter (the same records either way), and ``polyloops catalog`` says so when it runs; without
+the others the same canonical forms, counts and pictures are computed in Python, slower."""
 
 import sys
 
@@ -19,6 +19,7 @@ INSTEAD = {
                    "canonical forms of small structures are computed in Python (the same forms, slower)"),
     "_cycles": ("the compiled count of additions",
                 "additions are counted in Python (the same counts, slower)"),
+    "_raster": ("the compiled depth buffer", "pictures are drawn in Python (the same pictures, slower)"),
 }
 
 
@@ -27,8 +28,8 @@ class OptionalBuildExt(build_ext):
         try:
             super().run()
         except Exception as exc:  # no compiler, no Python headers
-            self._skip("no compiled part (strip filter, arrangement search, canonical form, addition count) "
-                       "was built", exc,
+            self._skip("no compiled part (strip filter, arrangement search, canonical form, addition count, "
+                       "depth buffer) was built", exc,
                        "everything runs in Python" + CATALOG_NOTE)
 
     def build_extension(self, ext: Extension) -> None:
@@ -47,6 +48,6 @@ setup(
     ext_modules=[Extension(f"polyloops.{name.replace('/', '.')}", [f"src/polyloops/{name}.c"],
                            extra_compile_args=["-O2"], optional=True)
                  for name in ("enumerate/_strips", "enumerate/_arrangements", "core/_canonical",
-                              "core/_cycles")],
+                              "core/_cycles", "render/_raster")],
     cmdclass={"build_ext": OptionalBuildExt},
 )

@@ -6,9 +6,13 @@ Inputs are written here, not by polyloops' writers: a 130 x 130 x 130 box's loop
 (101,400 faces) as JSON in polyloops' own numbering and shuffled (corners renumbered at random,
 faces and edges in random order, each face from a random corner), labelled meshes of a random
 polycube cut into s x s squares (about 23,000 and 52,000 triangles) as OBJ with a labels
-file, and a 5 x 5 x 1 slab whose 2,445,152 Z-additions are the cycles of a 6 x 6 grid.
+file, and a 5 x 5 x 1 slab whose 2,445,152 Z-additions are the cycles of a 6 x 6 grid, and a
+6 x 5 x 1 slab with 36,879,956 (the size of a DualCube fandisk layout's 39.8 million).
 
-Usage: python benchmarks/commands.py [--repeat 3] [--quick]
+With --pictures, also the gallery (one run: a second would resume) and the sheet of the whole
+shipped catalog with two workers, whose target is wall time.
+
+Usage: python benchmarks/commands.py [--repeat 3] [--quick] [--pictures]
 """
 
 from __future__ import annotations
@@ -17,6 +21,7 @@ import argparse
 import json
 import os
 import random
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -33,6 +38,8 @@ from segmentation import subdivided
 from polyloops.core.builders import box
 from polyloops.io.formats import dumps
 from strategies import random_polycube
+
+CATALOG = Path(__file__).resolve().parent.parent / "src" / "polyloops" / "catalogs" / "genus0"
 
 
 def run(args: list[str], repeat: int) -> tuple[float, float, int]:
@@ -94,6 +101,9 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--quick", action="store_true", help="skip the 10^5-face structures")
+    parser.add_argument("--pictures", action="store_true",
+                        help="also the gallery and the sheet of the whole shipped catalog, two workers "
+                             "(about a minute each a run; the target is wall time)")
     args = parser.parse_args()
     exe = [sys.executable, "-m", "polyloops"]
     rows = []
@@ -119,19 +129,31 @@ def main() -> None:
                        ["segmentation", str(obj), str(labels)], 0.5),
                       (f"segmentation --png, {triangles} triangles",
                        ["segmentation", str(obj), str(labels), "--png", str(tmp / "s.png")], 3.0)]
-        slab = tmp / "slab.json"
+        slab, large = tmp / "slab.json", tmp / "slab-6x5x1.json"
         slab.write_text(dumps(box(5, 5, 1)))
+        large.write_text(dumps(box(6, 5, 1)))
+        # 36.9 million Z-loops, the size of the fandisk layout's 39.8 million (issue 26's 30 s).
         cases += [("moves --count --add Z, 5x5x1 slab (2.4 million)",
                    ["moves", str(slab), "--count", "--add", "Z"], None),
+                  ("moves --count --add Z, 6x5x1 slab (36.9 million)",
+                   ["moves", str(large), "--count", "--add", "Z"], 30.0),
                   ("moves --count --estimate, 5x5x1 slab",
                    ["moves", str(slab), "--count", "--estimate"], None)]
+        if args.pictures:
+            cases += [("gallery, whole catalog, --workers 2 (wall)",
+                       ["gallery", "-o", str(tmp / "site"), "--workers", "2"], 60.0),
+                      ("sheet, whole catalog, --workers 2 (wall)",
+                       ["sheet", str(CATALOG), "-o", str(tmp / "sheet.png"), "--workers", "2"], 60.0)]
         for label, cmd, target in cases:
-            cpu, wall, mb = run([*exe, *cmd], args.repeat)
+            if cmd[0] == "gallery":
+                shutil.rmtree(tmp / "site", ignore_errors=True)  # the gallery resumes: start afresh
+            cpu, wall, mb = run([*exe, *cmd], 1 if cmd[0] == "gallery" else args.repeat)  # a rerun resumes
+            spent = wall if "(wall)" in label else cpu
             rows.append([label, round(cpu, 2), round(wall, 2), mb, "-" if target is None else target,
-                         "-" if target is None else round(cpu / target, 2)])
+                         "-" if target is None else round(spent / target, 2)])
             print(f"{label}: {cpu:.2f} s", file=sys.stderr)
     print(f"load average at the end: {' '.join(f'{x:.2f}' for x in os.getloadavg())}")
-    print(markdown_table(["command", "CPU s", "wall s", "peak MB", "target s", "CPU / target"], rows))
+    print(markdown_table(["command", "CPU s", "wall s", "peak MB", "target s", "CPU (wall) / target"], rows))
 
 
 if __name__ == "__main__":

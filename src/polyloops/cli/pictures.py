@@ -159,14 +159,21 @@ def cmd_sheet(args: argparse.Namespace) -> int:
         items = items[: args.limit]
     if not items:
         raise CliError("nothing to draw")
+    from tqdm import tqdm
+
+    bar = tqdm(total=len(items), desc="sheet", unit="picture", disable=None, file=sys.stderr)
     try:
-        render_sheet(items, out, columns=args.columns)
+        render_sheet(items, out, columns=args.columns, workers=args.workers, progress=lambda: bar.update(1))
     except DualityError as err:
         raise CliError(f"cannot draw: {err}", EXIT_INVALID) from None
     except PictureError as err:
         raise CliError(f"cannot draw: {err}") from None
+    except ValueError as err:  # an ending that is neither .png nor .svg
+        raise CliError(str(err)) from None
     except OSError as err:
         raise write_error(out, err) from None
+    finally:
+        bar.close()
     say(out, f"drew {len(items)} polycubes to {out}")
     return EXIT_OK
 
@@ -204,3 +211,5 @@ def add_commands(command: AddCommand) -> None:
     p.add_argument("-o", "--output", metavar="OUT", required=True, help="OUT.png or OUT.svg")
     p.add_argument("--columns", type=count_arg(1), default=6, metavar="N", help="pictures per row")
     p.add_argument("--limit", type=count_arg(1), metavar="N", help="draw at most N")
+    p.add_argument("--workers", type=count_arg(1), default=1, metavar="K",
+                   help="local worker processes drawing the pictures (PNG sheets)")

@@ -167,28 +167,32 @@ def shade(q: Polycube, buf: DepthBuffer, view: View, loops: LoopStructure | None
             low_zone[f] = zone_of[face[coords.index(min(coords))]]
             high_zone[f] = zone_of[face[coords.index(max(coords))]]
         # A face crossed by a loop of this axis is split at its midline between two zones.
-        above = buf.point[..., zones] > mid[fid, zones]
-        zone = np.where(in_plane[fid, zones] & above, high_zone[fid], low_zone[fid])
-        index = np.where(seen & ~inside[fid], base + zone * 3 + axis_of[fid], index)
+        above = buf.point[..., zones] > np.take(mid[:, zones], fid)
+        zone = np.where(np.take(in_plane[:, zones], fid) & above, np.take(high_zone, fid),
+                        np.take(low_zone, fid))
+        index = np.where(seen & ~np.take(inside, fid), base + zone * 3 + np.take(axis_of, fid), index)
+    # Every override below is in place, in drawing order (later marks cover earlier ones).
+    # Gathers are per axis with np.take: several times faster than indexing rows by ``fid``.
+    plane = [np.take(in_plane[:, k], fid) & seen for k in range(3)]  # seen faces along axis k
     if grid:
         grey = colour(_rgb("#8c8c8c"))
         for k in range(3):
             frac = np.abs(buf.point[..., k] - np.round(buf.point[..., k]))
-            index = np.where(seen & in_plane[fid, k] & (frac < GRID), grey, index)
+            index[plane[k] & (frac < GRID)] = grey
     if loops is not None:
         for k in Axis:
-            d = buf.point[..., k] - mid[fid, k]
-            on = seen & in_plane[fid, k]
-            index = np.where(on & (np.abs(d + OFFSET) < STROKE), colour(_rgb(LIGHT_COLOUR[k])), index)
-            index = np.where(on & (np.abs(d - OFFSET) < STROKE), colour(_rgb(AXIS_COLOUR[k])), index)
+            on, dk = plane[k], buf.point[..., k] - np.take(mid[:, k], fid)
+            index[on & (np.abs(dk + OFFSET) < STROKE)] = colour(_rgb(LIGHT_COLOUR[k]))
+            index[on & (np.abs(dk - OFFSET) < STROKE)] = colour(_rgb(AXIS_COLOUR[k]))
     # The quads' edges: where the visible face changes between neighbouring pixels.
     edge = np.zeros_like(seen)
-    edge[:, :-1] |= fid[:, :-1] != fid[:, 1:]
-    edge[:, 1:] |= fid[:, :-1] != fid[:, 1:]
-    edge[:-1, :] |= fid[:-1, :] != fid[1:, :]
-    edge[1:, :] |= fid[:-1, :] != fid[1:, :]
-    index = np.where(edge, colour(_rgb(EDGE_COLOUR)), index)
-    return np.asarray(palette)[index]
+    across, down = fid[:, :-1] != fid[:, 1:], fid[:-1, :] != fid[1:, :]
+    edge[:, :-1] |= across
+    edge[:, 1:] |= across
+    edge[:-1, :] |= down
+    edge[1:, :] |= down
+    index[edge] = colour(_rgb(EDGE_COLOUR))
+    return np.take(np.asarray(palette), index, axis=0)
 
 
 def draw_polycube(ax, q: Polycube, view: View, loops: LoopStructure | None, pixels: int = 400,
@@ -209,15 +213,33 @@ def _picture(q: Polycube, view: View, loops: LoopStructure | None, pixels: int, 
     ``pixels`` square."""
     buf = rasterize(q, view, pixels * supersample)
     rgb = shade(q, buf, view, loops, zones, grid)
-    return buf, rgb.reshape(pixels, supersample, pixels, supersample, 3).mean(axis=(1, 3))
+    # The mean of each s x s block, as a sum of s * s strided views (several times faster
+    # than a reduction over the block's axes).
+    small = sum(rgb[a::supersample, b::supersample] for a in range(supersample) for b in range(supersample))
+    return buf, np.asarray(small) / supersample ** 2
 
 
 THUMBNAIL_SUPERSAMPLE = 2  # small pictures: 2 x 2 samples a pixel look the same as 3 x 3 there
 
 
+def thumbnail_pixels(obj: Polycube | LoopStructure, pixels: int = 240) -> np.ndarray:
+    """One view with the loops as a ``pixels`` x ``pixels`` x 3 array of 8-bit RGB: what a
+    gallery or a sheet shows for each class.
+
+    Raises
+    ------
+    DualityError, PictureError
+        As :func:`render_polycube`.
+    """
+    q, ls = as_polycube(obj)
+    _, small = _picture(q, choose_views(q, 1)[0], ls, pixels, None, False, THUMBNAIL_SUPERSAMPLE)
+    # Truncated, as matplotlib does when it saves floats (so the gallery's files keep their bytes).
+    return (np.clip(small, 0.0, 1.0) * 255).astype(np.uint8)
+
+
 def write_thumbnail(obj: Polycube | LoopStructure, path: str | os.PathLike[str], pixels: int = 240) -> None:
-    """A small PNG of one view with the loops, the picture alone (no figure around it): what a
-    gallery shows for each class, at a third of :func:`render_polycube`'s cost.
+    """A small PNG of :func:`thumbnail_pixels`, the picture alone (no figure around it), at a
+    third of :func:`render_polycube`'s cost.
 
     Raises
     ------
@@ -230,11 +252,10 @@ def write_thumbnail(obj: Polycube | LoopStructure, path: str | os.PathLike[str],
 
     from polyloops.io.files import writing
 
-    q, ls = as_polycube(obj)
-    _, small = _picture(q, choose_views(q, 1)[0], ls, pixels, None, False, THUMBNAIL_SUPERSAMPLE)
+    rgb = thumbnail_pixels(obj, pixels)
     with writing(path, suffix=".png") as out:
         # None drops matplotlib's version from the file, so a fixed input gives the same bytes
-        matplotlib.image.imsave(out.path, np.clip(small, 0.0, 1.0), format="png",
+        matplotlib.image.imsave(out.path, rgb, format="png",
                                 metadata={"Software": None})  # type: ignore[dict-item]
 
 

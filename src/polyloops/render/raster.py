@@ -4,7 +4,8 @@ A painter's algorithm (sorting faces or unit cells by depth) misorders faces nea
 corners and cannot draw a surface that passes through itself.  Here each face is cut into
 two triangles, and every triangle is rasterised in screen space: at each pixel centre it
 covers, its depth comes from barycentric interpolation, and the pixel keeps the nearest face
-(a depth buffer, numpy-vectorised per triangle).  The buffer keeps, per pixel, the face and
+(a depth buffer: compiled, ``_raster.c``, or numpy-vectorised per triangle, the same
+buffers bit for bit).  The buffer keeps, per pixel, the face and
 the 3D point seen there, so everything drawn on the surface (the quads' edges, the loops,
 zones, the unit grid) is decided per pixel from what is actually visible: nothing can show
 through a nearer face.
@@ -32,6 +33,13 @@ import numpy as np
 
 from polyloops.core.polycube import Polycube
 from polyloops.render.projection import View
+
+try:  # the compiled depth buffer (optional; the same buffers bit for bit)
+    from polyloops.render import _raster
+
+    COMPILED = True  # the tests switch it off to draw with the Python loop
+except ImportError:  # pragma: no cover - depends on the install
+    COMPILED = False
 
 
 @dataclass(frozen=True)
@@ -81,23 +89,33 @@ def rasterize(q: Polycube, view: View, pixels: int,
     # Faces that face the viewer first: where two faces coincide (a surface touching itself),
     # a later face must be nearer by more than a rounding error to win, so the outside shows.
     tie = 1e-7 * max(1.0, float(np.abs(flat_d).max(initial=0.0)))
-    facing = [_facing(pos, corners, toward) for corners in q.faces]
-    for f in sorted(range(len(q.faces)), key=lambda f: (not facing[f], f)):
-        corners = q.faces[f]
-        for tri in ((corners[0], corners[1], corners[2]), (corners[0], corners[2], corners[3])):
+    quads = np.asarray(q.faces, dtype=np.int64).reshape(-1, 4)
+    order = np.argsort(~_facing(pos, quads, toward), kind="stable")
+    # Each face as two triangles (corners 0 1 2 and 0 2 3), in drawing order.
+    tris = quads[order][:, [0, 1, 2, 0, 2, 3]].reshape(-1, 3)
+    faces = np.repeat(order, 2)
+    if COMPILED:
+        a, b, c = tris.T
+        rows = np.column_stack([flat_u[a], flat_v[a], flat_u[b], flat_v[b], flat_u[c], flat_v[c],
+                                flat_d[tris], faces.astype(float), pos[tris].reshape(-1, 9)])
+        _raster.fill(np.ascontiguousarray(rows).tobytes(), u.tobytes(), v.tobytes(), cu - half, cv + half,
+                     step, tie, face, depth, point)
+    else:
+        for f, tri in zip(faces.tolist(), tris.tolist(), strict=True):
             _triangle(f, tri, flat_u, flat_v, flat_d, pos, u, v, step, cu - half, cv + half,
                       face, depth, point, tie)
     return DepthBuffer(face, depth, point, u, v)
 
 
-def _facing(pos: np.ndarray, corners: tuple[int, ...], toward: np.ndarray) -> bool:
-    """Whether a face (counter-clockwise seen from outside) shows its outside to the viewer."""
-    p = pos[list(corners)]
-    normal = np.cross(p[1] - p[0], p[2] - p[0]) + np.cross(p[2] - p[0], p[-1] - p[0])
-    return float(normal @ toward) > 0
+def _facing(pos: np.ndarray, quads: np.ndarray, toward: np.ndarray) -> np.ndarray:
+    """Which faces (counter-clockwise seen from outside) show their outside to the viewer."""
+    p = pos[quads]
+    normal = (np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
+              + np.cross(p[:, 2] - p[:, 0], p[:, 3] - p[:, 0]))
+    return normal @ toward > 0
 
 
-def _triangle(f: int, tri: tuple[int, int, int], fu: np.ndarray, fv: np.ndarray, fd: np.ndarray,
+def _triangle(f: int, tri: list[int], fu: np.ndarray, fv: np.ndarray, fd: np.ndarray,
               pos: np.ndarray, u: np.ndarray, v: np.ndarray, step: float, left: float, top: float,
               face: np.ndarray, depth: np.ndarray, point: np.ndarray, tie: float) -> None:
     a, b, c = tri
