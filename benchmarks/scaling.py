@@ -8,7 +8,12 @@ timed in CPU seconds (``time.process_time``: one process, so one core) and in wa
 The growth exponent of each operation is the slope of log time against log faces between
 the two largest sizes of a family, and over all sizes.
 
-Usage: python benchmarks/scaling.py [--max-faces N] [--repeat R] [--families ...] [--plot FILE]
+With ``--shuffled`` every polycube is renumbered first as another program might write it
+(corners at random, faces in random order, each from a random corner), so that the kernels
+run on a numbering without locality, as on files written elsewhere.
+
+Usage: python benchmarks/scaling.py [--max-faces N] [--repeat R] [--families ...] [--shuffled]
+       [--plot FILE]
 """
 
 from __future__ import annotations
@@ -104,6 +109,23 @@ FAMILIES: dict[str, tuple[Callable[[int], Polycube], Callable[[int], float]]] = 
 }
 
 
+def shuffled(q: Polycube, seed: int = 5) -> Polycube:
+    """``q`` renumbered without locality: corners at random, faces in random order, each
+    from a random corner (the same polycube)."""
+    rng = random.Random(seed)
+    perm = list(range(q.map.num_corners))
+    rng.shuffle(perm)
+    positions = [None] * len(perm)
+    for c, p in enumerate(q.positions):
+        positions[perm[c]] = p
+    faces = []
+    for f in q.faces:
+        k = rng.randrange(len(f))
+        faces.append([perm[c] for c in (*f[k:], *f[:k])])
+    rng.shuffle(faces)
+    return Polycube(HalfEdgeMap.from_faces(faces), positions)
+
+
 def parameter_for(family: str, faces: float) -> int:
     estimate = FAMILIES[family][1]
     n = 2
@@ -166,6 +188,7 @@ def main() -> None:
     parser.add_argument("--families", nargs="+", default=list(FAMILIES), choices=list(FAMILIES))
     parser.add_argument("--skip", nargs="*", default=[], help="operations to leave out")
     parser.add_argument("--plot", metavar="FILE", help="a log-log plot of CPU time against faces")
+    parser.add_argument("--shuffled", action="store_true", help="renumber every polycube at random first")
     args = parser.parse_args()
     targets = [t for t in (1e3, 3e3, 1e4, 3e4, 1e5, 3e5) if t <= args.max_faces * 1.01]
     rows = []
@@ -173,6 +196,8 @@ def main() -> None:
     for family in args.families:
         for target in targets:
             q = FAMILIES[family][0](parameter_for(family, target))
+            if args.shuffled:
+                q = shuffled(q)
             ls = dualize(q)
             faces = q.map.num_faces
             for name, (setup, op) in operations(q, ls).items():

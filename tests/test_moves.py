@@ -475,3 +475,64 @@ def test_cli_estimate(capsys):
     with pytest.raises(SystemExit) as exit_:
         main(["moves", "example:l-shape", "--count", "--estimate", "--walks", "0"])
     assert exit_.value.code == 2
+
+
+def _renumbered_structure(ls, seed):
+    """``ls`` with its corners renumbered and its faces reordered and rotated at random."""
+    import random
+
+    from polyloops.core.directions import Direction
+    from polyloops.core.structure import LoopStructure
+
+    rng = random.Random(seed)
+    perm = list(range(ls.map.num_corners))
+    rng.shuffle(perm)
+    faces = []
+    for f in ls.map.faces:
+        k = rng.randrange(len(f))
+        faces.append([perm[c] for c in (*f[k:], *f[:k])])
+    rng.shuffle(faces)
+    labels = {(perm[u], perm[v]): Direction.parse(lab) for u, v, lab in ls.edge_labels()}
+    return LoopStructure.from_edge_labels(faces, labels)
+
+
+@settings(max_examples=40, deadline=None)
+@given(grown_structures(), st.integers(0, 2**16), st.sampled_from([None, 4, 6, 9]),
+       st.sampled_from(list(Axis)))
+def test_pruned_cycle_search_finds_the_same_cycles_in_the_same_order(ls, seed, max_length, axis):
+    """The search that backs up from walks that cannot close (pruning at every step) and the
+    plain depth-first search (never pruning) list the same cycles in the same order, in the
+    structure's numbering and renumbered at random."""
+    import polyloops.core.moves as moves_module
+    from polyloops.core.moves import _AdditionGraph
+
+    for s in (ls, _renumbered_structure(ls, seed)):
+        found = {}
+        for every in (1, 10**12):
+            saved, moves_module.PRUNE_EVERY = moves_module.PRUNE_EVERY, every
+            try:
+                found[every] = list(_AdditionGraph(s, axis).cycles(max_length))
+            finally:
+                moves_module.PRUNE_EVERY = saved
+        assert found[1] == found[10**12]
+
+
+def test_a_first_addition_on_a_renumbered_box_is_found_without_wandering():
+    """On a 22 x 22 x 22 box renumbered at random, the plain depth-first search walled itself
+    off from its start and wandered for minutes before its first Z-loop; backing up from
+    walks that cannot close finds one within a few hundred thousand steps."""
+    from polyloops.core.builders import box
+    from polyloops.core.moves import SearchStopped, additions
+
+    ls = _renumbered_structure(box(22, 22, 22).dualize(), 7)
+    asked = [0]
+
+    def stop() -> bool:  # asked every 4096 steps of the search
+        asked[0] += 1
+        return asked[0] > 200
+
+    try:
+        found = list(additions(ls, Axis.Z, limit=1, stop=stop))
+    except SearchStopped:
+        found = []
+    assert len(found) == 1 and asked[0] <= 200

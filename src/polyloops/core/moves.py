@@ -186,20 +186,47 @@ class _AdditionGraph:
 
     def _extend(self, start: int, first: int, limit: int, back: dict[int, int] | None,
                 stop: Callable[[], bool] | None, ticks: list[int]) -> Iterator[tuple[int, ...]]:
+        """The cycles from ``start`` that begin with dart ``first``, depth first.
+
+        A walk can wall itself off from ``start`` (on a surface numbered without locality, the
+        corners above ``start`` lie everywhere, and a depth-first walk wanders), and then
+        everything below it is fruitless: exponentially many walks, none closing.  So after
+        every ``num_darts`` steps the search works out which darts can still get back to
+        ``start`` avoiding the walk's corners (:meth:`_can_return`), and steps only onto those
+        until the walk is shorter than it was then.  That only cuts walks that cannot close, so
+        the cycles and their order are the same (a test compares the two searches)."""
         m = self.ls.map
         path = [first]
         on_path = {start, m.target(first)}
         stack = [iter(self.succ[first])]
         far = limit + 1
+        returning: set[int] | None = None  # darts that can get back, for walks of the path
+        returning_depth = 0                # extending the path as it was this long
+        steps, every = 0, PRUNE_EVERY if PRUNE_EVERY is not None else m.num_darts
         while stack:
             if stop is not None:
                 ticks[0] += 1
                 if ticks[0] % 4096 == 0 and stop():
                     raise SearchStopped
+            steps += 1
+            if steps >= every and returning is None:
+                steps = 0
+                # Back up to the deepest walk that can still close (a walk that can close
+                # shortened by a step still can: walk on along it), then step only where the
+                # way back stays open.
+                keep = self._deepest_open(start, first, path)
+                while len(path) > keep:
+                    stack.pop()
+                    on_path.discard(m.target(path.pop()))
+                if not path:
+                    return
+                returning, returning_depth = self._can_return(start, first, on_path), len(path)
             nxt = next(stack[-1], None)
             if nxt is None:
                 stack.pop()
                 on_path.discard(m.target(path.pop()))
+                if len(path) < returning_depth:
+                    returning = None  # the walk is shorter: the set may have grown
                 continue
             w = m.target(nxt)
             if w == start:
@@ -210,9 +237,51 @@ class _AdditionGraph:
                 continue
             if back is not None and len(path) + 1 + back.get(nxt, far) > limit:
                 continue
+            if returning is not None and nxt not in returning:
+                continue
             path.append(nxt)
             on_path.add(w)
             stack.append(iter(self.succ[nxt]))
+
+    def _deepest_open(self, start: int, first: int, path: list[int]) -> int:
+        """The largest ``j`` such that ``path[j - 1]`` can get back to ``start`` avoiding the
+        corners the walk reached before it (0 when not even ``first`` can), by bisection: if
+        the walk of ``j`` darts can close, so can the walk of fewer."""
+        m = self.ls.map
+
+        def open_(j: int) -> bool:
+            avoid = {m.target(d) for d in path[:j - 1]}
+            return path[j - 1] in self._can_return(start, first, avoid)
+
+        low, high = 0, len(path)  # open_(low) holds (for 0, trivially); find the last that does
+        while low < high:
+            mid = (low + high + 1) // 2
+            if open_(mid):
+                low = mid
+            else:
+                high = mid - 1
+        return low
+
+    def _can_return(self, start: int, first: int, avoid: set[int]) -> set[int]:
+        """The darts from which a walk can reach ``start`` through corners above it and not in
+        ``avoid``, arriving so that it may leave along ``first`` (turns as the graph allows,
+        corners possibly repeated: a superset of the darts that begin a simple way back)."""
+        m = self.ls.map
+        pred = self.pred
+        seen = {e for e in (m.twin[d] for d in m.outgoing(start))
+                if m.origin(e) > start and m.origin(e) not in avoid and self.ok(e, first)}
+        frontier = list(seen)
+        while frontier:
+            e = frontier.pop()
+            for d in pred.get(e, ()):
+                t = m.target(d)
+                if d not in seen and t > start and t not in avoid:
+                    seen.add(d)
+                    frontier.append(d)
+        return seen
+
+
+PRUNE_EVERY: int | None = None  # steps between prunes; None: the map's darts (tests set 1)
 
 
 class SearchStopped(PolyloopsError):
