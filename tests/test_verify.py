@@ -159,3 +159,29 @@ def test_strategies_cover_genus_0_to_2(kind, genus):
         q = random_polycube(seed, kind, 8)
         assert q.genus == genus
         assert check_polycube(q).valid
+
+
+@given(perturbed_structures())
+def test_level_graph_witnesses_equal_a_search_over_the_whole_graph(ls):
+    """Each strongly connected part's witness cycle, searched within the part, is the cycle a
+    search over the whole level graph (restricted to the part's arcs) finds: the same zones
+    and loops in the same order, and one per part that has a cycle."""
+    import networkx as nx
+
+    from polyloops.core.directions import Axis
+    from polyloops.core.zones import find_directed_cycle
+    from polyloops.verify.loop_structure import cycle_violations
+
+    if not ls.oriented:
+        return
+    expected = []
+    for axis in Axis:
+        g = ls.level_graph(axis)
+        for part in nx.strongly_connected_components(g):
+            cycle = find_directed_cycle(g.number_of_nodes(), list(g.subgraph(part).edges(keys=True)))
+            if cycle is not None:
+                expected.append((str(axis), [u for u, _, _ in cycle], [k for _, _, k in cycle]))
+    event(f"parts with a cycle: {min(len(expected), 3)}")
+    found = [(v.witness["axis"], v.witness["zones"], v.witness["loops"])
+             for v in cycle_violations(ReportBuilder("loop-structure", "Definition 4"), ls)]
+    assert found == expected
