@@ -64,6 +64,14 @@ def test_docs_site_builds_without_warnings(tmp_path):
     assert res.returncode == 0, res.stderr[-3000:]
     api = (tmp_path / "api" / "core" / "index.html").read_text(encoding="utf-8")
     assert "dualize" in api and "Parameters" in api
+    # Sphinx roles in docstrings are links (tools/griffe_roles.py), never raw text.
+    import re
+
+    raw = re.compile(r":(func|class|mod|meth|attr|data|exc|obj):")
+    pages = sorted((tmp_path / "api").rglob("*.html"))
+    assert pages and not [p.name for p in pages if raw.search(p.read_text(encoding="utf-8"))]
+    # removals' docstring names :func:`check_removal`: a link to its entry on the same page
+    assert 'href="#polyloops.core.moves.check_removal"' in api
 
 
 def test_tutorial_notebook_runs(tmp_path, monkeypatch):
@@ -161,3 +169,20 @@ def test_the_api_reference_covers_every_module():
     missing = sorted(m for m in modules - listed
                      if not importlib.import_module(m).__file__.endswith("__init__.py") or m in with_api)
     assert missing == []
+
+
+def test_the_api_overview_lists_every_top_level_name():
+    """docs/api/index.md carries the table tools/api_names.py generates: every name in
+    ``polyloops.__all__`` with its summary and where it is defined."""
+    import importlib.util as util
+
+    spec = util.spec_from_file_location("api_names", ROOT / "tools" / "api_names.py")
+    assert spec is not None and spec.loader is not None
+    module = util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    page = (ROOT / "docs" / "api" / "index.md").read_text(encoding="utf-8")
+    assert module.table() in page, "regenerate with: python tools/api_names.py"
+    import polyloops
+
+    listed = {row[0] for row in module.rows()}
+    assert listed == set(polyloops.__all__) - module.SKIP

@@ -69,6 +69,8 @@ _ALL = [
     Example("self-crossing", "a loop that crosses itself (Condition 3)", False, builders.self_crossing),
 ]
 EXAMPLES: dict[str, Example] = {e.name: e for e in _ALL}
+"""The bundled polycubes and loop structures by name, each an :class:`Example` with its
+description and whether it is valid (the labelled meshes are :data:`LABELLED_EXAMPLES`)."""
 
 
 # -- labelled triangle meshes ------------------------------------------------------------
