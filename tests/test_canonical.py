@@ -228,7 +228,7 @@ def test_one_default_mode_everywhere(capsys, tmp_path):
     assert printed["signature"] == pl.signature(load_example("l-shape"))
     assert main(["catalog", "query", str(default_catalog()), f"signature = '{printed['signature']}'",
                  "--json"]) == 0
-    rows = json.loads(capsys.readouterr().out)
+    rows = json.loads(capsys.readouterr().out)["rows"]
     assert [r["name"] for r in rows] == [pl.identify(load_example("l-shape")).name]
 
 

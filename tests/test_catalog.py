@@ -119,9 +119,11 @@ def test_summary_form_and_records(small_catalog):
 
 def test_query(capsys, small_catalog):
     assert main(["catalog", "query", str(small_catalog), "corners = 16", "--json"]) == 0
-    rows = json.loads(capsys.readouterr().out)
+    answer = json.loads(capsys.readouterr().out)
+    rows = answer["rows"]
     summary = json.loads((small_catalog / "summary.json").read_text())
-    assert len(rows) == summary["counts"]["16"]["rotation"]
+    assert len(rows) == answer["count"] == summary["counts"]["16"]["rotation"]
+    assert answer["where"] == "corners = 16" and answer["catalog"] == str(small_catalog)
     assert main(["catalog", "query", str(small_catalog), "nonsense ((("]) == 2
     assert "bad query" in capsys.readouterr().err
 
@@ -136,7 +138,7 @@ def test_query_without_the_database_reads_the_records(tmp_path, capsys, small_ca
         answers = []
         for directory in (small_catalog, bare):
             assert main(["catalog", "query", str(directory), where, "--json"]) == 0
-            answers.append(json.loads(capsys.readouterr().out))
+            answers.append(json.loads(capsys.readouterr().out)["rows"])
         assert answers[0] == answers[1] and answers[0]
     csvs = [main(["catalog", "export", str(d), "--csv", "-o", str(tmp_path / f"{d.name}.csv")]) for d in
             (small_catalog, bare)]
@@ -284,7 +286,7 @@ def test_chiral_query_in_the_readme(capsys):
     """The README's example query returns every chiral class with 24 corners."""
     assert "corners = 24 AND chiral" in (ROOT / "catalogs" / "README.md").read_text()
     assert main(["catalog", "query", str(SHIPPED), "corners = 24 AND chiral", "--json"]) == 0
-    rows = json.loads(capsys.readouterr().out)
+    rows = json.loads(capsys.readouterr().out)["rows"]
     counts = json.loads((SHIPPED / "summary.json").read_text())["counts"]["24"]
     assert len(rows) == counts["rotation"] - counts["full"] > 0
 
@@ -294,7 +296,7 @@ def test_irreducible_records_include_the_non_incremental_polycube(capsys):
     from polyloops.io.examples import load_example
 
     assert main(["catalog", "query", str(SHIPPED), "irreducible", "--json"]) == 0
-    rows = json.loads(capsys.readouterr().out)
+    rows = json.loads(capsys.readouterr().out)["rows"]
     assert signature(load_example("non-incremental"), "full") in {r["signature"] for r in rows}
     assert {r["signature"] for r in rows} == {r["signature"] for r in shipped_records() if r["irreducible"]}
 
@@ -569,7 +571,7 @@ def test_catalog_query_in_strange_directory_names(tmp_path, capsys, name):
     cat = tmp_path / name
     shutil.copytree(SHIPPED, cat)
     assert main(["catalog", "query", str(cat), "corners = 16", "--json"]) == 0
-    assert [r["name"] for r in json.loads(capsys.readouterr().out)] == ["P16.1", "P16.2"]
+    assert [r["name"] for r in json.loads(capsys.readouterr().out)["rows"]] == ["P16.1", "P16.2"]
     empty = tmp_path / f"empty-{name}"
     empty.mkdir()
     assert main(["catalog", "query", str(empty), "corners = 16"]) == 2

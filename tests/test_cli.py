@@ -10,6 +10,8 @@ from polyloops.cli import main
 from polyloops.io.examples import EXAMPLES, load_example
 from polyloops.io.formats import dumps, loads
 
+ROOT = __import__("pathlib").Path(__file__).resolve().parent.parent
+
 COMMANDS = ["examples", "verify", "primalize", "dualize", "info", "corners", "orient", "moves", "add",
             "remove", "signature", "catalog", "catalog-query", "render", "sheet", "convert", "reach", "path",
             "conjecture", "identify", "catalog-export", "from-voxels", "segmentation", "view", "gallery"]
@@ -168,7 +170,7 @@ def test_module_entry_point():
 def test_examples_listing(capsys):
     status, out, _ = run(capsys, "examples", "--json")
     assert status == 0
-    assert {row["name"] for row in json.loads(out)} == set(EXAMPLES)
+    assert {row["name"] for row in json.loads(out)["examples"]} == set(EXAMPLES)
 
 
 @pytest.mark.parametrize("which", ["genus0", "check"])
@@ -177,3 +179,70 @@ def test_conjecture_subcommand_help(capsys, which):
         main(["conjecture", which, "--help"])
     assert exit_.value.code == 0
     assert "--catalog" in capsys.readouterr().out
+
+
+def _leaf_commands():
+    import argparse
+
+    from polyloops.cli.main import build_parser
+
+    def walk(parser, words):
+        subs = [a for a in parser._actions if isinstance(a, argparse._SubParsersAction)]
+        if not subs:
+            yield words, parser
+        for action in subs:
+            for name, sub in action.choices.items():
+                yield from walk(sub, [*words, name])
+
+    return list(walk(build_parser(), []))
+
+
+def test_every_leaf_command_has_json():
+    missing = [" ".join(words) for words, parser in _leaf_commands()
+               if "--json" not in {o for a in parser._actions for o in a.option_strings}]
+    assert len(_leaf_commands()) >= 26 and not missing
+
+
+def test_writing_commands_summarise_what_they_wrote_in_json(tmp_path, capsys):
+    """Each command that writes a file prints one JSON object with --json: the file and its
+    counts; without -o the written document is inside it."""
+    cube = tmp_path / "cube.json"
+    cube.write_text(dumps(load_example("cube").dualize()))
+    voxels = tmp_path / "v.txt"
+    voxels.write_text("0 0 0\n0 0 0\n1 0 0\n")  # a cube listed twice is one cube
+    cases = [
+        (["primalize", str(cube), "-o", str(tmp_path / "p.json")], {"kind": "polycube", "corners": 8}),
+        (["primalize", str(cube)], {"kind": "polycube", "corners": 8}),
+        (["dualize", "example:l-shape", "-o", str(tmp_path / "d.json")],
+         {"kind": "loop-structure", "corners": 16, "loops": len(load_example("l-shape").dualize().loops)}),
+        (["convert", "example:cube", str(tmp_path / "c.obj")], {"kind": "polycube", "faces": 6}),
+        (["from-voxels", str(voxels), "-o", str(tmp_path / "f.json")], {"cubes": 2, "corners": 12}),
+        (["add", str(cube), "X0", "-o", str(tmp_path / "a.json")],
+         {"move": {"add": "X", "corners": [0, 1, 3, 2]}, "loops": 4}),
+        (["remove", str(tmp_path / "a.json"), "3", "-o", str(tmp_path / "r.json")],
+         {"move": {"remove": 3, "axis": "X"}, "loops": 3}),
+        (["render", "example:cube", "-o", str(tmp_path / "r.png")], {"drew": "polycube", "views": 1}),
+        (["view", "example:cube", "-o", str(tmp_path / "v.html")], {"page": "viewer"}),
+        (["sheet", "example:cube", "example:l-shape", "-o", str(tmp_path / "s.png")], {"pictures": 2}),
+        (["gallery", "-o", str(tmp_path / "site"), "--limit", "2"], {"classes": 2}),
+        (["catalog", "export", str(ROOT / "catalogs" / "genus0"), "--csv", "-o", str(tmp_path / "e.csv")],
+         {"rows": sum(1 for _ in (ROOT / "catalogs" / "genus0" / "catalog.jsonl").open())}),
+    ]
+    for argv, expected in cases:
+        status, out, _ = run(capsys, *argv, "--json")
+        assert status == 0, argv
+        data = json.loads(out)
+        assert isinstance(data, dict) and {k: data[k] for k in expected} == expected, argv
+        if "-o" in argv:
+            assert data["output"] == argv[argv.index("-o") + 1] and "document" not in data
+    status, out, _ = run(capsys, "primalize", str(cube), "--json")
+    assert loads(json.dumps(json.loads(out)["document"])).map.num_corners == 8
+
+
+def test_listing_commands_print_one_json_object(capsys):
+    for argv, key in ((["examples"], "examples"), (["corners"], "configurations"),
+                      (["corners", "--symmetry", "rotation"], "classes"),
+                      (["catalog", "query", str(ROOT / "catalogs" / "genus0"), "corners = 16"], "rows")):
+        status, out, _ = run(capsys, *argv, "--json")
+        data = json.loads(out)
+        assert status == 0 and isinstance(data, dict) and data[key], argv

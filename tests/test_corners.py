@@ -142,14 +142,14 @@ def test_picture_renders_and_is_not_blank(tmp_path):
 
 def test_cli_json(capsys):
     assert main(["corners", "--json"]) == 0
-    rows = json.loads(capsys.readouterr().out)
+    rows = json.loads(capsys.readouterr().out)["configurations"]
     assert len(rows) == 126
     for r in rows:
         assert r["category"] in CATEGORIES
         assert r["directions"] == [str(d) for d in corner_configurations()[r["id"]].directions]
     assert main(["corners", "--json", "--symmetry", "full"]) == 0
-    classes = json.loads(capsys.readouterr().out)
-    assert sum(c["size"] for c in classes) == 126
+    answer = json.loads(capsys.readouterr().out)
+    assert answer["symmetry"] == "full" and sum(c["size"] for c in answer["classes"]) == 126
 
 
 def test_info_reports_corner_histogram(capsys):

@@ -38,6 +38,37 @@ def emit(args: argparse.Namespace, data: Any, text: str) -> None:
     print(json.dumps(data, indent=2) if getattr(args, "json", False) else text, file=out)
 
 
+def structure_facts(obj: Any) -> dict[str, Any]:
+    """The counts a JSON summary gives for a polycube or loop structure it wrote."""
+    from polyloops.core.polycube import Polycube
+
+    m = obj.map
+    facts: dict[str, Any] = {"kind": "polycube" if isinstance(obj, Polycube) else "loop-structure",
+                             "corners": m.num_corners, "faces": m.num_faces, "genus": obj.genus}
+    if not isinstance(obj, Polycube):
+        facts["loops"] = len(obj.loops)
+    return facts
+
+
+def written(args: argparse.Namespace, text: str | None, facts: dict[str, Any],
+            line: str | None = None, document: Any = None) -> None:
+    """What a command that writes a file says.  Without ``--json``: the written text itself
+    when it went to standard output (no ``-o``), else ``line``.  With ``--json``: one object,
+    ``output`` (the file; ``null`` when the text went to standard output, and then
+    ``document`` holds it: the structure's JSON document as data, or the text) and ``facts``."""
+    from polyloops.cli.load import say
+
+    if getattr(args, "json", False):
+        data: dict[str, Any] = {"output": getattr(args, "output", None), **facts}
+        if text is not None:
+            data["document"] = text if document is None else document
+        emit(args, data, "")
+    elif text is not None:
+        print(text, end="")
+    elif line is not None:
+        say(getattr(args, "output", None), line)
+
+
 def plural(n: int, word: str, many: str | None = None) -> str:
     """``1 problem``, ``2 problems`` (``many`` for irregular plurals).
 

@@ -8,7 +8,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from polyloops.cli.args import SYMMETRIES, AddCommand, Parser, count_arg, emit
+from polyloops.cli.args import SYMMETRIES, AddCommand, Parser, count_arg, emit, written
 from polyloops.cli.load import EXIT_OK, CliError, write_text
 
 
@@ -92,7 +92,8 @@ def cmd_catalog_query(args: argparse.Namespace) -> int:
     except CatalogError as err:
         raise CliError(str(err)) from None
     if args.json:
-        print(json.dumps([dict(zip(columns, r, strict=True)) for r in rows], indent=1))
+        print(json.dumps({"catalog": args.dir, "where": args.where, "count": len(rows),
+                          "rows": [dict(zip(columns, r, strict=True)) for r in rows]}, indent=1))
     else:
         print("\t".join(columns))
         for r in rows:
@@ -107,10 +108,12 @@ def cmd_catalog_export(args: argparse.Namespace) -> int:
         text = export_csv(Path(args.dir))
     except CatalogError as err:
         raise CliError(str(err)) from None
+    rows = max(0, text.count("\n") - 1)  # the header line aside
     if args.output:
         write_text(args.output, text)
+        written(args, None, {"rows": rows}, None)
     else:
-        print(text, end="")
+        written(args, text, {"rows": rows})
     return EXIT_OK
 
 
@@ -165,7 +168,9 @@ def add_commands(command: AddCommand, hidden: AddCommand) -> None:
                    help="print one JSON object for scripts")
     e = actions.add_parser("export", help=EXPORT_HELP, description=EXPORT_HELP)
     _export_arguments(e)
+    e.add_argument("--json", action="store_true", default=argparse.SUPPRESS,
+                   help="print one JSON object for scripts (what was written and how many rows)")
     # The older spellings 'catalog-query' and 'catalog-export' still work.
     _query_arguments(hidden("catalog-query", cmd_catalog_query, QUERY_HELP))
-    _export_arguments(hidden("catalog-export", cmd_catalog_export, EXPORT_HELP, json_flag=False))
+    _export_arguments(hidden("catalog-export", cmd_catalog_export, EXPORT_HELP))
 

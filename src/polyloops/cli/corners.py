@@ -29,14 +29,14 @@ def cmd_corners(args: argparse.Namespace) -> int:
         shown = sum(1 for r in rows if r["examples"])
         header = (f"{len(rows)} corner configurations (id, category, directions counter-clockwise, "
                   f"bundled examples that contain it); {shown} appear in the bundled examples")
-        emit(args, rows, header + "\n" + text)
+        emit(args, {"symmetry": "labelled", "configurations": rows}, header + "\n" + text)
         return EXIT_OK
     classes = [c.to_json() for c in corner_classes(args.symmetry)]
     text = "\n".join(f"{r['class']:>3}  {r['category']:<18} size {r['size']:>2}  "
                      f"{' '.join(r['representative']):<20} members {r['members']}"  # type: ignore[arg-type]
                      for r in classes)
     header = f"{len(classes)} classes of corner configurations under symmetry '{args.symmetry}'"
-    emit(args, classes, header + "\n" + text)
+    emit(args, {"symmetry": str(args.symmetry), "classes": classes}, header + "\n" + text)
     return EXIT_OK
 
 

@@ -6,9 +6,10 @@ import argparse
 import sys
 from typing import Any
 
-from polyloops.cli.args import AddCommand, count_arg, emit, seconds_arg, stream
+from polyloops.cli.args import AddCommand, count_arg, emit, seconds_arg, stream, structure_facts, written
 from polyloops.cli.load import EXIT_INVALID, EXIT_OK, CliError, read_valid_structure, write_output
 from polyloops.core.directions import Axis
+from polyloops.io.formats import to_data
 
 
 def _count_additions(ls: Any, axes: list[Axis], args: argparse.Namespace) -> Any:
@@ -130,9 +131,10 @@ def cmd_add(args: argparse.Namespace) -> int:
     except MoveError as err:
         advice = f"'polyloops moves {args.file}' lists the valid additions"
         raise CliError(f"{args.file}: {err} ({advice})") from None
-    text = write_output(args.output, add_loop(ls, move))
-    if text is not None:
-        print(text, end="")
+    child = add_loop(ls, move)
+    written(args, write_output(args.output, child),
+            {"move": {"add": move.axis.name, "corners": list(move.cycle)}, **structure_facts(child)},
+            document=to_data(child))
     return EXIT_OK
 
 
@@ -145,9 +147,10 @@ def cmd_remove(args: argparse.Namespace) -> int:
     check = check_removal(ls, args.loop)
     if not check.valid:
         raise CliError(f"{args.file}: loop {args.loop} is not removable: {check.reason}", EXIT_INVALID)
-    text = write_output(args.output, remove_loop(ls, args.loop))
-    if text is not None:
-        print(text, end="")
+    child = remove_loop(ls, args.loop)
+    written(args, write_output(args.output, child),
+            {"move": {"remove": args.loop, "axis": ls.axes[args.loop].name}, **structure_facts(child)},
+            document=to_data(child))
     return EXIT_OK
 
 
@@ -177,11 +180,10 @@ def add_commands(command: AddCommand) -> None:
                    help="random walks of --estimate (default 10000)")
     p = command("add", cmd_add, "add one loop: MOVE is an index from 'polyloops moves' (Y3: the "
                 "fourth valid Y-loop; a plain N counts through X, Y and Z), or AXIS:c0,c1,... (the "
-                "corners the loop walks past, + side on the right)", json_flag=False)
+                "corners the loop walks past, + side on the right)")
     p.add_argument("move", metavar="MOVE")
     p.add_argument("-o", "--output", metavar="OUT", help="write the new structure here")
-    p = command("remove", cmd_remove, "remove one loop, if that leaves a polycube loop structure",
-                json_flag=False)
+    p = command("remove", cmd_remove, "remove one loop, if that leaves a polycube loop structure")
     p.add_argument("loop", metavar="LOOP", type=count_arg(0),
                    help="a loop id from 'polyloops moves --remove'")
     p.add_argument("-o", "--output", metavar="OUT", help="write the new structure here")

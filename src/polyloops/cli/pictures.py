@@ -7,7 +7,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from polyloops.cli.args import FILE_HELP, AddCommand, count_arg
+from polyloops.cli.args import FILE_HELP, AddCommand, count_arg, written
 from polyloops.cli.load import (
     EXIT_INVALID,
     EXIT_OK,
@@ -15,7 +15,6 @@ from polyloops.cli.load import (
     output_dir,
     picture_output,
     read_structure,
-    say,
     write_error,
 )
 from polyloops.core.directions import Axis
@@ -37,11 +36,13 @@ def cmd_render(args: argparse.Namespace) -> int:
     ls = dualize(obj) if isinstance(obj, Polycube) and report.valid else obj
     if isinstance(ls, LoopStructure) and not ls.oriented:
         raise CliError(f"{args.file}: is a labelled loop structure without sides; orient it first")
+    drew, status = "polycube", EXIT_OK
     try:
         if args.level_graphs and not args.zones:
             if not isinstance(ls, LoopStructure):
                 raise CliError(f"{args.file}: not a polycube, so it has no loop structure", EXIT_INVALID)
             render_level_graphs(ls, out)
+            drew = "level graphs"
         else:
             title = None if report.valid else f"not valid: {report.first_violation()}"[:110]
             zones = Axis.parse(args.zones) if args.zones else None
@@ -49,14 +50,18 @@ def cmd_render(args: argparse.Namespace) -> int:
                 render_polycube(obj, out, views=args.views, loops=args.loops, title=title, zones=zones,
                                 level_graph=args.level_graphs_beside, grid=args.grid)
             except DualityError as err:
+                # No polycube to draw: as for 'view', exit 1; the level graphs show why.
                 render_level_graphs(obj, out)  # type: ignore[arg-type]
-                print(f"polyloops render: {args.file}: no polycube ({err}); drew the level graphs instead",
-                      file=sys.stderr)
+                drew, status = "level graphs", EXIT_INVALID
+                print(f"polyloops render: {args.file}: no polycube to draw: {err}; drew its level graphs "
+                      "instead", file=sys.stderr)
     except PictureError as err:
         raise CliError(f"{args.file}: {err}") from None
     except OSError as err:
         raise write_error(out, err) from None
-    return EXIT_OK
+    written(args, None, {"drew": drew, "views": args.views if drew == "polycube" else 0,
+                         "valid": report.valid})
+    return status
 
 
 def cmd_view(args: argparse.Namespace) -> int:
@@ -70,12 +75,12 @@ def cmd_view(args: argparse.Namespace) -> int:
     try:
         write_viewer(obj, args.output, title=_caption(args.file, obj))
     except DualityError as err:
-        raise CliError(f"{args.file}: no polycube to show: {err}", EXIT_INVALID) from None
+        raise CliError(f"{args.file}: no polycube to draw: {err}", EXIT_INVALID) from None
     except PictureError as err:
         raise CliError(f"{args.file}: {err}") from None
     except OSError as err:
         raise write_error(args.output, err) from None
-    say(args.output, f"wrote {args.output}: open it in a browser (no network needed)")
+    written(args, None, {"page": "viewer"}, f"wrote {args.output}: open it in a browser (no network needed)")
     return EXIT_OK
 
 
@@ -101,7 +106,9 @@ def cmd_gallery(args: argparse.Namespace) -> int:
         raise write_error(out, err) from None
     finally:
         bar.close()
-    print(f"wrote {built.classes} classes to {out / 'index.html'} (open it in a browser; no network needed)")
+    index = out / "index.html"
+    written(args, None, {"classes": built.classes, "index": str(index)},
+            f"wrote {built.classes} classes to {index} (open it in a browser; no network needed)")
     return EXIT_OK
 
 
@@ -174,13 +181,14 @@ def cmd_sheet(args: argparse.Namespace) -> int:
         raise write_error(out, err) from None
     finally:
         bar.close()
-    say(out, f"drew {len(items)} polycubes to {out}")
+    written(args, None, {"pictures": len(items)}, f"drew {len(items)} polycubes to {out}")
     return EXIT_OK
 
 
 def add_commands(command: AddCommand) -> None:
     p = command("render", cmd_render, "draw the polycube in 3D with its loops (a loop structure is "
-                "primalized first), or its three level graphs", json_flag=False)
+                "primalized first), or its three level graphs; exit 1 when it has no polycube (its "
+                "level graphs are drawn instead)")
     p.add_argument("-o", "--output", metavar="OUT", required=True, help="OUT.png or OUT.svg")
     p.add_argument("--views", type=count_arg(1, 8), default=1, metavar="N",
                    help="N views from different octants (1 to 8)")
@@ -193,12 +201,12 @@ def add_commands(command: AddCommand) -> None:
     p.add_argument("--grid", action="store_true", help="draw the unit grid on the faces too")
     p = command("view", cmd_view, "an interactive 3D viewer in one self-contained HTML page: turn and "
                 "zoom the polycube, show or hide each axis' loops and the corners, hover to name "
-                "faces, zones, loops and corners", json_flag=False)
+                "faces, zones, loops and corners; exit 1 when it has no polycube")
     p.add_argument("-o", "--output", metavar="OUT", required=True, help="OUT.html")
     p = command("gallery", cmd_gallery, "a catalog as a static site: every class with its picture, name, "
                 "corners, loops per axis, corner categories, chirality and irreducibility, filters by "
                 "these columns, a button that copies the signature, and a viewer page per class "
-                "(resumable)", file_arg=False, json_flag=False)
+                "(resumable)", file_arg=False)
     p.add_argument("dir", metavar="DIR", nargs="?", help="a catalog directory (default: the shipped "
                    "catalogs/genus0)")
     p.add_argument("-o", "--output", metavar="SITE", required=True, help="the site's directory")
@@ -206,7 +214,7 @@ def add_commands(command: AddCommand) -> None:
     p.add_argument("--workers", type=count_arg(1), default=1, metavar="K",
                    help="local worker processes drawing the pictures and pages")
     p = command("sheet", cmd_sheet, "a grid of small renders with captions, from files or a catalog "
-                "directory", file_arg=False, json_flag=False)
+                "directory", file_arg=False)
     p.add_argument("sources", metavar="DIR|FILE", nargs="+", help="catalog directories or " + FILE_HELP)
     p.add_argument("-o", "--output", metavar="OUT", required=True, help="OUT.png or OUT.svg")
     p.add_argument("--columns", type=count_arg(1), default=6, metavar="N", help="pictures per row")

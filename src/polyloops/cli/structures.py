@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import argparse
 
-from polyloops.cli.args import SYMMETRIES, AddCommand, emit
+from polyloops.cli.args import SYMMETRIES, AddCommand, emit, plural, structure_facts, written
 from polyloops.cli.info import format_summary
 from polyloops.cli.load import (
     EXIT_INVALID,
@@ -18,12 +18,12 @@ from polyloops.cli.load import (
     read_loop_structure,
     read_structure,
     read_text_file,
-    say,
     write_output,
 )
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LabelError
 from polyloops.io.examples import EXAMPLES
+from polyloops.io.formats import to_data
 from polyloops.verify import Report
 
 
@@ -32,7 +32,7 @@ def cmd_examples(args: argparse.Namespace) -> int:
     width = max(len(name) for name in EXAMPLES)
     text = "\n".join(f"{r['name']:<{width}}  {'valid  ' if r['valid'] else 'invalid'}  {r['description']}"
                      for r in rows)
-    emit(args, rows, text)
+    emit(args, {"examples": rows}, text)
     return EXIT_OK
 
 
@@ -72,11 +72,6 @@ def cmd_info(args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
-def _print_or_write(text: str | None) -> None:
-    if text is not None:
-        print(text, end="")
-
-
 def cmd_primalize(args: argparse.Namespace) -> int:
     from polyloops.core.duality import primalize
 
@@ -85,7 +80,8 @@ def cmd_primalize(args: argparse.Namespace) -> int:
         raise CliError(f"{args.file}: is a polycube; primalize takes a loop structure (try dualize)")
     ls = read_loop_structure(args.file, valid=True, built=obj)
     # A structure and its mirror have one polycube; write it outward, as the format says.
-    _print_or_write(write_output(args.output, primalize(ls).outward()))
+    q = primalize(ls).outward()
+    written(args, write_output(args.output, q), structure_facts(q), document=to_data(q))
     return EXIT_OK
 
 
@@ -93,13 +89,15 @@ def cmd_dualize(args: argparse.Namespace) -> int:
     obj = read_structure(args.file)
     if not isinstance(obj, Polycube):
         raise CliError(f"{args.file}: is a loop structure; dualize takes a polycube (try primalize)")
-    _print_or_write(write_output(args.output, read_loop_structure(args.file, built=obj)))
+    ls = read_loop_structure(args.file, built=obj)
+    written(args, write_output(args.output, ls), structure_facts(ls), document=to_data(ls))
     return EXIT_OK
 
 
 def cmd_convert(args: argparse.Namespace) -> int:
     obj = read_structure(args.file, fix_orientation=args.fix_orientation, given=args.source_format)
     write_output(args.output, obj, args.target_format)
+    written(args, None, structure_facts(obj))
     return EXIT_OK
 
 
@@ -116,12 +114,10 @@ def cmd_from_voxels(args: argparse.Namespace) -> int:
         q = polycube_from_voxels(cells)
     except VoxelError as err:
         raise CliError(f"{args.file}: {err}", EXIT_INVALID) from None
-    text = write_output(args.output, q)
-    if text is not None:
-        print(text, end="")
-    else:
-        say(args.output, f"{len(cells)} cubes: a polycube with {q.map.num_corners} corners and "
-            f"{q.map.num_faces} faces, genus {q.genus}, written to {args.output}")
+    cubes = len({tuple(c) for c in cells})  # a cube listed twice is one cube
+    written(args, write_output(args.output, q), {"cubes": cubes, **structure_facts(q)}, document=to_data(q),
+            line=f"{plural(cubes, 'cube')}: a polycube with {plural(q.map.num_corners, 'corner')} and "
+            f"{plural(q.map.num_faces, 'face')}, genus {q.genus}, written to {args.output}")
     return EXIT_OK
 
 
@@ -165,15 +161,14 @@ def add_commands(command: AddCommand) -> None:
     command("verify", cmd_verify, "check a file against the paper's definitions "
             "(Definition 1 for a polycube, Definitions 3 and 4 and Theorem 3 for a loop structure)")
     p = command("primalize", cmd_primalize, "the polycube of a polycube loop structure (Theorem 2), "
-                "compact coordinates from the level graphs", json_flag=False)
+                "compact coordinates from the level graphs")
     p.add_argument("-o", "--output", metavar="OUT", help="write here (.obj for Wavefront OBJ, else JSON)")
-    p = command("dualize", cmd_dualize, "the oriented loop structure of a polycube (Theorem 1)",
-                json_flag=False)
+    p = command("dualize", cmd_dualize, "the oriented loop structure of a polycube (Theorem 1)")
     p.add_argument("-o", "--output", metavar="OUT", help="write JSON here instead of to standard output")
     p = command("convert", cmd_convert, "write a polycube or loop structure in another format: "
                 "polyloops JSON, DualCube's Abstract Polycube Graph (.graph, .apg), an OBJ quad mesh "
                 "(.obj, polycubes only) or plantri's planar code (.pc, .plc: the quad map alone), "
-                "chosen by extension or by --from/--to", json_flag=False)
+                "chosen by extension or by --from/--to")
     p.add_argument("output", metavar="OUT", help="the file to write (.graph/.apg, .obj, .pc, else JSON)")
     p.add_argument("--from", dest="source_format", choices=FORMATS,
                    help="the format of FILE (default: by its extension)")
@@ -183,8 +178,7 @@ def add_commands(command: AddCommand) -> None:
                    help="turn an inside-out polycube (faces clockwise seen from outside) outward")
     p = command("from-voxels", cmd_from_voxels, "the polycube bounding a set of unit cubes: FILE is a "
                 "text file of 'x y z' lines or a 3D NumPy .npy grid of booleans; where cubes only "
-                "touch along an edge or at a corner the surface is split there", file_arg=False,
-                json_flag=False)
+                "touch along an edge or at a corner the surface is split there", file_arg=False)
     p.add_argument("file", metavar="FILE", help="cubes: 'x y z' per line (# comments), or a .npy grid")
     p.add_argument("-o", "--output", metavar="OUT", help="write the polycube here (.json, .graph, .obj); "
                    "default: JSON on standard output")
