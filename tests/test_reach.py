@@ -16,7 +16,7 @@ from polyloops.core.canonical import from_signature, signature
 from polyloops.core.directions import Axis
 from polyloops.core.moves import Addition, add_loop, canonical_cycle, try_remove
 from polyloops.enumerate.conjecture import certificate_lines, check_certificate, settle_catalog
-from polyloops.enumerate.reach import MoveKind, check_path, explore, neighbours, shortest_path
+from polyloops.enumerate.reach import MoveKind, check_path, explore, neighbours, path_steps, shortest_path
 from polyloops.io.examples import load_example
 from polyloops.verify import check_polycube_loop_structure
 
@@ -178,7 +178,7 @@ def test_path_and_its_check(tmp_path, capsys):
     assert doc["kind"] == "path" and len(doc["steps"]) >= 3
     assert main(["verify", str(out)]) == 0
     # Corrupt the path: skip a step (a shortest path's ends are not one move apart).
-    bad = {**doc, "steps": [doc["steps"][0], *doc["steps"][2:]]}
+    bad = {**doc, "steps": [doc["steps"][0], *doc["steps"][2:]], "moves": doc["moves"][1:]}
     (tmp_path / "bad.json").write_text(json.dumps(bad))
     capsys.readouterr()
     assert main(["verify", str(tmp_path / "bad.json"), "--json"]) == 1
@@ -191,6 +191,49 @@ def test_path_and_its_check(tmp_path, capsys):
     assert main(["path", "example:cube", "example:non-incremental", "--max-corners", "26"]) == 1
     assert "no path within 26 corners" in capsys.readouterr().err
     assert main(["path", "example:cube", "example:l-shape", "--max-corners", "12"]) == 2
+
+
+def test_path_tells_its_moves_and_the_file_replays_them(tmp_path, capsys):
+    """``path`` prints each move; the path file stores the moves beside the steps, in the
+    certificate's move format, and replaying them from the first step gives every stored step
+    exactly; ``verify`` checks the moves, and still reads a path file without them."""
+    from polyloops.enumerate.reach import Move
+    from polyloops.io.formats import to_data
+
+    out = tmp_path / "p.json"
+    assert main(["path", "example:cube", "example:non-incremental", "--max-corners", "34",
+                 "-o", str(out), "--json"]) == 0
+    told = json.loads(capsys.readouterr().out)
+    doc = json.loads(out.read_text())
+    assert [s["move"] for s in told["steps"]] == doc["moves"] and len(doc["moves"]) == told["moves"]
+    steps = path_steps(doc)
+    ls = steps[0]
+    for i, move in enumerate(doc["moves"]):
+        ls = Move.from_json(move).apply(ls)
+        assert to_data(ls) == doc["steps"][i + 1]
+        assert told["steps"][i]["corners"] == ls.map.num_corners
+        assert told["steps"][i]["text"].startswith("add " if "add" in move else "remove loop ")
+    assert signature(ls, "labelled") == signature(load_example("non-incremental").dualize(), "labelled")
+    assert any("remove" in m for m in doc["moves"])  # the way to the non-incremental polycube
+    assert main(["path", "example:cube", "example:l-shape", "--max-corners", "20"]) == 0
+    text = capsys.readouterr().out
+    assert "2 moves" in text and " 1. add a" in text and " 2. add a" in text
+    assert main(["verify", str(out)]) == 0
+    older = {k: v for k, v in doc.items() if k != "moves"}
+    (tmp_path / "older.json").write_text(json.dumps(older))
+    assert main(["verify", str(tmp_path / "older.json")]) == 0
+    wrong = {**doc, "moves": [{"remove": 0}, *doc["moves"][1:]]}
+    (tmp_path / "wrong.json").write_text(json.dumps(wrong))
+    capsys.readouterr()
+    assert main(["verify", str(tmp_path / "wrong.json"), "--json"]) == 1
+    assert json.loads(capsys.readouterr().out)["bad_step"] == 1
+    short = {**doc, "moves": doc["moves"][1:]}
+    (tmp_path / "short.json").write_text(json.dumps(short))
+    assert main(["verify", str(tmp_path / "short.json")]) == 1
+    assert "moves for" in capsys.readouterr().out
+    (tmp_path / "junk.json").write_text(json.dumps({**doc, "moves": [{"jump": 1}]}))
+    assert main(["verify", str(tmp_path / "junk.json")]) == 2
+    assert "move 0" in capsys.readouterr().err
 
 
 def test_check_path_names_the_first_bad_step():

@@ -19,7 +19,6 @@ from polyloops.cli.load import (
     read_valid_structure,
     write_text,
 )
-from polyloops.io.formats import to_data
 
 
 def _kinds(text: str):
@@ -77,35 +76,39 @@ def cmd_reach(args: argparse.Namespace) -> int:
 
 
 def cmd_path(args: argparse.Namespace) -> int:
-    from polyloops.enumerate.reach import shortest_path
+    from polyloops.enumerate.reach import find_path
 
     source = read_valid_structure(args.source)
     target = read_valid_structure(args.target)
     for name, ls in ((args.source, source), (args.target, target)):
         if ls.map.num_corners > args.max_corners:
             raise CliError(f"{name}: has {ls.map.num_corners} corners, more than --max-corners")
-    steps = shortest_path(source, target, args.max_corners, _kinds(args.moves))
-    if steps is None:
+    path = find_path(source, target, args.max_corners, _kinds(args.moves))
+    if path is None:
         raise CliError(f"{args.source} -> {args.target}: no path within {args.max_corners} corners",
                        EXIT_INVALID)
-    doc = {"polyloops": 1, "kind": "path", "steps": [to_data(s) for s in steps]}
     if args.output:
-        write_text(args.output, json.dumps(doc, separators=(",", ":")) + "\n")
-    corners = [s.map.num_corners for s in steps]
-    data = {"moves": len(steps) - 1, "corners": corners, "max_corners": max(corners)}
-    text = (f"{len(steps) - 1} moves; corners along the path: {' '.join(map(str, corners))}"
-            + (f"\nwrote {args.output}" if args.output else ""))
-    emit(args, data, text)
+        write_text(args.output, json.dumps(path.to_json(), separators=(",", ":")) + "\n")
+    corners = [s.map.num_corners for s in path.steps]
+    data = {"moves": len(path.moves), "corners": corners, "max_corners": max(corners),
+            "steps": [{"move": m.to_json(), "corners": corners[i + 1], "text": path.describe(i)}
+                      for i, m in enumerate(path.moves)]}
+    lines = [f"{plural(len(path.moves), 'move')}; corners along the path: {' '.join(map(str, corners))}"]
+    lines += [f"  {i + 1}. {path.describe(i)}" for i in range(len(path.moves))]
+    if args.output:
+        lines.append(f"wrote {args.output}")
+    emit(args, data, "\n".join(lines))
     return EXIT_OK
 
 
 def verify_path_file(source: str, data: dict[str, Any], as_json: bool) -> int:
-    """``polyloops verify`` on a path file: every step, then every consecutive pair."""
-    from polyloops.enumerate.reach import check_path, path_steps
+    """``polyloops verify`` on a path file: every step, then every consecutive pair (by its
+    move, when the file gives the moves)."""
+    from polyloops.enumerate.reach import check_path, path_moves, path_steps
     from polyloops.io.formats import FormatError
 
     try:
-        check = check_path(path_steps(data))
+        check = check_path(path_steps(data), path_moves(data))
     except FormatError as err:
         raise CliError(f"{source}: {err}") from None
     result = {"valid": check.valid, "kind": "path", "steps": check.steps, "bad_step": check.bad_step,
@@ -113,9 +116,11 @@ def verify_path_file(source: str, data: dict[str, Any], as_json: bool) -> int:
     if as_json:
         print(json.dumps(result, indent=2))
     elif check.valid:
-        print(f"{source}: path: valid ({check.steps - 1} moves, every step a polycube loop structure)")
+        moves = plural(check.steps - 1, "move")
+        print(f"{source}: path: valid ({moves}, every step a polycube loop structure)")
     else:
-        print(f"{source}: path: INVALID at step {check.bad_step}: {check.reason}")
+        where = "" if check.bad_step is None else f" at step {check.bad_step}"
+        print(f"{source}: path: INVALID{where}: {check.reason}")
     return EXIT_OK if check.valid else EXIT_INVALID
 
 

@@ -541,10 +541,22 @@ class PathCheck:
 
 
 def one_move_apart(a: LoopStructure, b: LoopStructure) -> bool:
-    """Whether ``b`` is, up to renumbering, ``a`` with one loop added or removed.  Every
-    candidate is tried (every simple cycle of the paper's graphs of the right length, before
-    any separation test, and every loop) and compared by labelled signature; validity of both
-    ends is the caller's business, so this never trusts the fast move tests."""
+    """Whether ``b`` is, up to renumbering, ``a`` with one loop added or removed (see
+    :func:`move_between`)."""
+    return move_between(a, b) is not None
+
+
+def move_between(a: LoopStructure, b: LoopStructure) -> Move | None:
+    """A move that turns ``a`` into ``b`` up to renumbering, in ``a``'s numbering, or ``None``.
+    Every candidate is tried (every simple cycle of the paper's graphs of the right length,
+    before any separation test, and every loop) and compared by labelled signature; validity
+    of both ends is the caller's business, so this never trusts the fast move tests.
+
+    >>> from polyloops.io.examples import load_example
+    >>> cube, box = load_example("cube").dualize(), load_example("box-2x1x1").dualize()
+    >>> print(move_between(cube, box).kind, move_between(box, cube))
+    add remove loop 2
+    """
     target = canonical_form(b, "labelled").signature
     grow = b.map.num_corners - a.map.num_corners
     if grow >= 3:
@@ -553,20 +565,73 @@ def one_move_apart(a: LoopStructure, b: LoopStructure) -> bool:
                 if len(cycle) == grow:
                     child = add_loop(a, Addition(axis, cycle))
                     if canonical_form(child, "labelled").signature == target:
-                        return True
+                        return Move(MoveKind.ADD, axis, tuple(cycle))
     elif grow < 0:
         for lp in a.loops:
             smaller = try_remove(a, lp.id)
             if smaller is not None and canonical_form(smaller, "labelled").signature == target:
-                return True
-    return False
+                return Move.remove(lp.id)
+    return None
 
 
-def check_path(steps: Sequence[LoopStructure]) -> PathCheck:
+@dataclass(frozen=True)
+class MovePath:
+    """A path in the move graph told both ways: ``steps[i + 1]`` is ``moves[i]`` applied to
+    ``steps[i]`` (so replaying the moves from the first step gives every step exactly)."""
+
+    steps: tuple[LoopStructure, ...]
+    moves: tuple[Move, ...]
+
+    def describe(self, i: int) -> str:
+        """Move ``i`` in words, such as ``add an X-loop past corners 0 1 3 2 (8 -> 12 corners)``."""
+        move, before, after = self.moves[i], self.steps[i], self.steps[i + 1]
+        sizes = f"({before.map.num_corners} -> {after.map.num_corners} corners)"
+        if move.kind is MoveKind.ADD:
+            article = "an" if move.axis is Axis.X else "a"
+            return f"add {article} {move.axis}-loop past corners {' '.join(map(str, move.cycle))} {sizes}"
+        assert move.loop is not None
+        return f"remove loop {move.loop} ({before.axes[move.loop]}) {sizes}"
+
+    def to_json(self) -> dict[str, Any]:
+        """The path document ``polyloops path -o`` writes: the steps, and the moves in the
+        conjecture certificate's format."""
+        from polyloops.io.formats import to_data
+
+        return {"polyloops": 1, "kind": "path", "steps": [to_data(s) for s in self.steps],
+                "moves": [m.to_json() for m in self.moves]}
+
+
+def find_path(source: LoopStructure, target: LoopStructure, max_corners: int,
+              kinds: Sequence[MoveKind] = BOTH) -> MovePath | None:
+    """:func:`shortest_path` with its moves: a shortest path from ``source`` to a structure
+    isomorphic to ``target``, each step the previous one with its move applied.
+
+    >>> from polyloops.io.examples import load_example
+    >>> path = find_path(load_example("cube").dualize(), load_example("l-shape").dualize(), 16)
+    >>> [path.describe(i).split(" (")[1] for i in range(len(path.moves))]
+    ['8 -> 12 corners)', '12 -> 16 corners)']
+    """
+    found = shortest_path(source, target, max_corners, kinds)
+    if found is None:
+        return None
+    steps, moves = [source], []
+    for nxt in found[1:]:
+        move = move_between(steps[-1], nxt)
+        if move is None:  # pragma: no cover - shortest_path's steps are one move apart
+            raise AssertionError("consecutive steps of a shortest path are not one move apart")
+        moves.append(move)
+        steps.append(move.apply(steps[-1]))
+    return MovePath(tuple(steps), tuple(moves))
+
+
+def check_path(steps: Sequence[LoopStructure], moves: Sequence[Move] | None = None) -> PathCheck:
     """Every step a polycube loop structure (Definition 4, full checker) and every consecutive
-    pair one move apart; the first bad step is named (0-based)."""
+    pair one move apart; with ``moves``, each move applied to its step gives the next step up
+    to renumbering.  The first bad step is named (0-based)."""
     from polyloops.verify import check_polycube_loop_structure
 
+    if moves is not None and len(moves) != len(steps) - 1:
+        return PathCheck(False, len(steps), None, f"{len(moves)} moves for {len(steps)} steps")
     for i, ls in enumerate(steps):
         if not ls.oriented:
             return PathCheck(False, len(steps), i, "a labelled structure without sides")
@@ -575,9 +640,37 @@ def check_path(steps: Sequence[LoopStructure]) -> PathCheck:
             v = report.violations[0]
             return PathCheck(False, len(steps), i, f"not a polycube loop structure: {v.definition} "
                              f"condition {v.condition}: {v.message}")
-        if i and not one_move_apart(steps[i - 1], ls):
+        if i and moves is not None:
+            try:
+                after = moves[i - 1].apply(steps[i - 1])
+            except (KeyError, IndexError, ValueError, TypeError) as err:
+                return PathCheck(False, len(steps), i, f"move {i - 1} ({moves[i - 1]}) cannot be applied "
+                                 f"to step {i - 1}: {err}")
+            if canonical_form(after, "labelled").signature != canonical_form(ls, "labelled").signature:
+                return PathCheck(False, len(steps), i, f"move {i - 1} ({moves[i - 1]}) applied to step "
+                                 f"{i - 1} does not give this step")
+        elif i and not one_move_apart(steps[i - 1], ls):
             return PathCheck(False, len(steps), i, f"not one loop addition or removal from step {i - 1}")
     return PathCheck(True, len(steps))
+
+
+def path_moves(data: dict[str, Any]) -> list[Move] | None:
+    """The moves of a path document, or ``None`` when it has none (files written before paths
+    told their moves).  Raises :class:`~polyloops.io.formats.FormatError` for a bad move."""
+    from polyloops.io.formats import FormatError
+
+    moves = data.get("moves")
+    if moves is None:
+        return None
+    if not isinstance(moves, list):
+        raise FormatError('a path\'s "moves" must be a list')
+    out = []
+    for i, move in enumerate(moves):
+        try:
+            out.append(Move.from_json(move))
+        except ValueError as err:
+            raise FormatError(f"move {i}: {err}") from None
+    return out
 
 
 def path_steps(data: dict[str, Any]) -> list[LoopStructure]:
