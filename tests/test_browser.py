@@ -87,3 +87,52 @@ def test_gallery_filters_copy_and_links(chromium, tmp_path, capsys):
     assert page.url.endswith(".html") and "/view/" in page.url
     assert errors == []
     page.close()
+
+
+@pytest.mark.browser
+@pytest.mark.parametrize("dims", [(1, 1, 6), (6, 2, 1), (3, 3, 3)])
+def test_the_first_view_shows_the_whole_shape(chromium, tmp_path, dims):
+    """The first camera is fitted to the bounding box: nothing of a tall tower, a flat slab or
+    a cube touches the plot's edges (the scene's ink stays inside, with a margin)."""
+    from polyloops.core.builders import box
+    from polyloops.render.viewer import write_viewer
+
+    out = tmp_path / "shape.html"
+    write_viewer(box(*dims), out)
+    page, errors = viewer_page(chromium, out)
+    scene_box = page.locator(".js-plotly-plot canvas").first.bounding_box()  # the 3D scene
+    assert scene_box is not None
+    png = page.screenshot()
+    img = mpimg.imread(io.BytesIO(png), format="png")[..., :3]
+    top, left = int(scene_box["y"]), int(scene_box["x"])
+    bottom, right = int(top + scene_box["height"]), int(left + scene_box["width"])
+    scene = np.any(np.abs(img[top:bottom, left:right] - 1.0) > 0.05, axis=-1)
+    rows = np.flatnonzero(scene.any(axis=1))
+    cols = np.flatnonzero(scene.any(axis=0))
+    assert len(rows) and len(cols)
+    margin = 10
+    assert rows[0] > margin and rows[-1] < scene.shape[0] - margin, (rows[0], rows[-1], scene.shape)
+    assert cols[0] > margin and cols[-1] < scene.shape[1] - margin, (cols[0], cols[-1], scene.shape)
+    assert errors == []
+    page.close()
+
+
+@pytest.mark.browser
+def test_notebook_viewers_share_one_plotly(chromium, tmp_path):
+    """Viewer fragments as a notebook shows them, one after another in one page: only the
+    first carries plotly.js, and every one draws."""
+    import subprocess
+    import sys
+
+    code = ("import polyloops as pl\n"
+            "shown = [pl.load_example(n)._repr_html_() for n in ['cube', 'l-shape', 'ring']]\n"
+            "print('<!-- next -->'.join(shown))\n")
+    body = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    page_file = tmp_path / "notebook.html"
+    page_file.write_text(f"<html><body>{body}</body></html>", encoding="utf-8")
+    page, errors = open_page(chromium, page_file.as_uri())
+    page.wait_for_function("document.querySelectorAll('.js-plotly-plot canvas').length >= 3")
+    first, *others = body.split("<!-- next -->")
+    assert len(others) == 2 and "plotly.js v" in first and not any("plotly.js v" in o for o in others)
+    assert errors == []
+    page.close()

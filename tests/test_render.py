@@ -1,6 +1,7 @@
 """Pictures: produced, not blank, deterministic; every bundled example renders."""
 
 import hashlib
+import json
 from pathlib import Path
 
 import matplotlib.image as mpimg
@@ -433,3 +434,18 @@ def test_compiled_depth_buffer_equals_the_python_loop(q, pixels, azimuth, elevat
             raster.COMPILED = True
         for name in ("face", "depth", "point"):
             assert np.array_equal(getattr(fast, name), getattr(slow, name)), name
+
+
+def test_a_notebook_gets_plotly_once(tmp_path):
+    """In a fresh process (a kernel), the first viewer carries plotly.js and the next ones do
+    not: twenty polycubes cost one copy of plotly, not twenty."""
+    import subprocess
+    import sys
+
+    code = ("import json, polyloops as pl\n"
+            "pages = [pl.load_example(n)._repr_html_() for n in ['cube', 'l-shape'] * 10]\n"
+            "print(json.dumps([len(p) for p in pages]))\n")
+    sizes = json.loads(subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                                      check=True).stdout)
+    assert sizes[0] > 3_000_000 and max(sizes[1:]) < 200_000, sizes
+    assert sum(sizes) < sizes[0] + 19 * 200_000

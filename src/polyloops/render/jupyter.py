@@ -33,9 +33,18 @@ def _structure_png(self: LoopStructure) -> bytes | None:
         return None
 
 
+_plotly_sent = False  # whether this process has put plotly.js into a notebook's page yet
+
+
 def _viewer_html(self: Polycube | LoopStructure) -> str | None:
     """Jupyter shows the interactive viewer; ``None`` (the picture instead) when there is no
-    polycube to show or plotly is missing."""
+    polycube to show or plotly is missing.
+
+    plotly.js (4.8 MB) goes into the first viewer this process shows and defines ``Plotly`` for
+    the whole page; later viewers are a few kB each and use it, so a notebook of twenty
+    polycubes stays small.  (A notebook reopened with saved outputs has that first output
+    too; a kernel restarted sends plotly.js again with its first viewer.)"""
+    global _plotly_sent
     from polyloops.core.duality import DualityError
     from polyloops.render.polycube import PictureError
 
@@ -44,9 +53,11 @@ def _viewer_html(self: Polycube | LoopStructure) -> str | None:
     except ImportError:
         return None
     try:
-        return viewer_html(self, full_html=False)
+        html = viewer_html(self, full_html=False, plotly_js=not _plotly_sent)
     except (DualityError, PictureError):
         return None
+    _plotly_sent = True
+    return html
 
 
 def register() -> None:

@@ -15,6 +15,7 @@ them), so it opens without a network.
 
 from __future__ import annotations
 
+import math
 import os
 from typing import Any
 
@@ -164,12 +165,41 @@ def viewer_spec(obj: Polycube | LoopStructure, title: str | None = None) -> dict
     heading = title or (f"{q.map.num_corners} corners, {q.map.num_faces} faces, genus {q.genus}"
                         + ("" if ls is None else ", loops " + " ".join(
                             f"{a.name}:{ls.axes.count(a)}" for a in Axis)))
+    aspect, eye = fitted_camera(q)
     layout = dict(
         title=dict(text=heading, font=dict(size=14)), margin=dict(l=0, r=0, t=40, b=0),
-        scene=dict(aspectmode="data", xaxis=dict(title=dict(text="X")), yaxis=dict(title=dict(text="Y")),
-                   zaxis=dict(title=dict(text="Z")), camera=dict(eye=dict(x=1.4, y=1.1, z=0.9))),
+        scene=dict(aspectmode="manual", aspectratio=aspect, xaxis=dict(title=dict(text="X")),
+                   yaxis=dict(title=dict(text="Y")), zaxis=dict(title=dict(text="Z")),
+                   camera=dict(eye=eye, center=dict(x=0, y=0, z=0))),
         legend=dict(itemclick="toggle", groupclick="togglegroup"), paper_bgcolor="white")
     return {"data": traces, "layout": layout}
+
+
+VIEW_DIRECTION = (1.4, 1.1, 0.9)  # from the front right, a little above
+FIELD_OF_VIEW = math.radians(45)  # plotly's perspective camera (vertical)
+FIT_MARGIN = 1.15  # room for the axes' ticks and titles around the box
+
+
+def fitted_camera(q: Polycube) -> tuple[dict[str, float], dict[str, float]]:
+    """The scene's aspect ratio (the bounding box's sides over its longest, as plotly's
+    ``aspectmode="data"``) and an eye far enough along :data:`VIEW_DIRECTION` that the whole
+    box fits in the first view: the sphere around the box (radius half its diagonal, in the
+    scene's units, where the box spans the aspect ratio about the centre) seen within the
+    field of view, with a margin.
+
+    >>> from polyloops.core.builders import box
+    >>> aspect, eye = fitted_camera(box(1, 1, 6))
+    >>> aspect == {"x": 1 / 6, "y": 1 / 6, "z": 1.0}, round(math.dist((0, 0, 0), eye.values()), 2)
+    (True, 1.75)
+    """
+    lo, hi = q.bounding_box()
+    sides = [max(h - low, 1e-9) for low, h in zip(lo, hi, strict=True)]
+    longest = max(sides)
+    aspect = {k: side / longest for k, side in zip("xyz", sides, strict=True)}
+    radius = math.dist((0, 0, 0), aspect.values()) / 2
+    distance = FIT_MARGIN * radius / math.sin(FIELD_OF_VIEW / 2)
+    norm = math.dist((0, 0, 0), VIEW_DIRECTION)
+    return aspect, {k: distance * c / norm for k, c in zip("xyz", VIEW_DIRECTION, strict=True)}
 
 
 def viewer_html(obj: Polycube | LoopStructure, title: str | None = None,
