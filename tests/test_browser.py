@@ -90,7 +90,8 @@ def test_gallery_filters_copy_and_links(chromium, tmp_path, capsys):
 
 
 @pytest.mark.browser
-@pytest.mark.parametrize("dims", [(1, 1, 6), (6, 2, 1), (3, 3, 3)])
+@pytest.mark.parametrize("dims", [(1, 1, 6), pytest.param((6, 2, 1), marks=pytest.mark.slow),
+                                  pytest.param((3, 3, 3), marks=pytest.mark.slow)])
 def test_the_first_view_shows_the_whole_shape(chromium, tmp_path, dims):
     """The first camera is fitted to the bounding box: nothing of a tall tower, a flat slab or
     a cube touches the plot's edges (the scene's ink stays inside, with a margin)."""
@@ -118,6 +119,7 @@ def test_the_first_view_shows_the_whole_shape(chromium, tmp_path, dims):
 
 
 @pytest.mark.browser
+@pytest.mark.slow  # the size is pinned by test_render's test in the default run; this draws them
 def test_notebook_viewers_share_one_plotly(chromium, tmp_path):
     """Viewer fragments as a notebook shows them, one after another in one page: only the
     first carries plotly.js, and every one draws."""

@@ -246,3 +246,38 @@ def test_listing_commands_print_one_json_object(capsys):
         status, out, _ = run(capsys, *argv, "--json")
         data = json.loads(out)
         assert status == 0 and isinstance(data, dict) and data[key], argv
+
+
+def test_counts_in_words_and_aligned_reports(capsys):
+    """One arc, one violation: singular; every condition's columns line up in verify."""
+    status, out, _ = run(capsys, "info", "example:cube")
+    assert status == 0 and "1 arc," in out and "1 arcs" not in out
+    status, out, _ = run(capsys, "verify", "example:cube")
+    rows = [line for line in out.splitlines()[1:] if line.startswith("  ") and "violation" not in line]
+    starts = {line.index(" holds") for line in rows}
+    assert len(rows) >= 10 and len(starts) == 1, out  # 'file convention' rows too
+    import polyloops as pl
+
+    report = pl.verify(load_example("double-plus-x"))
+    text = str(report)
+    assert text.startswith("loop-structure: INVALID (") and f"{len(report.violations)} violations" in text
+
+
+def test_the_census_reads_like_a_census():
+    """pl.read_catalog() indexes by name, signature or position, and iterates in catalog order."""
+    import polyloops as pl
+
+    census = pl.read_catalog()
+    names = [entry.name for entry in census]
+    assert names == [e.name for e in census.entries] and len(census) == len(names)
+    assert census["P26.20"].name == "P26.20" and census[census["P26.20"].signature] is census["P26.20"]
+    assert census[0].name == names[0] and "P16.2" in census and "P999.1" not in census
+    with pytest.raises(KeyError, match=r"P999\.1"):
+        census["P999.1"]
+
+
+def test_examples_list_the_labelled_meshes_too(capsys):
+    status, out, _ = run(capsys, "examples")
+    assert status == 0 and "sokolov-ramp" in out and "overhang" in out
+    status, out, _ = run(capsys, "examples", "--json")
+    assert {m["name"] for m in json.loads(out)["labelled_meshes"]} == {"sokolov-ramp", "overhang"}

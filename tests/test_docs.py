@@ -186,3 +186,44 @@ def test_the_api_overview_lists_every_top_level_name():
 
     listed = {row[0] for row in module.rows()}
     assert listed == set(polyloops.__all__) - module.SKIP
+
+
+HEAVY_TOUR = ("render", "view", "sheet", "gallery", "catalog", "reach", "conjecture")
+
+
+def tour_lines() -> list[tuple[str, int]]:
+    """The README tour's commands with the exit status each comment promises (1 where it
+    says ``exit 1``, else 0)."""
+    text = (ROOT / "README.md").read_text(encoding="utf-8")
+    block = text.split("## A tour", 1)[1].split("```sh", 1)[1].split("```", 1)[0]
+    out = []
+    for line in block.strip().splitlines():
+        command, _, comment = line.partition("   #") if "   #" in line else line.partition("  #")
+        out.append((command.strip(), 1 if comment.strip().startswith("exit 1") else 0))
+    return out
+
+
+@pytest.mark.parametrize("slow_ones", [pytest.param(False), pytest.param(True, marks=pytest.mark.slow)])
+def test_the_readme_tour_runs_as_written(tmp_path, slow_ones):
+    """Every command of the tour, in order, from a scratch folder of a clone (the paths are
+    the clone's), with the exit status its comment promises.  The default run takes the quick
+    ones; the slow run the ones that draw, build or replay (seconds to a minute each: the
+    pictures, the catalogs, the search, the gallery and the certificate's replay)."""
+    import shutil
+
+    for name in ("tests", "catalogs", "src"):
+        (tmp_path / name).symlink_to(ROOT / name)
+    scratch = tmp_path / "scratch"
+    scratch.mkdir()
+    exe = shutil.which("polyloops") or f"{sys.executable} -m polyloops"
+    ran = 0
+    for command, expected in tour_lines():
+        assert command.startswith("polyloops ") or command.startswith("printf "), command
+        if any(f"polyloops {heavy} " in command for heavy in HEAVY_TOUR) != slow_ones:
+            continue
+        res = subprocess.run(command.replace("polyloops ", f"{exe} "), shell=True, cwd=scratch,
+                             capture_output=True, text=True, check=False)
+        assert res.returncode == expected, f"{command}: exit {res.returncode}: {res.stderr[-500:]}"
+        assert "Traceback" not in res.stderr
+        ran += 1
+    assert ran >= (8 if slow_ones else 18)

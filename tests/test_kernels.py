@@ -396,7 +396,7 @@ def _shuffled_file(ls, seed: int) -> str:
     return json.dumps({"polyloops": 1, "kind": "loop-structure", "faces": faces, "edges": edges})
 
 
-@SETTINGS
+@settings(max_examples=15, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(st.one_of(grown_structures(), perturbed_structures()), st.integers(0, 2**16),
        st.booleans())
 def test_renumbered_files_give_the_same_reports(tmp_path_factory, ls, seed, large):

@@ -449,3 +449,16 @@ def test_a_notebook_gets_plotly_once(tmp_path):
                                       check=True).stdout)
     assert sizes[0] > 3_000_000 and max(sizes[1:]) < 200_000, sizes
     assert sum(sizes) < sizes[0] + 19 * 200_000
+
+
+def test_the_segmentation_picture_tells_its_progress(tmp_path):
+    """render_segmentation reports each of its two views and the file written (what the
+    command's progress bar counts)."""
+    from polyloops.io.examples import labelled_mesh_example
+    from polyloops.render.segmentation import render_segmentation
+    from polyloops.segmentation import check_segmentation
+
+    told: list[str] = []
+    report = check_segmentation(labelled_mesh_example("overhang"))
+    render_segmentation(report, tmp_path / "o.png", told.append)
+    assert told == ["view", "view", "written"] and (tmp_path / "o.png").stat().st_size > 1000

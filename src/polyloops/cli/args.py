@@ -10,6 +10,7 @@ from typing import Any
 
 from polyloops.cli.load import EXIT_USAGE
 from polyloops.core.symmetry import MODE_ALIASES, Symmetry
+from polyloops.core.words import plural  # noqa: F401  (the commands' counts in words)
 
 FILE_HELP = ("a polyloops JSON file, a DualCube .graph/.apg file or an OBJ quad mesh, "
              "example:NAME for a bundled example ('polyloops examples' lists them), or sig:SIGNATURE")
@@ -67,15 +68,6 @@ def written(args: argparse.Namespace, text: str | None, facts: dict[str, Any],
         print(text, end="")
     elif line is not None:
         say(getattr(args, "output", None), line)
-
-
-def plural(n: int, word: str, many: str | None = None) -> str:
-    """``1 problem``, ``2 problems`` (``many`` for irregular plurals).
-
-    >>> plural(1, "arc"), plural(3, "arc"), plural(0, "vertex", "vertices")
-    ('1 arc', '3 arcs', '0 vertices')
-    """
-    return f"{n} {word if n == 1 else many or word + 's'}"
 
 
 def stream(args: argparse.Namespace, line: str) -> None:

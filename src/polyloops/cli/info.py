@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from typing import Any
 
+from polyloops.core.words import plural
+
 
 def format_summary(s: dict[str, Any]) -> str:
     """The readable form of :func:`describe`."""
@@ -16,7 +18,8 @@ def format_summary(s: dict[str, Any]) -> str:
     if cats:
         lines.append(f"category  {cats}   (configuration ids {s['corner_configurations']})")
     if s["unclassified_corners"]:
-        lines.append(f"          {s['unclassified_corners']} corners are no polycube corner"
+        lines.append(f"          {plural(s['unclassified_corners'], 'corner')} "
+                     f"{'is' if s['unclassified_corners'] == 1 else 'are'} no polycube corner"
                      + ("" if s.get("oriented", True) else " (no sides to tell)"))
     if "bounding_box" in s:
         lines.append(f"box       {s['bounding_box'][0]} .. {s['bounding_box'][1]}")
@@ -33,7 +36,8 @@ def format_summary(s: dict[str, Any]) -> str:
             row = f"{a}-zones   {z['count']} (genera {z['genera']})"
             if "level_graphs" in s:
                 g = s["level_graphs"][a]
-                row += f"; {a}-graph {g['vertices']} vertices, {g['arcs']} arcs, " + (
+                row += (f"; {a}-graph {plural(g['vertices'], 'vertex', 'vertices')}, "
+                        f"{plural(g['arcs'], 'arc')}, ") + (
                     "acyclic" if g["acyclic"] else "HAS A CYCLE")
             row += f"; Theorem 3: {t['E']} = {t['g']} + {t['V']} - 1 - {t['Gamma']}"
             row += "" if t["holds"] else " FAILS"

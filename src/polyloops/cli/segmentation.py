@@ -83,17 +83,31 @@ def format_report(source: str, report) -> str:
 
 
 def cmd_segmentation(args: argparse.Namespace) -> int:
-    from polyloops.segmentation import check_segmentation
-
     if args.png:
         picture_output(args.png)
     if args.output:
         check_output(args.output)
+    from tqdm import tqdm
+
+    # Steps: the mesh read, checked, and with --png each of the picture's two views and its file.
+    bar = tqdm(total=2 + (3 if args.png else 0), desc="segmentation", unit="step", disable=None,
+               file=sys.stderr)
+    try:
+        return _segmentation(args, lambda _: bar.update(1))
+    finally:
+        bar.close()
+
+
+def _segmentation(args: argparse.Namespace, step: Callable[[str], None]) -> int:
+    from polyloops.segmentation import check_segmentation
+
     mesh = read_labelled_mesh(args.mesh, args.labels)
+    step("read")
     try:
         report = check_segmentation(mesh)
     except MapError as err:
         raise CliError(f"{args.mesh}: not a closed oriented surface: {err}") from None
+    step("checked")
     if args.output:
         if report.polycube is None:
             print(f"polyloops segmentation: {args.output}: not written: no polycube was built "
@@ -104,7 +118,7 @@ def cmd_segmentation(args: argparse.Namespace) -> int:
         from polyloops.render.segmentation import render_segmentation
 
         try:
-            render_segmentation(report, args.png)
+            render_segmentation(report, args.png, progress=step)
         except OSError as err:
             raise write_error(args.png, err) from None
     source = args.mesh if args.labels is None else f"{args.mesh} + {os.path.basename(args.labels)}"

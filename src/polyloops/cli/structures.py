@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import argparse
+from typing import Any
 
 from polyloops.cli.args import SYMMETRIES, AddCommand, emit, plural, structure_facts, written
 from polyloops.cli.info import format_summary
@@ -28,23 +29,28 @@ from polyloops.verify import Report
 
 
 def cmd_examples(args: argparse.Namespace) -> int:
-    rows = [{"name": e.name, "valid": e.valid, "description": e.description} for e in EXAMPLES.values()]
-    width = max(len(name) for name in EXAMPLES)
-    text = "\n".join(f"{r['name']:<{width}}  {'valid  ' if r['valid'] else 'invalid'}  {r['description']}"
-                     for r in rows)
-    emit(args, {"examples": rows}, text)
+    from polyloops.io.examples import LABELLED_EXAMPLES
+
+    rows: list[dict[str, Any]] = [{"name": e.name, "valid": e.valid, "description": e.description}
+                                  for e in EXAMPLES.values()]
+    meshes: list[dict[str, Any]] = [{"name": e.name, "valid": e.valid, "description": e.description}
+                                    for e in LABELLED_EXAMPLES.values()]
+    width = max(len(r["name"]) for r in rows + meshes)
+
+    def table(items: list[dict[str, Any]]) -> list[str]:
+        return [f"{r['name']:<{width}}  {'valid  ' if r['valid'] else 'invalid'}  {r['description']}"
+                for r in items]
+
+    text = "\n".join([*table(rows), "", "labelled triangle meshes, for 'polyloops segmentation "
+                       "example:NAME' (valid: a polycube has these labels):", *table(meshes)])
+    emit(args, {"examples": rows, "labelled_meshes": meshes}, text)
     return EXIT_OK
 
 
 def format_report(source: str, report: Report) -> str:
-    verdict = "valid" if report.valid else f"INVALID ({len(report.violations)} violations)"
-    lines = [f"{source}: {report.kind}: {verdict}"]
-    for c in report.checks:
-        note = f" ({c.note})" if c.note else ""
-        lines.append(f"  {c.definition} condition {c.condition:<10} {c.status:<22} {c.statement}{note}")
-    for v in report.violations:
-        lines.append(f"  violation: {v.definition} condition {v.condition}: {v.message}")
-    return "\n".join(lines)
+    """A report as ``polyloops verify`` prints it: the verdict, then a row per condition in
+    aligned columns, then each violation."""
+    return f"{source}: {report}"
 
 
 def cmd_verify(args: argparse.Namespace) -> int:

@@ -15,6 +15,7 @@ is the one place that reads them.
 from __future__ import annotations
 
 import json
+from collections.abc import Iterator
 from dataclasses import dataclass
 from functools import cached_property
 from pathlib import Path
@@ -69,6 +70,35 @@ class Census:
     def by_signature(self) -> dict[str, CatalogEntry]:
         """Entries by signature."""
         return {e.signature: e for e in self.entries}
+
+    def __len__(self) -> int:
+        return len(self.entries)
+
+    def __iter__(self) -> Iterator[CatalogEntry]:
+        """The entries in catalog order (by corners, then number), as SnapPy's censuses.
+
+        >>> census = read_catalog()
+        >>> [e.name for e in census][:3], len(census) == len(census.entries)
+        (['P8.1', 'P12.1', 'P16.1'], True)
+        """
+        return iter(self.entries)
+
+    def __getitem__(self, key: str | int) -> CatalogEntry:
+        """An entry by name (``census["P26.20"]``), by signature, or by position.
+
+        >>> census = read_catalog()
+        >>> census["P16.2"].corners, census[0].name, census[census[1].signature].name
+        (16, 'P8.1', 'P12.1')
+        """
+        if isinstance(key, int):
+            return self.entries[key]
+        found = self.by_name.get(key) or self.by_signature.get(key)
+        if found is None:
+            raise KeyError(f"{key!r}: no class of this name or signature in {self.directory}")
+        return found
+
+    def __contains__(self, key: object) -> bool:
+        return isinstance(key, str) and (key in self.by_name or key in self.by_signature)
 
 
 def default_catalog(genus: int = 0) -> Path:

@@ -12,6 +12,7 @@ from matplotlib.patches import FancyArrowPatch
 from polyloops.core.directions import Axis
 from polyloops.core.duality import DualityError, zone_levels
 from polyloops.core.structure import LoopStructure
+from polyloops.core.words import plural
 from polyloops.render.colours import AXIS_COLOUR, LIGHT_COLOUR
 from polyloops.render.figure import new_figure, save_figure
 
@@ -66,7 +67,7 @@ def draw_level_graph(ax, ls: LoopStructure, axis: Axis, shades: list[str] | None
     ax.set_xlim(min(xs) - 1, max(xs) + 1)
     ax.set_ylim(min(ys) - 0.7, max(ys) + 0.7)
     acyclic = nx.is_directed_acyclic_graph(g)
-    ax.set_title(f"{axis}-graph: {g.number_of_nodes()} zones, {g.number_of_edges()} loops"
+    ax.set_title(f"{axis}-graph: {plural(g.number_of_nodes(), 'zone')}, {plural(g.number_of_edges(), 'loop')}"
                  + ("" if acyclic else " (cycle!)"), fontsize=9, color="black" if acyclic else "red")
     ax.axis("off")
 

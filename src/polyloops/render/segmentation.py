@@ -4,6 +4,7 @@ and, for an invalid one, the witness in red."""
 from __future__ import annotations
 
 import os
+from collections.abc import Callable
 from itertools import pairwise
 
 import numpy as np
@@ -125,12 +126,16 @@ def _wrap(text: str, width: int = 110) -> str:
     return "\n".join(textwrap.wrap(text, width))
 
 
-def render_segmentation(report, path: str | os.PathLike[str]) -> None:
-    """Two opposite views side by side, a legend of the six labels, and the verdict."""
+def render_segmentation(report, path: str | os.PathLike[str],
+                        progress: Callable[[str], None] | None = None) -> None:
+    """Two opposite views side by side, a legend of the six labels, and the verdict;
+    ``progress`` is told of each view drawn and of the file written."""
     fig = new_figure(9.0, 4.6)
     axes = fig.subplots(1, 2)
     for ax, view in zip(axes, VIEWS, strict=True):
         draw_segmentation(ax, report, view)
+        if progress is not None:
+            progress("view")
     verdict = {True: "valid", False: "invalid", None: "undecided"}[report.valid]
     seg = report.segmentation
     title = f"labelled segmentation: {verdict} ({len(seg.charts)} charts)"
@@ -142,3 +147,5 @@ def render_segmentation(report, path: str | os.PathLike[str]) -> None:
     fig.legend(handles=[Patch(color=direction_colour(d), label=str(d)) for d in Direction],
                loc="lower center", ncol=6, fontsize=8, frameon=False)
     save_figure(fig, path)
+    if progress is not None:
+        progress("written")

@@ -130,6 +130,28 @@ class Report:
     def __add__(self, other: Report) -> Report:
         return Report(self.kind, self.checks + other.checks, self.violations + other.violations)
 
+    def __str__(self) -> str:
+        """The verdict, a row per condition in aligned columns, then each violation.
+
+        >>> from polyloops.io.examples import load_example
+        >>> from polyloops.verify import verify
+        >>> print(str(verify(load_example("double-plus-x"))).splitlines()[0])
+        loop-structure: INVALID (4 violations)
+        """
+        from polyloops.core.words import plural
+
+        verdict = "valid" if self.valid else f"INVALID ({plural(len(self.violations), 'violation')})"
+        lines = [f"{self.kind}: {verdict}"]
+        names = [f"{c.definition} condition {c.condition}" for c in self.checks]
+        width = max(map(len, names), default=0)
+        status = max((len(str(c.status)) for c in self.checks), default=0)
+        for name, c in zip(names, self.checks, strict=True):
+            note = f" ({c.note})" if c.note else ""
+            lines.append(f"  {name:<{width}}  {c.status!s:<{status}}  {c.statement}{note}")
+        lines += [f"  violation: {v.definition} condition {v.condition}: {v.message}"
+                  for v in self.violations]
+        return "\n".join(lines)
+
 
 class ReportBuilder:
     """Collects checks and violations condition by condition."""
