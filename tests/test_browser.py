@@ -68,7 +68,7 @@ def test_gallery_filters_copy_and_links(chromium, tmp_path, capsys):
     assert "showing 12 of 12" in page.inner_text("#count")
     page.select_option("#f-corners", "16")
     assert cards.count() == 2 and "showing 2 of 12" in page.inner_text("#count")
-    assert set(page.locator(".card .name").all_inner_texts()) == {"P16.1", "P16.2"}
+    assert set(page.locator(".card .name a:not(.view3d)").all_inner_texts()) == {"P16.1", "P16.2"}
     page.select_option("#f-corners", "")
     page.select_option("#f-irreducible", "1")
     irreducible = cards.count()
@@ -82,9 +82,54 @@ def test_gallery_filters_copy_and_links(chromium, tmp_path, capsys):
     # The copy answers asynchronously (the clipboard's promise, or the fallback).
     first.locator("button", has_text="copied").wait_for(timeout=5000)
     assert ink(page.screenshot()) > 0.05
-    first.locator(".name a").click()
+    first.locator(".name a.view3d").click()
     page.wait_for_selector(".js-plotly-plot canvas")
     assert page.url.endswith(".html") and "/view/" in page.url
+    assert errors == []
+    page.close()
+
+
+@pytest.mark.browser
+def test_the_gallery_walks_the_move_graph(chromium, tmp_path, capsys):
+    """From the non-incremental polycube's page a user reaches the cube by clicks: along its
+    detour and then removals; from a class to the class a removal leaves and back by the
+    additions above; the overview links every class; a removable loop opens highlighted."""
+    site = tmp_path / "site"
+    assert main(["gallery", "-o", str(site), "--limit", "60"]) == 0
+    page, errors = open_page(chromium, (site / "index.html").as_uri())
+    page.locator(".card", has_text="P26.20").locator(".name a").first.click()
+    assert page.url.endswith("/class/P26.20.html") and "irreducible" in page.inner_text("body")
+    visited = ["P26.20"]
+    while visited[-1] != "P8.1":
+        strip = page.locator(".strip .cell")
+        assert strip.count() >= 2
+        assert strip.first.inner_text().strip().startswith(visited[-1])
+        nxt = strip.locator("a")  # the way down's next class with a page
+        assert nxt.count() >= 2, page.url
+        nxt.nth(1).click()
+        visited.append(page.url.rsplit("/", 1)[1].removesuffix(".html"))
+        assert len(visited) < 10
+    assert visited[1] != "P26.20" and page.locator("h1").inner_text() == "P8.1"
+    # Up by an addition, and down again by its removal.
+    page.locator(".above a", has_text="P12.1").first.click()
+    assert page.url.endswith("/class/P12.1.html")
+    page.locator(".removals a", has_text="P8.1").first.click()
+    assert page.url.endswith("/class/P8.1.html")
+    page.go_back()
+    link = page.locator(".removals a", has_text="see it").first
+    target = link.get_attribute("href")
+    assert "#loop-" in target
+    link.click()
+    page.wait_for_selector(".js-plotly-plot canvas")
+    page.wait_for_timeout(500)
+    widths = page.evaluate("document.querySelector('.js-plotly-plot').data"
+                           ".filter(t => t.mode === 'lines' && typeof t.hovertext === 'string'"
+                           " && /-loop \\d+,/.test(t.hovertext)).map(t => t.line.width)")
+    assert max(widths) > min(widths)  # the removable loop stands out
+    page.goto((site / "moves.html").as_uri())
+    assert page.locator("#graph a").count() == 60
+    page.locator('#graph a[href="class/P12.1.html"]').click()
+    assert page.url.endswith("/class/P12.1.html")
     assert errors == []
     page.close()
 

@@ -1,9 +1,12 @@
 """A catalog as a static web site: every class with its picture, name and columns, filters by
-those columns, a button that copies the signature, and a viewer page per class.
+those columns, a button that copies the signature, a viewer page per class, and the move
+graph: a page per class with its moves and its way down to the cube, and an overview.
 
 The site is a directory: ``index.html`` (the list, with the data inside it), ``img/NAME.png``
-(one picture per class, drawn by :func:`polyloops.render.polycube.write_thumbnail`) and
-``view/NAME.html`` (one interactive viewer per class, sharing ``view/plotly.min.js``).  It
+(one picture per class, drawn by :func:`polyloops.render.polycube.write_thumbnail`),
+``view/NAME.html`` (one interactive viewer per class, sharing ``view/plotly.min.js``), and for a
+catalog in full symmetry ``class/NAME.html`` and ``moves.html``
+(:mod:`polyloops.render.class_pages`).  It
 needs no server and no network: open ``index.html``.  Pictures and viewer pages already there
 are kept, so an interrupted run resumes; every file is written through a temporary file.
 
@@ -97,7 +100,14 @@ def build_gallery(census: Census, out: str | Path, limit: int | None = None,
     up_to = {"full": "rotations and reflections", "rotation": "rotations", "labelled": "renumbering"}
     title = (f"Genus-{census.genus} polycubes through {census.max_corners} corners, "
              f"up to {up_to[str(census.symmetry)]}")
-    write_atomic(out / "index.html", gallery_html([_row(e) for e in entries], title))
+    full = str(census.symmetry) == "full"  # the move graph names classes by full signature
+    if full:
+        from polyloops.enumerate.move_graph import move_graph
+        from polyloops.render.class_pages import write_class_pages
+
+        listed = Census(census.directory, tuple(entries), census.summary)
+        write_class_pages(out, entries, move_graph(listed, workers=workers), title)
+    write_atomic(out / "index.html", gallery_html([_row(e) for e in entries], title, class_pages=full))
     return GalleryBuild(out, len(entries))
 
 
@@ -116,13 +126,19 @@ def _draw_class(task: tuple[str, str, int, str, str]) -> str:
     return name
 
 
-def gallery_html(rows: list[dict[str, object]], title: str) -> str:
+def gallery_html(rows: list[dict[str, object]], title: str, class_pages: bool = True) -> str:
     """The gallery's index page: the rows as data inside it, filters and cards drawn by a
-    small script (no library, nothing loaded from elsewhere)."""
+    small script (no library, nothing loaded from elsewhere); each card leads to its class's
+    page (``class_pages``) or else to its viewer."""
     from importlib.resources import files
 
     page = files("polyloops.render").joinpath("gallery.html").read_text(encoding="utf-8")
     data = json.dumps(rows, separators=(",", ":")).replace("</", "<\\/")
+    moves = ('<p><a href="moves.html">The move graph</a>: every class by corners, loop removals as '
+             "edges; each class's page shows its moves and its way down to the cube.</p>"
+             if class_pages else "")
     return (page.replace("@TITLE@", html.escape(title))
+            .replace("@MOVES@", moves)
+            .replace("@PAGE@", "class/" if class_pages else "view/")
             .replace("@CATEGORIES@", json.dumps([str(c) for c in CATEGORIES]))
             .replace("@DATA@", data))

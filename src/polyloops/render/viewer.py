@@ -213,7 +213,29 @@ def viewer_html(obj: Polycube | LoopStructure, title: str | None = None,
     return pio.to_html(viewer_spec(obj, title), include_plotlyjs=plotly_js, full_html=full_html,
                        default_height="92vh", default_width="100%", validate=False,
                        div_id="polyloops-viewer" if full_html else None,
-                       config={"displaylogo": False, "responsive": True})
+                       config={"displaylogo": False, "responsive": True},
+                       post_script=HIGHLIGHT if full_html else None)
+
+
+# A page opened as ``NAME.html#loop-N`` shows loop N thick and the other loops faded (the
+# gallery links a removable loop this way); the hash can change without reloading.
+HIGHLIGHT = """
+(function () {
+  var gd = document.getElementById('{plot_id}');
+  function highlight() {
+    var m = /^#loop-(\\d+)$/.exec(window.location.hash);
+    gd.data.forEach(function (t, i) {
+      if (t.type !== 'scatter3d' || t.mode !== 'lines' || typeof t.hovertext !== 'string') return;
+      var loop = /-loop (\\d+),/.exec(t.hovertext);
+      if (!loop) return;
+      var on = !m || loop[1] === m[1];
+      Plotly.restyle(gd, {'line.width': m && on ? 14 : 6, 'opacity': on ? 1 : 0.25}, [i]);
+    });
+  }
+  highlight();
+  window.addEventListener('hashchange', highlight);
+})();
+"""
 
 
 def write_viewer(obj: Polycube | LoopStructure, path: str | os.PathLike[str], title: str | None = None,
