@@ -240,6 +240,22 @@ def perturbed_structures(draw, max_size: int = 8) -> LoopStructure:
     return ls
 
 
+def shuffled_document(ls, seed: int) -> dict:
+    """A loop structure's JSON document as another program might write it: corners renumbered
+    at random, faces and edges in random order, each face from a random corner."""
+    rng = random.Random(seed)
+    perm = list(range(ls.map.num_corners))
+    rng.shuffle(perm)
+    faces = []
+    for f in ls.map.faces:
+        k = rng.randrange(len(f))
+        faces.append([perm[c] for c in (*f[k:], *f[:k])])
+    rng.shuffle(faces)
+    edges = [[perm[u], perm[v], str(lab)] for u, v, lab in ls.edge_labels()]
+    rng.shuffle(edges)
+    return {"polyloops": 1, "kind": "loop-structure", "faces": faces, "edges": edges}
+
+
 def renumbered(q: Polycube, rng: random.Random) -> Polycube:
     """The same polycube with shuffled corner ids, faces, face rotations and a translation."""
     n = q.map.num_corners

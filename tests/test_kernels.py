@@ -377,23 +377,11 @@ def oriented(name):
 
 
 def _shuffled_file(ls, seed: int) -> str:
-    """The structure as another program might write it: corners renumbered at random, faces
-    and edges in random order, each face from a random corner."""
     import json
-    import random
 
-    rng = random.Random(seed)
-    perm = list(range(ls.map.num_corners))
-    rng.shuffle(perm)
-    faces = []
-    for f in ls.map.faces:
-        k = rng.randrange(len(f))
-        faces.append([perm[c] for c in (*f[k:], *f[:k])])
-    rng.shuffle(faces)
-    edges = [[perm[u], perm[v], str(lab)]
-             for u, v, lab in ls.edge_labels()]
-    rng.shuffle(edges)
-    return json.dumps({"polyloops": 1, "kind": "loop-structure", "faces": faces, "edges": edges})
+    from strategies import shuffled_document
+
+    return json.dumps(shuffled_document(ls, seed))
 
 
 @settings(max_examples=15, deadline=None, suppress_health_check=[HealthCheck.too_slow])

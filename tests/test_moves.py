@@ -479,21 +479,10 @@ def test_cli_estimate(capsys):
 
 def _renumbered_structure(ls, seed):
     """``ls`` with its corners renumbered and its faces reordered and rotated at random."""
-    import random
+    from polyloops.io.formats import loads
+    from strategies import shuffled_document
 
-    from polyloops.core.directions import Direction
-    from polyloops.core.structure import LoopStructure
-
-    rng = random.Random(seed)
-    perm = list(range(ls.map.num_corners))
-    rng.shuffle(perm)
-    faces = []
-    for f in ls.map.faces:
-        k = rng.randrange(len(f))
-        faces.append([perm[c] for c in (*f[k:], *f[:k])])
-    rng.shuffle(faces)
-    labels = {(perm[u], perm[v]): Direction.parse(lab) for u, v, lab in ls.edge_labels()}
-    return LoopStructure.from_edge_labels(faces, labels)
+    return loads(json.dumps(shuffled_document(ls, seed)))
 
 
 @settings(max_examples=40, deadline=None)
