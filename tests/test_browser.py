@@ -99,6 +99,8 @@ def test_the_gallery_walks_the_move_graph(chromium, tmp_path, capsys):
     page, errors = open_page(chromium, (site / "index.html").as_uri())
     page.locator(".card", has_text="P26.20").locator(".name a").first.click()
     assert page.url.endswith("/class/P26.20.html") and "irreducible" in page.inner_text("body")
+    # Within the gallery's classes (through 26 corners here) nothing leads to P26.20.
+    assert page.locator(".shortest").count() == 0 and "Not reachable" in page.inner_text("body")
     visited = ["P26.20"]
     while visited[-1] != "P8.1":
         strip = page.locator(".strip .cell")
@@ -126,6 +128,11 @@ def test_the_gallery_walks_the_move_graph(chromium, tmp_path, capsys):
                            ".filter(t => t.mode === 'lines' && typeof t.hovertext === 'string'"
                            " && /-loop \\d+,/.test(t.hovertext)).map(t => t.line.width)")
     assert max(widths) > min(widths)  # the removable loop stands out
+    page.goto((site / "class" / "P18.1.html").as_uri())
+    shortest = page.locator(".shortest .cell a")  # from the cube, a shortest path
+    assert shortest.first.get_attribute("href") == "P8.1.html"
+    assert shortest.last.get_attribute("href") == "P18.1.html"
+    assert "From the cube: " in page.inner_text("body")
     page.goto((site / "moves.html").as_uri())
     assert page.locator("#graph a").count() == 60
     page.locator('#graph a[href="class/P12.1.html"]').click()

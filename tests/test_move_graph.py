@@ -2,6 +2,7 @@
 way down to the cube from every class, each step one move from the one before."""
 
 from functools import cache
+from itertools import pairwise
 
 import pytest
 
@@ -72,3 +73,23 @@ def test_every_class_of_the_shipped_catalog_has_a_way_down():
     g = move_graph(census)
     assert set(g.descents) == {e.name for e in census}
     assert all(d.steps[-1].name == "P8.1" for d in g.descents.values())
+
+
+def test_distances_from_the_cube_are_the_search_s():
+    """The breadth-first distances among the catalog's classes through 22 corners are the
+    distances of reach's own search of the move graph (all 48 symmetries, bound 22): the same
+    number of classes at each distance; each path's steps are one move apart."""
+    from collections import Counter
+
+    from polyloops.enumerate.reach import explore
+    from polyloops.io.examples import load_example
+
+    census = read_catalog().through(22)
+    g = move_graph(census)
+    found = explore(load_example("cube").dualize(), 22, mode="full")
+    assert Counter(g.distance.values()) == Counter(found.by_distance)
+    for entry in census:
+        path = g.path_from_cube(entry.name)
+        assert len(path) - 1 == g.distance[entry.name] and path[0] == "P8.1"
+        for a, b in pairwise(path):
+            assert b in {r.leaves for r in g.removals[a]} or a in {r.leaves for r in g.removals[b]}

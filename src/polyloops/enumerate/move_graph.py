@@ -9,14 +9,17 @@ irreducible class the detour its reachability certificate gives (moves through l
 structures to a smaller class; the way leaves the detour at the first catalog class on it
 where that saves moves); among such ways it is the one with the fewest moves, ties to the
 earlier class in catalog order.  It is a way down, not necessarily a shortest path of the
-move graph, which may also climb.
+move graph, which may also climb.  The distance from the cube is the move graph's among the
+catalog's classes (breadth first: within the catalog an addition is a removal read
+backwards), so a shortest path that stays within the catalog's range of corners; a class
+reached only through larger structures has none.
 
 >>> from polyloops.enumerate.census import read_catalog
 >>> graph = move_graph(read_catalog().through(16))
 >>> [(r.loop, r.axis, r.leaves) for r in graph.removals["P12.1"]]
 [(1, 'Y', 'P8.1'), (3, 'Y', 'P8.1')]
->>> graph.above["P8.1"], graph.descents["P16.2"].names
-(('P12.1',), ('P16.2', 'P12.1', 'P8.1'))
+>>> graph.above["P8.1"], graph.descents["P16.2"].names, graph.path_from_cube("P16.2")
+(('P12.1',), ('P16.2', 'P12.1', 'P8.1'), ('P8.1', 'P12.1', 'P16.2'))
 """
 
 from __future__ import annotations
@@ -81,12 +84,54 @@ class Descent:
 
 @dataclass(frozen=True)
 class MoveGraph:
-    """A catalog's removals, the classes one addition above each class, and each class's way
-    down to the cube (classes without one are absent from ``descents``)."""
+    """A catalog's removals, the classes one addition above each class, each class's way
+    down to the cube (classes without one are absent from ``descents``), and its distance from
+    the cube within the catalog (``parent``: the class before it on a shortest path)."""
 
     removals: dict[str, tuple[Removal, ...]]
     above: dict[str, tuple[str, ...]]
     descents: dict[str, Descent]
+    distance: dict[str, int]
+    parent: dict[str, str | None]
+
+    def path_from_cube(self, name: str) -> tuple[str, ...]:
+        """A shortest path of moves from the cube to class ``name`` among the catalog's
+        classes (empty when there is none within the catalog's range)."""
+        if name not in self.parent:
+            return ()
+        out = [name]
+        while (before := self.parent[out[-1]]) is not None:
+            out.append(before)
+        return tuple(reversed(out))
+
+
+def _distances(names: list[str], removals: dict[str, tuple[Removal, ...]]
+               ) -> tuple[dict[str, int], dict[str, str | None]]:
+    """Breadth first from the cube over the catalog's classes, a move an edge: within the
+    catalog, an addition is a removal read backwards, so the removals are all the edges.
+    Neighbours in catalog order, so the paths do not depend on anything else."""
+    order = {n: i for i, n in enumerate(names)}
+    neighbours: dict[str, set[str]] = {n: set() for n in names}
+    for name, found in removals.items():
+        for r in found:
+            if r.leaves is not None and r.leaves in neighbours:
+                neighbours[name].add(r.leaves)
+                neighbours[r.leaves].add(name)
+    if not names:
+        return {}, {}
+    start = names[0]  # the catalog's first class: the cube
+    distance: dict[str, int] = {start: 0}
+    parent: dict[str, str | None] = {start: None}
+    frontier = [start]
+    while frontier:
+        nxt = []
+        for n in frontier:
+            for m in sorted(neighbours[n], key=order.__getitem__):
+                if m not in distance:
+                    distance[m], parent[m] = distance[n] + 1, n
+                    nxt.append(m)
+        frontier = nxt
+    return distance, parent
 
 
 def _detours(census: Census) -> dict[str, list[Move]]:
@@ -178,4 +223,5 @@ def move_graph(census: Census, progress: Callable[[str], None] | None = None,
             below = descents[steps[k].name]  # type: ignore[index]
             descents[entry.name] = Descent((*steps[:k], DescentStep(steps[k].move, *_named(below.steps[0])),
                                             *below.steps[1:]))
-    return MoveGraph(removals, {k: tuple(v) for k, v in above.items()}, descents)
+    distance, parent = _distances([e.name for e in entries], removals)
+    return MoveGraph(removals, {k: tuple(v) for k, v in above.items()}, descents, distance, parent)

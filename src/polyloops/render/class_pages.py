@@ -75,9 +75,32 @@ def class_page(entry: CatalogEntry, graph: MoveGraph, listed: set[str],
     parts.append(f"<h2>One addition above, within the gallery ({len(above)})</h2>")
     parts.append(f'<div class="row above">{"".join(_cell(a) for a in above)}</div>' if above
                  else '<p class="note">None within the gallery.</p>')
+    parts.append(_shortest_html(name, graph, listed))
     descent = graph.descents.get(name)
     parts.append(_descent_html(name, descent, listed, step_images))
     return _page(f"{name}: {r.corners} corners", "\n".join(parts))
+
+
+def _shortest_html(name: str, graph: MoveGraph, listed: set[str]) -> str:
+    path = graph.path_from_cube(name)
+    if not path:
+        return ('<h2>From the cube</h2><p class="note">Not reachable by moves that stay among the '
+                "gallery's classes: every way to it passes through larger structures (see its way "
+                "down below).</p>")
+    cells = []
+    for before, here in zip((None, *path), path, strict=False):
+        if before is None:
+            caption = "the cube" if here == path[0] else ""
+        else:
+            down = next((r for r in graph.removals[before] if r.leaves == here), None)
+            up = next((r for r in graph.removals[here] if r.leaves == before), None)
+            caption = (f"remove {down.axis}-loop {down.loop}" if down is not None
+                       else f"add its {up.axis}-loop {up.loop}" if up is not None else "")
+        cells.append(_cell(here, caption))
+    return (f'<h2>From the cube: {len(path) - 1} moves</h2><p class="note">A shortest path of loop '
+            f"moves among the gallery's classes (breadth first; so within their range of corners: a "
+            f"path through larger structures could be shorter).</p><div class=\"row shortest\">"
+            f"{''.join(cells)}</div>")
 
 
 def _descent_html(name: str, descent: Descent | None, listed: set[str],
