@@ -82,7 +82,8 @@ def expected_under(cuts: tuple[bool, bool], max_corners: int,
 
 
 @pytest.mark.parametrize("cuts", CUTS)
-@pytest.mark.parametrize("max_corners", [12, 14, pytest.param(16, marks=pytest.mark.slow)])
+@pytest.mark.parametrize("max_corners", [12, pytest.param(14, marks=pytest.mark.slow),
+                                         pytest.param(16, marks=pytest.mark.slow)])
 def test_search_visits_exactly_what_the_slow_twin_finds(max_corners, cuts, monkeypatch):
     """The compiled search (canonical construction, every cut) visits each connected
     arrangement of simple loops that passes the counting bound once: the slow twin's list,

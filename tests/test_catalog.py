@@ -179,7 +179,7 @@ def test_slices_and_workers_agree(tmp_path):
     assert (whole / "catalog.jsonl").read_text() == (w / "catalog.jsonl").read_text()
 
 
-@pytest.mark.parametrize("generator", ["plantri", "loops"])
+@pytest.mark.parametrize("generator", ["plantri", pytest.param("loops", marks=pytest.mark.slow)])
 def test_dask_local(tmp_path, generator):
     pytest.importorskip("distributed")
     if generator == "loops":

@@ -210,7 +210,8 @@ def tour_lines() -> list[tuple[str, int]]:
     return out
 
 
-@pytest.mark.parametrize("slow_ones", [pytest.param(False), pytest.param(True, marks=pytest.mark.slow)])
+@pytest.mark.slow  # about 15 s for the quick lines, a few minutes for the others
+@pytest.mark.parametrize("slow_ones", [False, True])
 def test_the_readme_tour_runs_as_written(tmp_path, slow_ones):
     """Every command of the tour, in order, from a scratch folder of a clone (the paths are
     the clone's), with the exit status its comment promises.  The default run takes the quick

@@ -418,7 +418,7 @@ def test_children_built_without_checks_are_the_checked_ones(ls):
         assert check_polycube_loop_structure(fast).valid
 
 
-@settings(max_examples=20, deadline=None)
+@settings(max_examples=12, deadline=None)
 @given(st.one_of(grown_structures(max_moves=3), polycubes(max_size=8).map(lambda q: q.dualize()),
                  handle_zone_polycubes().map(lambda q: q.dualize())),
        st.sampled_from(list(Axis)), st.one_of(st.none(), st.integers(0, 12)))
