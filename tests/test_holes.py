@@ -122,3 +122,18 @@ def test_genus2_example_with_two_hole_axes():
 def test_info_shows_it(capsys):
     assert main(["info", "example:ring"]) == 0
     assert "holes     XY: rank 0; XZ: rank 1 (1); YZ: rank 1 (1)" in capsys.readouterr().out
+
+
+def test_the_three_minimal_rings_differ_only_by_their_hole():
+    """The bundled rings with their hole along X, Y and Z are one polycube up to symmetry, but
+    three labelled classes with three hole orientations: along the hole's axis, the loops of
+    the two other axes do not meet (rank 0), so no loop moves join any two of them."""
+    rings = {axis: load_example(name).dualize() for axis, name in (("X", "ring-x"), ("Y", "ring-y"),
+                                                                  ("Z", "ring"))}
+    assert len({signature(ls, "full") for ls in rings.values()}) == 1
+    assert len({signature(ls, "labelled") for ls in rings.values()}) == 3
+    for axis, ls in rings.items():
+        ranks = hole_orientation(ls).ranks
+        flat = "".join(a for a in "XYZ" if a != axis)  # the pair across the hole
+        assert ranks[flat] == 0 and all(r == 1 for pair, r in ranks.items() if pair != flat), (axis, ranks)
+        assert ls.map.num_corners == 32

@@ -19,10 +19,19 @@ def box(a: int, b: int, c: int) -> Polycube:
     return polycube_from_voxels([(i, j, k) for i in range(a) for j in range(b) for k in range(c)])
 
 
-def ring(n: int = 3, height: int = 1) -> Polycube:
-    """A square ring: the ``n x n x height`` box without its central column (genus 1)."""
+def ring(n: int = 3, height: int = 1, hole: Axis = Axis.Z) -> Polycube:
+    """A square ring: the ``n x n x height`` box without its central column (genus 1), its
+    hole along ``hole`` (the ring lies across that axis, ``height`` cubes thick along it).
+
+    >>> [ring(hole=a).bounding_box()[1] for a in Axis]
+    [(1, 3, 3), (3, 1, 3), (3, 3, 1)]
+    """
+    def cell(i: int, j: int, k: int) -> tuple[int, int, int]:
+        # (i, j) across the hole, k along it
+        return {Axis.X: (k, i, j), Axis.Y: (j, k, i), Axis.Z: (i, j, k)}[hole]
+
     return polycube_from_voxels([
-        (i, j, k) for i in range(n) for j in range(n) for k in range(height)
+        cell(i, j, k) for i in range(n) for j in range(n) for k in range(height)
         if not (0 < i < n - 1 and 0 < j < n - 1)
     ])
 

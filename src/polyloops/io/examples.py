@@ -13,7 +13,7 @@ from dataclasses import dataclass
 from importlib import resources
 
 from polyloops.core import builders
-from polyloops.core.directions import Direction
+from polyloops.core.directions import Axis, Direction
 from polyloops.core.polycube import Polycube
 from polyloops.core.voxels import polycube_from_voxels
 from polyloops.io.formats import Structure, loads
@@ -48,7 +48,11 @@ _ALL = [
     Example("box-2x1x1", "two unit cubes in a row: two X-loops", True, lambda: builders.box(2, 1, 1)),
     Example("l-shape", "three unit cubes in an L", True,
             lambda: polycube_from_voxels([(0, 0, 0), (1, 0, 0), (0, 1, 0)])),
-    Example("ring", "a square ring of eight unit cubes (genus 1)", True, lambda: builders.ring(3)),
+    Example("ring", "a square ring of eight unit cubes (genus 1), its hole along Z", True,
+            lambda: builders.ring(3)),
+    Example("ring-x", "the square ring with its hole along X: no loop moves join it to the ring "
+            "(the hole orientation differs)", True, lambda: builders.ring(3, hole=Axis.X)),
+    Example("ring-y", "the square ring with its hole along Y", True, lambda: builders.ring(3, hole=Axis.Y)),
     Example("non-incremental", "six cubes of a 2x2x2 block (two opposite cubes missing): a polycube "
             "none of whose loops can be removed, so additions alone cannot build it", True,
             lambda: polycube_from_voxels(NON_INCREMENTAL_CUBES)),
