@@ -27,6 +27,7 @@ from __future__ import annotations
 import json
 from collections.abc import Callable
 from dataclasses import dataclass
+from functools import cached_property
 
 from polyloops.core.canonical import canonical_form
 from polyloops.core.moves import check_removal, remove_loop
@@ -91,8 +92,13 @@ class MoveGraph:
     removals: dict[str, tuple[Removal, ...]]
     above: dict[str, tuple[str, ...]]
     descents: dict[str, Descent]
-    distance: dict[str, int]
     parent: dict[str, str | None]
+
+    @cached_property
+    def distance(self) -> dict[str, int]:
+        """Each class's distance from the cube among the catalog's classes (the classes a
+        shortest path reaches; the others have none)."""
+        return {name: len(self.path_from_cube(name)) - 1 for name in self.parent}
 
     def path_from_cube(self, name: str) -> tuple[str, ...]:
         """A shortest path of moves from the cube to class ``name`` among the catalog's
@@ -105,33 +111,21 @@ class MoveGraph:
         return tuple(reversed(out))
 
 
-def _distances(names: list[str], removals: dict[str, tuple[Removal, ...]]
-               ) -> tuple[dict[str, int], dict[str, str | None]]:
-    """Breadth first from the cube over the catalog's classes, a move an edge: within the
-    catalog, an addition is a removal read backwards, so the removals are all the edges.
-    Neighbours in catalog order, so the paths do not depend on anything else."""
-    order = {n: i for i, n in enumerate(names)}
-    neighbours: dict[str, set[str]] = {n: set() for n in names}
-    for name, found in removals.items():
-        for r in found:
-            if r.leaves is not None and r.leaves in neighbours:
-                neighbours[name].add(r.leaves)
-                neighbours[r.leaves].add(name)
+def _parents(names: list[str], removals: dict[str, tuple[Removal, ...]]) -> dict[str, str | None]:
+    """Breadth first from the cube (the catalog's first class) over the catalog's classes, a
+    move an edge: within the catalog, an addition is a removal read backwards, so the removals
+    are all the edges.  Neighbours in catalog order, so the paths depend on nothing else."""
+    import networkx as nx
+
     if not names:
-        return {}, {}
-    start = names[0]  # the catalog's first class: the cube
-    distance: dict[str, int] = {start: 0}
-    parent: dict[str, str | None] = {start: None}
-    frontier = [start]
-    while frontier:
-        nxt = []
-        for n in frontier:
-            for m in sorted(neighbours[n], key=order.__getitem__):
-                if m not in distance:
-                    distance[m], parent[m] = distance[n] + 1, n
-                    nxt.append(m)
-        frontier = nxt
-    return distance, parent
+        return {}
+    order = {n: i for i, n in enumerate(names)}
+    g = nx.Graph()
+    g.add_nodes_from(names)
+    g.add_edges_from((name, r.leaves) for name, found in removals.items() for r in found
+                     if r.leaves in order)
+    edges = nx.bfs_edges(g, names[0], sort_neighbors=lambda ns: sorted(ns, key=order.__getitem__))
+    return {names[0]: None, **{child: parent for parent, child in edges}}
 
 
 def _detours(census: Census) -> dict[str, list[Move]]:
@@ -165,13 +159,12 @@ def move_graph(census: Census, progress: Callable[[str], None] | None = None,
     local processes."""
     from polyloops.enumerate.parallel import run_jobs
 
-    def name_of(ls: LoopStructure) -> str | None:
-        entry = census.by_signature.get(canonical_form(ls, "full").signature)
-        return entry.name if entry is not None else None
-
     def named(signature: str) -> str | None:
         entry = census.by_signature.get(signature)
         return entry.name if entry is not None else None
+
+    def name_of(ls: LoopStructure) -> str | None:
+        return named(canonical_form(ls, "full").signature)
 
     structures = {e.name: e.structure() for e in census}
     removals: dict[str, tuple[Removal, ...]] = {}
@@ -223,5 +216,5 @@ def move_graph(census: Census, progress: Callable[[str], None] | None = None,
             below = descents[steps[k].name]  # type: ignore[index]
             descents[entry.name] = Descent((*steps[:k], DescentStep(steps[k].move, *_named(below.steps[0])),
                                             *below.steps[1:]))
-    distance, parent = _distances([e.name for e in entries], removals)
-    return MoveGraph(removals, {k: tuple(v) for k, v in above.items()}, descents, distance, parent)
+    return MoveGraph(removals, {k: tuple(v) for k, v in above.items()}, descents,
+                     _parents([e.name for e in entries], removals))

@@ -90,7 +90,7 @@ def _shortest_html(name: str, graph: MoveGraph, listed: set[str]) -> str:
     cells = []
     for before, here in zip((None, *path), path, strict=False):
         if before is None:
-            caption = "the cube" if here == path[0] else ""
+            caption = "the cube"
         else:
             down = next((r for r in graph.removals[before] if r.leaves == here), None)
             up = next((r for r in graph.removals[here] if r.leaves == before), None)

@@ -80,10 +80,8 @@ def viewer_figure(obj: Polycube | LoopStructure, title: str | None = None):
 
     Raises
     ------
-    DualityError
-        When a loop structure has no polycube.
-    PictureError
-        When the polycube is too large to draw.
+    DualityError, PictureError
+        As :func:`viewer_spec`.
     """
     import plotly.graph_objects as go
 
@@ -262,7 +260,7 @@ def write_viewer(obj: Polycube | LoopStructure, path: str | os.PathLike[str], ti
     Raises
     ------
     DualityError, PictureError
-        As :func:`viewer_figure`.
+        As :func:`viewer_spec`.
     OSError
         When the file cannot be written.
 
