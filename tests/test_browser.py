@@ -22,6 +22,14 @@ def open_page(chromium, url):
     return page, errors
 
 
+def follow(page, link) -> str:
+    """Click a link and wait for the page it opens (a click returns once dispatched, before the
+    browser has navigated); returns the new URL."""
+    with page.expect_navigation():
+        link.click()
+    return page.url
+
+
 def ink(png: bytes) -> float:
     img = mpimg.imread(io.BytesIO(png), format="png")[..., :3]
     return float(np.any(np.abs(img - 1.0) > 0.05, axis=-1).mean())
@@ -82,7 +90,7 @@ def test_gallery_filters_copy_and_links(chromium, tmp_path, capsys):
     # The copy answers asynchronously (the clipboard's promise, or the fallback).
     first.locator("button", has_text="copied").wait_for(timeout=5000)
     assert ink(page.screenshot()) > 0.05
-    first.locator(".name a.view3d").click()
+    follow(page, first.locator(".name a.view3d"))
     page.wait_for_selector(".js-plotly-plot canvas")
     assert page.url.endswith(".html") and "/view/" in page.url
     assert errors == []
@@ -97,7 +105,7 @@ def test_the_gallery_walks_the_move_graph(chromium, tmp_path, capsys):
     site = tmp_path / "site"
     assert main(["gallery", "-o", str(site), "--limit", "60"]) == 0
     page, errors = open_page(chromium, (site / "index.html").as_uri())
-    page.locator(".card", has_text="P26.20").locator(".name a").first.click()
+    follow(page, page.locator(".card", has_text="P26.20").locator(".name a").first)
     assert page.url.endswith("/class/P26.20.html") and "irreducible" in page.inner_text("body")
     # Within the gallery's classes (through 26 corners here) nothing leads to P26.20.
     assert page.locator(".shortest").count() == 0 and "Not reachable" in page.inner_text("body")
@@ -108,20 +116,20 @@ def test_the_gallery_walks_the_move_graph(chromium, tmp_path, capsys):
         assert strip.first.inner_text().strip().startswith(visited[-1])
         nxt = strip.locator("a")  # the way down's next class with a page
         assert nxt.count() >= 2, page.url
-        nxt.nth(1).click()
+        follow(page, nxt.nth(1))
         visited.append(page.url.rsplit("/", 1)[1].removesuffix(".html"))
         assert len(visited) < 10
     assert visited[1] != "P26.20" and page.locator("h1").inner_text() == "P8.1"
     # Up by an addition, and down again by its removal.
-    page.locator(".above a", has_text="P12.1").first.click()
+    follow(page, page.locator(".above a", has_text="P12.1").first)
     assert page.url.endswith("/class/P12.1.html")
-    page.locator(".removals a", has_text="P8.1").first.click()
+    follow(page, page.locator(".removals a", has_text="P8.1").first)
     assert page.url.endswith("/class/P8.1.html")
     page.go_back()
     link = page.locator(".removals a", has_text="see it").first
     target = link.get_attribute("href")
     assert "#loop-" in target
-    link.click()
+    follow(page, link)
     page.wait_for_selector(".js-plotly-plot canvas")
     page.wait_for_timeout(500)
     widths = page.evaluate("document.querySelector('.js-plotly-plot').data"
@@ -135,7 +143,7 @@ def test_the_gallery_walks_the_move_graph(chromium, tmp_path, capsys):
     assert "From the cube: " in page.inner_text("body")
     page.goto((site / "moves.html").as_uri())
     assert page.locator("#graph a").count() == 60
-    page.locator('#graph a[href="class/P12.1.html"]').click()
+    follow(page, page.locator('#graph a[href="class/P12.1.html"]'))
     assert page.url.endswith("/class/P12.1.html")
     assert errors == []
     page.close()
