@@ -4,8 +4,9 @@ labels, such as plantri's planar code, is read).
 
 Crossing loops get different axes (a proper 3-colouring of the crossing graph), and Condition 3
 holds at every corner (a 2-colouring of the side graph of each axis, solved as parity
-constraints; each component is a free choice).  Condition 5 holds at genus 0 and Conditions 1,
-2 and 4 hold for every simple quadrangulation with minimum degree 3.
+constraints; each component is a free choice).  Condition 5 holds at genus 0 and is checked at
+positive genus; Conditions 1, 2 and 4 hold for every simple quadrangulation with minimum
+degree 3.
 
 >>> from polyloops.io.examples import load_example
 >>> len(polycube_classes_on(load_example("cube").map))
@@ -95,9 +96,22 @@ def sign_components(m: HalfEdgeMap, axes: Sequence[int]) -> tuple[tuple[tuple[in
 
 
 def polycube_structures(m: HalfEdgeMap) -> Iterator[LoopStructure]:
-    """Every polycube loop structure on a genus-0 quad map (labelled and oriented)."""
+    """Every polycube loop structure on a quad map (labelled and oriented).
+
+    At genus 0 Condition 5 holds for every choice of sides (the paper's Corollary); at positive
+    genus a choice is kept when every level graph is acyclic, and the map needs corners of
+    degree 3 at least (Condition 2), which the catalog's generators of genus 0 guarantee.
+
+    >>> from polyloops.io.examples import load_example
+    >>> ring = load_example("ring").map
+    >>> all(ls.map.genus == 1 for ls in polycube_structures(ring))
+    True
+    """
     system = m.loop_system
     if any(lp.self_crossings for lp in system.loops):
+        return
+    positive_genus = m.genus > 0
+    if positive_genus and any(m.degree(c) < 3 for c in range(m.num_corners)):
         return
     adjacency: list[set[int]] = [set() for _ in system.loops]
     for f in range(m.num_faces):
@@ -109,12 +123,29 @@ def polycube_structures(m: HalfEdgeMap) -> Iterator[LoopStructure]:
         if comps is None:
             continue
         axes = tuple(Axis(c) for c in colouring)
+        sides = [LoopStructure(m, axes).zones(axis).sides for axis in Axis] if positive_genus else []
         for choice in product((1, -1), repeat=len(comps)):
             signs = [0] * len(system.loops)
             for comp, c in zip(comps, choice, strict=True):
                 for loop, rel in comp:
                     signs[loop] = c * rel
+            if positive_genus and not all(_acyclic(by_loop, signs) for by_loop in sides):
+                continue
             yield LoopStructure(m, axes, tuple(signs))
+
+
+def _acyclic(sides: dict[int, tuple[int, int]], signs: Sequence[int]) -> bool:
+    """Whether the level graph with arcs ``sides[loop] = (left zone, right zone)`` oriented by
+    ``signs`` (``+`` on the right) has no directed cycle (Condition 5); a loop with one zone on
+    both sides is a cycle."""
+    import networkx as nx
+
+    g = nx.DiGraph()
+    for loop, (left, right) in sides.items():
+        if left == right:
+            return False
+        g.add_edge(*((left, right) if signs[loop] > 0 else (right, left)))
+    return nx.is_directed_acyclic_graph(g)
 
 
 def polycube_classes_on(m: HalfEdgeMap, mode: Symmetry | str = Symmetry.FULL) -> list[LoopStructure]:

@@ -1,0 +1,181 @@
+"""The torus search (genus-1 candidate maps) against its slow twin and the theorems it uses."""
+
+import random
+
+import pytest
+
+from polyloops.core.canonical import from_signature
+from polyloops.core.directions import Axis
+from polyloops.core.labellings import polycube_structures
+from polyloops.enumerate.reach import explore, stored_signatures
+from polyloops.enumerate.torus import (
+    TorusArrangement,
+    canonical,
+    layered_need,
+    torus_arrangements,
+    two_stage_decompositions,
+)
+from polyloops.enumerate.torus_brute import _least_code, torus_maps_by_brute_force
+from polyloops.io.examples import load_example
+
+
+def by_size(arrangements, n):
+    return {_least_code(list(a.twin)) for a in arrangements if a.crossings == n}
+
+
+@pytest.mark.parametrize("n", [1, 2, 3, 4, 5, pytest.param(6, marks=pytest.mark.slow)])
+def test_the_search_lists_what_brute_force_lists(n):
+    """Every cellular arrangement of simple loops on the torus with n crossings, once: the
+    canonical construction path over marked maps against a brute force over all pairings of
+    darts (the same arrangements, compared by the twin's own canonical code)."""
+    found = list(torus_arrangements(n))
+    codes = by_size(found, n)
+    assert len(codes) == sum(a.crossings == n for a in found)  # none twice
+    assert codes == torus_maps_by_brute_force(n)
+
+
+def renumbered(a: TorusArrangement, rng: random.Random, mirror: bool) -> TorusArrangement:
+    """The same arrangement with crossings renumbered, each crossing's darts turned, and
+    perhaps seen in a mirror (the darts of each crossing read clockwise)."""
+    n = a.crossings
+    perm = list(range(n))
+    rng.shuffle(perm)
+    turn = [rng.randrange(4) for _ in range(n)]
+
+    def new(d: int) -> int:
+        v, i = divmod(d, 4)
+        i = (-i if mirror else i) % 4
+        return 4 * perm[v] + (i + turn[v]) % 4
+
+    twin = [0] * len(a.twin)
+    for d, t in enumerate(a.twin):
+        twin[new(d)] = new(t)
+    marks = tuple((kind, new(_rot(d) if mirror else d)) for kind, d in a.marks)
+    return TorusArrangement(tuple(twin), marks)
+
+
+def _rot(d):
+    return 4 * (d // 4) + (d + 1) % 4
+
+
+def test_canonical_codes_do_not_depend_on_numbering_or_mirror():
+    """Renumbered and mirrored copies of arrangements, cellular or marked, get the same code;
+    different arrangements get different ones."""
+    from polyloops.enumerate.torus import torus_children
+
+    rng = random.Random(7)
+    states = [kid for root in (0, 1) for kid, _ in torus_children(root, 4)]
+    states += [kid for s in list(states) for kid, _ in torus_children(s, 4)]
+    assert any(s.marks for s in states) and any(not s.marks for s in states)
+    codes = [canonical(s)[0] for s in states]
+    assert len(set(codes)) == len(codes)
+    for s, code in zip(states, codes, strict=True):
+        for mirror in (False, True):
+            assert canonical(renumbered(s, rng, mirror))[0] == code
+
+
+def test_candidate_cuts_keep_every_candidate():
+    """The bound and the cuts of the candidate search drop nothing: its candidate maps are
+    those of the unpruned search that are candidates."""
+    n = 6
+    everything = list(torus_arrangements(n))
+    candidates = {canonical(a)[0] for a in torus_arrangements(n, colours=3, regions=True)}
+    expected = set()
+    for a in everything:
+        sizes_ok = all(3 <= len(f) <= 6 for f in a.faces)
+        meets_once = all(len({a.loop_of[d] for d in f}) == len(f) for f in a.faces)
+        sides = [(a.face_of[d], a.face_of[a.twin[d]]) for d in range(len(a.twin))]
+        simple = all(f != g for f, g in sides) and len(set(sides)) == len(sides)
+        from polyloops.enumerate.torus import _colourable
+        if sizes_ok and meets_once and simple and _colourable(a.crossing_graph(), 3):
+            expected.add(canonical(TorusArrangement(a.twin))[0])
+    assert candidates == expected
+
+
+def genus_one_polycubes(max_corners: int):
+    """Genus-1 polycube loop structures: the examples, and every class the moves reach from
+    the ring within ``max_corners`` corners."""
+    import tempfile
+    from pathlib import Path
+
+    out = [load_example(name).dualize() for name in ("ring", "ring-x", "ring-y", "bridged-ring")]
+    with tempfile.TemporaryDirectory() as tmp:
+        explore(out[0], max_corners, directory=Path(tmp) / "reach", mode="full")
+        out += [from_signature(sig) for sig in stored_signatures(Path(tmp) / "reach")]
+    return out
+
+
+@pytest.fixture(scope="module")
+def genus_one():
+    return genus_one_polycubes(38)
+
+
+def test_deleting_one_axis_leaves_a_cellular_two_axis_arrangement(genus_one):
+    """The two-stage theorem on every genus-1 polycube at hand: for each axis, the loops of the
+    two others form a cellular arrangement whose regions are the paths of that axis's edges,
+    and the deleted loops cross each region at most once; the axis leaving fewest crossings
+    gives a decomposition the second stage builds."""
+    assert len(genus_one) > 10
+    for ls in genus_one:
+        a = TorusArrangement.of_quad_mesh(ls.map)
+        axis_of_loop = {a.loop_of[d]: ls.axis_of_dart(d) for d in range(ls.map.num_darts)}
+        crossings = {}
+        for axis in Axis:
+            chosen = {lp for lp, ax in axis_of_loop.items() if ax == axis}
+            base = a.without_loops(chosen)  # raises unless cellular
+            crossings[axis] = base.crossings
+        least = min(crossings, key=crossings.get)
+        chosen = frozenset(lp for lp, ax in axis_of_loop.items() if ax == least)
+        assert 3 * crossings[least] <= a.crossings
+        assert chosen in two_stage_decompositions(a, a.crossings)
+
+
+@pytest.mark.parametrize("slow", [False, pytest.param(True, marks=pytest.mark.slow)])
+def test_genus_one_structures_check_condition_five(slow):
+    """At genus 1 the structures a map carries are those the full checker accepts among all
+    labellings and sides (Condition 5 is not automatic there)."""
+    from itertools import product
+
+    from polyloops.verify.loop_structure import check_polycube_loop_structure
+
+    ring = load_example("ring").map
+    found = {(ls.axes, ls.signs) for ls in polycube_structures(ring)}
+    assert found
+    for ls in list(polycube_structures(ring))[:4]:
+        assert check_polycube_loop_structure(ls).valid
+    # a brute-force twin on small torus maps: every labelling and every choice of sides
+    from polyloops.core.structure import LoopStructure
+
+    maps = [load_example("torus-cycle").map] + [a.quad_mesh() for a in torus_arrangements(9, 3, True)]
+    for torus in maps:
+        if len(torus.loop_system.loops) > 5 and not slow:
+            continue  # six loops: 46,656 structures to check, 40 s
+        loops = len(torus.loop_system.loops)
+        valid = set()
+        for axes in product(tuple(Axis), repeat=loops):
+            for signs in product((1, -1), repeat=loops):
+                if check_polycube_loop_structure(LoopStructure(torus, axes, signs)).valid:
+                    valid.add((axes, signs))
+        assert {(ls.axes, ls.signs) for ls in polycube_structures(torus)} == valid
+
+
+@pytest.mark.slow  # 25 s: the one-stage search at 12 crossings
+def test_the_two_stages_list_what_the_direct_search_lists():
+    """The second stage (every B, then third-axis loops) lists exactly the candidate maps of
+    the direct search that the two-stage theorem decomposes (three at 12 crossings)."""
+    n = 12
+    direct = list(torus_arrangements(n, colours=3, regions=True))
+    want = {canonical(TorusArrangement(a.twin))[0] for a in direct if two_stage_decompositions(a, n)}
+    from polyloops.enumerate.torus import candidate_torus_arrangements
+
+    got = [a.code for a in candidate_torus_arrangements(n)]
+    assert len(got) == len(set(got)) and set(got) == want and want
+
+
+def test_layered_need_counts_sides_of_each_class():
+    """A region of B with eight sides alternating between its two axes needs four later
+    crossing points (each piece holds two sides of an axis at most); three sides of the third
+    axis can never become a corner."""
+    assert layered_need(8, [0, 1] * 4, False) == 4
+    assert layered_need(6, [0, 1, 2, 0, 1, 2], False) == 0
+    assert layered_need(5, [0, 2, 1, 2, 2], False) > 1000
