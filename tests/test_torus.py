@@ -179,3 +179,42 @@ def test_layered_need_counts_sides_of_each_class():
     assert layered_need(8, [0, 1] * 4, False) == 4
     assert layered_need(6, [0, 1, 2, 0, 1, 2], False) == 0
     assert layered_need(5, [0, 2, 1, 2, 2], False) > 1000
+
+
+def test_genus_one_records_carry_the_hole_invariant_and_torus_names():
+    """The ring's map gives one class in each mode, named T32.1 up to all symmetries; each
+    record carries the hole-orientation invariant of the structure its signature names."""
+    from polyloops.core.canonical import canonical_form
+    from polyloops.core.holes import hole_orientation
+    from polyloops.enumerate.catalog import map_classes
+    from polyloops.enumerate.records import class_names
+
+    ring = load_example("ring").dualize()
+    classes = map_classes(ring.map)
+    assert [len(classes[m]) for m in ("labelled", "rotation", "full")] == [3, 1, 1]
+    full = classes["full"][0]
+    assert full.holes == str(hole_orientation(canonical_form(ring, "full").structure))
+    assert str(hole_orientation(ring)) in {r.holes for r in classes["labelled"]}
+    assert class_names([full], "full", genus=1) == ["T32.1"]
+    assert type(full).from_json(full.to_json()) == full
+
+
+def test_catalog_command_builds_genus_one(tmp_path, capsys):
+    """`catalog --genus 1` runs the torus generator; its summary says genus 1 and counts odd
+    corner counts too; a genus-0 generator or a genus-0 build into it is refused."""
+    import json
+
+    from polyloops.cli import main
+
+    out = tmp_path / "g1"
+    assert main(["catalog", "--genus", "1", "--max-corners", "13", "-o", str(out), "--json"]) == 0
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["genus"] == 1 and summary["generator"] == "torus"
+    assert set(summary["counts"]) == {str(n) for n in range(8, 14)}
+    assert summary["search"]["states"] > 0
+    capsys.readouterr()
+    assert main(["catalog", "--genus", "1", "--generator", "loops", "--max-corners", "13", "-o",
+                 str(tmp_path / "x")]) == 2
+    assert "genus 0, not 1" in capsys.readouterr().err
+    assert main(["catalog", "--max-corners", "12", "-o", str(out)]) == 2
+    assert "genus 1" in capsys.readouterr().err

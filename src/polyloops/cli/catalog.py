@@ -33,7 +33,7 @@ def cmd_catalog(args: argparse.Namespace) -> int:
     from polyloops.enumerate.quadrangulations import PlantriError
 
     try:
-        generator, note = choose_generator(args.generator, args.method, args.plantri)
+        generator, note = choose_generator(args.generator, args.method, args.plantri, args.genus)
     except CatalogRunError as err:
         raise CliError(f"--generator {args.generator}: {err}") from None
     try:
@@ -61,7 +61,8 @@ def cmd_catalog(args: argparse.Namespace) -> int:
         built = build_catalog(args.output, args.max_corners, args.min_corners, args.symmetry,
                               workers=args.workers, res=args.res, mod=args.mod, dask=args.dask,
                               plantri=args.plantri, method=args.method, generator=generator,
-                              progress=progress, on_plan=planned, overwrite=args.overwrite)
+                              progress=progress, on_plan=planned, overwrite=args.overwrite,
+                              genus=args.genus)
     except WouldLoseResultsError as err:
         raise CliError(f"{err}; pass --overwrite to replace it, or build into another directory") from None
     except (CatalogRunError, PlantriError) as err:
@@ -78,8 +79,10 @@ def cmd_catalog(args: argparse.Namespace) -> int:
     text = "corners  quadrangulations  simple strips  labelled  rotation  full\n" + "\n".join(
         f"{r[0]:>7}  {r[1]:>16}  {r[2]:>13}  {r[3]:>8}  {r[4]:>8}  {r[5]:>4}" for r in rows)
     key = GENERATORS[generator].statistics_key
-    if key is not None and "arrangements" in summary.get(key, {}):
-        text += f"\narrangements built: {summary[key]['arrangements']} (generator {generator})"
+    search = summary.get(key, {}) if key else {}
+    built_count = search.get("arrangements", search.get("states"))
+    if built_count is not None:
+        text += f"\narrangements built: {built_count} (generator {generator})"
     emit(args, summary, f"{text}\nwrote {built.records} records ({args.symmetry}) to {args.output}")
     return EXIT_OK
 
@@ -133,12 +136,16 @@ def _export_arguments(p: argparse.ArgumentParser) -> None:
 
 
 def add_commands(command: AddCommand, hidden: AddCommand) -> None:
-    p = command("catalog", cmd_catalog, "the catalog of genus-0 polycubes up to order-equivalence, by "
-                "number of corners, from plantri's quadrangulations or arrangements of loops; "
+    p = command("catalog", cmd_catalog, "the catalog of polycubes of genus 0 (or 1) up to "
+                "order-equivalence, by number of corners, from plantri's quadrangulations or "
+                "arrangements of loops; "
                 "'catalog query DIR WHERE' "
                 "searches one, 'catalog export DIR --csv' writes its table", file_arg=False)
     p.add_argument("--max-corners", type=count_arg(0), metavar="N", help="required to build")
     p.add_argument("--min-corners", type=count_arg(8), default=8, metavar="M")
+    p.add_argument("--genus", type=int, choices=(0, 1), default=0,
+                   help="0 (the sphere; default) or 1 (the torus: the torus generator, which does "
+                   "not yet reach the smallest genus-1 polycubes, 32 corners, in reasonable time)")
     p.add_argument("--symmetry", choices=SYMMETRIES, default="full",
                    help="which classes the records list (summary.json counts all three); default full")
     p.add_argument("--workers", type=count_arg(1), default=1, metavar="K", help="local worker processes")
@@ -148,7 +155,7 @@ def add_commands(command: AddCommand, hidden: AddCommand) -> None:
                    help="where candidate maps come from: loops (arrangements built one loop at a "
                    "time, compiled at install; the default where it was built) or plantri (every "
                    "quadrangulation, filtered; the default otherwise, and when --method or "
-                   "--plantri is given); same records either way")
+                   "--plantri is given); same records either way; torus for --genus 1")
     p.add_argument("--res", type=count_arg(0), metavar="R", help="only slice R of M (with --mod)")
     p.add_argument("--mod", type=count_arg(1), metavar="M")
     p.add_argument("--dask", metavar="ADDRESS", help="run the jobs on a Dask cluster (an address, or local)")

@@ -26,6 +26,7 @@ from polyloops.core.canonical import CanonicalForm, canonical_form
 from polyloops.core.corners import CATEGORIES, corner_histogram
 from polyloops.core.directions import Axis
 from polyloops.core.halfedge import HalfEdgeMap
+from polyloops.core.holes import hole_orientation
 from polyloops.core.labellings import (  # re-exported: the catalog's step 3 lives in the kernel
     MapStructureError,
     only_structure_on,
@@ -53,6 +54,7 @@ def map_classes(m: HalfEdgeMap) -> dict[str, list[CatalogRecord]]:
     # The corner categories and the removable loops are the same for every image of a class
     # under a symmetry: worked out once a full class, not once a labelled one.
     invariants: dict[str, tuple[Any, int]] = {}
+    positive_genus = m.genus > 0
     for ls, form in labelled.values():
         full = canonical_form(ls, "full")
         chiral = not full.achiral
@@ -66,7 +68,8 @@ def map_classes(m: HalfEdgeMap) -> dict[str, list[CatalogRecord]]:
                 # Symmetries permute the axes: count loops on the class's own representative,
                 # the structure its signature names, not on the one met first.
                 rep = ls if mode == "labelled" else form.structure
+                holes = str(hole_orientation(rep)) if positive_genus else None
                 out[mode][key] = CatalogRecord(
                     key, m.num_corners, m.num_faces, {a.name: rep.axes.count(a) for a in Axis},
-                    {c: categories[c] for c in CATEGORIES}, form.automorphisms, chiral, removable)
+                    {c: categories[c] for c in CATEGORIES}, form.automorphisms, chiral, removable, holes)
     return {mode: list(v.values()) for mode, v in out.items()}

@@ -28,13 +28,14 @@ from polyloops.io.files import InputError, read_text, write_atomic
 
 
 def choose_generator(generator: str | None, method: str = "auto",
-                     plantri: str | None = None) -> tuple[str, str | None]:
-    """The generator a build uses, and a note when the choice was not the one asked for.
+                     plantri: str | None = None, genus: int = 0) -> tuple[str, str | None]:
+    """The generator a build of ``genus`` uses, and a note when the choice was not the one
+    asked for.
 
-    ``None`` asks for the most preferred one that can run here and takes the options given (a
-    strip-filter ``method`` and a ``plantri`` binary are options of the plantri generator);
-    when a more preferred one could not run, the note says why.  An option the named generator
-    does not take is an error.
+    ``None`` asks for the most preferred one of that genus that can run here and takes the
+    options given (a strip-filter ``method`` and a ``plantri`` binary are options of the plantri
+    generator); when a more preferred one could not run, the note says why.  An option the
+    named generator does not take, or a generator of another genus, is an error.
 
     >>> choose_generator(None, method="numpy")
     ('plantri', None)
@@ -46,12 +47,16 @@ def choose_generator(generator: str | None, method: str = "auto",
     given = {k for k, v in (("method", method), ("plantri", plantri)) if v not in (None, "auto")}
     if generator is not None:
         chosen = GENERATORS.get(generator)
+        if chosen is not None and chosen.genus != genus:
+            raise CatalogRunError(f"the {generator} generator makes maps of genus {chosen.genus}, "
+                                  f"not {genus}")
         if chosen is not None and not given <= chosen.options:
             takers = " and ".join(sorted(g.name for g in GENERATORS.values() if given <= g.options))
             raise CatalogRunError(f"the strip filter method and plantri's binary are options of the {takers} "
                                   f"generator; the {generator} generator takes none of them")
         return generator, None
-    ranked = sorted((g for g in GENERATORS.values() if given <= g.options), key=lambda g: -g.preference)
+    ranked = sorted((g for g in GENERATORS.values() if given <= g.options and g.genus == genus),
+                    key=lambda g: -g.preference)
     skipped: list[tuple[str, str]] = []
     for g in ranked:
         why = g.unavailable()
@@ -60,6 +65,9 @@ def choose_generator(generator: str | None, method: str = "auto",
                                              "the same records")
             return g.name, note
         skipped.append((g.name, why))
+    if not skipped:
+        raise CatalogRunError(f"no catalog generator makes maps of genus {genus}"
+                              + (" with the strip filter's options" if given else ""))
     raise CatalogRunError("no catalog generator can run here: " + "; ".join(why for _, why in skipped))
 
 
@@ -83,17 +91,19 @@ class Extent:
     max_corners: int
     symmetry: Symmetry
     share: tuple[int, int] | None = None
+    genus: int = 0
 
     def covers(self, other: Extent) -> bool:
         """Whether a catalog of this extent holds everything one of ``other`` holds."""
         return (self.min_corners <= other.min_corners and self.max_corners >= other.max_corners
-                and self.symmetry == other.symmetry
+                and self.symmetry == other.symmetry and self.genus == other.genus
                 and (self.share is None or self.share == other.share))
 
     def describe(self) -> str:
         """The extent in words, as error messages give it."""
         share = "" if self.share is None else f", share {self.share[0]} of {self.share[1]}"
-        return f"{self.min_corners} to {self.max_corners} corners ({self.symmetry}{share})"
+        genus = f"genus {self.genus}, " if self.genus else ""
+        return f"{genus}{self.min_corners} to {self.max_corners} corners ({self.symmetry}{share})"
 
 
 CATALOG_FILES = ("catalog.jsonl", "catalog.sqlite", "summary.json")
@@ -120,7 +130,7 @@ def existing_extent(out: Path) -> Extent | None:
         share = summary.get("share")
         share = (int(share[0]), int(share[1])) if share is not None else \
             ((-1, -1) if "partial" in summary else None)
-        return Extent(min(counts), max(counts), symmetry, share)
+        return Extent(min(counts), max(counts), symmetry, share, int(summary.get("genus", 0)))
     except InputError as err:
         raise CatalogRunError(f"{out}: holds a catalog that cannot be read ({err})") from None
     except (ValueError, KeyError, TypeError, IndexError, AttributeError) as err:
@@ -194,13 +204,17 @@ def summarize(generator: Generator, results: list[JobResult], min_n: int, max_n:
     def total(values: list[int | None]) -> int | None:  # known only when every job counted it
         return None if not values or None in values else sum(v for v in values if v is not None)
 
-    quads = {n: None if int(n) % 2 else total(maps[n]) for n in corners}
-    simple = {n: 0 if int(n) % 2 else total(strips[n]) for n in corners}
+    if generator.genus == 0:
+        quads = {n: None if int(n) % 2 else total(maps[n]) for n in corners}
+        simple = {n: 0 if int(n) % 2 else total(strips[n]) for n in corners}
+    else:  # odd counts occur on the torus, and no generator of positive genus reads all maps
+        quads = {n: total(maps[n]) for n in corners}
+        simple = {n: total(strips[n]) for n in corners}
     # quadrangulations: plantri's simple ones with minimum degree 3; simple_strips: those of
     # them whose strips are all simple closed curves (any degrees).
     # maps_by_classes[n][k]: the candidate maps with n corners that carry exactly k >= 1
     # polycube classes up to all symmetries (each class lies on one map).
-    out: dict[str, Any] = {"genus": 0, "counts": counts, "quadrangulations": quads,
+    out: dict[str, Any] = {"genus": generator.genus, "counts": counts, "quadrangulations": quads,
                            "simple_strips": simple,
                            "maps_by_classes": {n: {str(k): v for k, v in sorted(carrying[n].items())}
                                                for n in corners}}
@@ -220,8 +234,8 @@ def write_catalog(out: Path, results: list[JobResult], symmetry: Symmetry | str,
     symmetry = Symmetry.parse(symmetry)
     records = sorted((rec for r in results for c in r.corners.values() for rec in c.records[str(symmetry)]),
                      key=lambda rec: (rec.corners, rec.signature))
-    entries = [CatalogEntry(name, symmetry, rec)
-               for name, rec in zip(class_names(records, symmetry), records, strict=True)]
+    names = class_names(records, symmetry, int(summary.get("genus", 0)))
+    entries = [CatalogEntry(name, symmetry, rec) for name, rec in zip(names, records, strict=True)]
     write_jsonl(out / "catalog.jsonl", entries)
     write_sqlite(out / "catalog.sqlite", entries, symmetry)
     write_atomic(out / "summary.json", json.dumps(summary, indent=1) + "\n")
@@ -245,8 +259,8 @@ def build_catalog(out: Path | str, max_corners: int, min_corners: int = 8,
                   plantri: str | None = None, method: str = "auto", generator: str | None = None,
                   progress: Callable[[JobResult], None] | None = None,
                   on_plan: Callable[[list[Job]], None] | None = None,
-                  overwrite: bool = False) -> CatalogBuild:
-    """Build (or resume) the genus-0 catalog in directory ``out``.
+                  overwrite: bool = False, genus: int = 0) -> CatalogBuild:
+    """Build (or resume) the catalog of the polycubes of genus ``genus`` in directory ``out``.
 
     Parameters
     ----------
@@ -270,6 +284,8 @@ def build_catalog(out: Path | str, max_corners: int, min_corners: int = 8,
         :func:`polyloops.enumerate.quadrangulations.filtered_batches`), for ``plantri``.
     progress, on_plan:
         Called with each finished job's result, and once with the list of jobs.
+    genus:
+        0 (the sphere) or 1 (the torus: the ``torus`` generator, :mod:`polyloops.enumerate.torus`).
     overwrite:
         Replace a catalog in ``out`` that covers more than this build (more corner counts,
         another mode, the whole search where this is a share); without it such a build is
@@ -303,7 +319,7 @@ def build_catalog(out: Path | str, max_corners: int, min_corners: int = 8,
     if workers < 1:
         raise CatalogRunError("--workers must be at least 1")
     symmetry = Symmetry.parse(symmetry)
-    name, _ = choose_generator(generator, method, plantri)
+    name, _ = choose_generator(generator, method, plantri, genus)
     if name not in GENERATORS:
         raise CatalogRunError(f"unknown generator {name!r}: choose one of {', '.join(sorted(GENERATORS))}")
     try:
@@ -319,7 +335,7 @@ def build_catalog(out: Path | str, max_corners: int, min_corners: int = 8,
         raise CatalogRunError(f"{out}: the directory {out.absolute().parent} does not exist")
     share = None if mod is None else (res or 0, mod)
     old = existing_extent(out)
-    new = Extent(min_corners, max_corners, symmetry, share)
+    new = Extent(min_corners, max_corners, symmetry, share, genus)
     if old is not None and not overwrite and not new.covers(old):
         raise WouldLoseResultsError(f"{out}: holds a catalog of {old.describe()}; this build of "
                                     f"{new.describe()} would replace it with less")

@@ -13,10 +13,14 @@ added with :func:`register`.
   corner count each, and it counts the maps it reads;
 - ``loops``: arrangements of loops built one loop at a time
   (:mod:`polyloops.enumerate.arrangements`); each job is a share of one search over every
-  corner count, and it counts the arrangements it builds.
+  corner count, and it counts the arrangements it builds;
+- ``torus``: the genus-1 candidate maps, in two stages (:mod:`polyloops.enumerate.torus`);
+  each job is a share of the two-axis arrangements the second stage starts from.
 
 >>> sorted(GENERATORS)
-['loops', 'plantri']
+['loops', 'plantri', 'torus']
+>>> GENERATORS["torus"].genus
+1
 >>> [job.name for job in GENERATORS["plantri"].plan(8, 12, None, 1)]
 ['n012-0of1', 'n010-0of1', 'n008-0of1']
 """
@@ -38,7 +42,7 @@ from polyloops.enumerate.catalog import MODES, map_classes
 from polyloops.enumerate.records import CatalogRecord
 
 __all__ = ["GENERATORS", "CornerResult", "Generator", "Job", "JobResult", "LoopsGenerator",
-           "PlantriGenerator", "Tally", "register", "run_job"]
+           "PlantriGenerator", "Tally", "TorusGenerator", "register", "run_job"]
 
 # Version 6: per corner count, the maps by the number of classes they carry.  Parts of older
 # versions are recomputed.
@@ -142,6 +146,7 @@ class Generator(ABC):
     of one run share, and :meth:`unavailable` says why the generator cannot run here."""
 
     name: str = ""
+    genus: int = 0  # the genus of the maps it makes
     visits: str = "maps"
     statistics_key: str | None = None  # summary.json's key for the summed statistics
     options: frozenset[str] = frozenset()  # what with_options takes
@@ -486,5 +491,37 @@ def share_of(top: Any, res: int, mod: int) -> Any:
     return Frontier(top.loops, top.roots[res::mod], top.shallow if res == 0 else ())
 
 
+# -- the torus ------------------------------------------------------------------------------------
+
+class TorusGenerator(Generator):
+    """The candidate maps of genus 1 (:func:`polyloops.enumerate.torus.candidate_torus_arrangements`):
+    a job is share ``res/mod`` of the two-axis arrangements of the second stage, covering
+    every corner count at once; it counts the states it builds."""
+
+    name = "torus"
+    genus = 1
+    visits = "arrangements"
+    statistics_key = "search"
+
+    def plan(self, low: int, high: int, share: tuple[int, int] | None, workers: int) -> list[Job]:
+        """One search over every corner count, cut into ``workers`` shares."""
+        if share is not None:
+            return [Job(self.name, high, low, *share)]
+        return [Job(self.name, high, low, r, max(workers, 1)) for r in range(max(workers, 1))]
+
+    def candidates(self, job: Job, context: Any, tally: Tally) -> Iterator[HalfEdgeMap]:
+        """The share's candidate maps; the search's statistics go to ``tally``."""
+        from polyloops.enumerate.torus import TorusSearchStats, candidate_torus_arrangements
+
+        stats: list[TorusSearchStats] = []
+        for a in candidate_torus_arrangements(job.n, job.res, job.mod, on_stats=stats.append):
+            if a.crossings >= job.low:
+                yield a.quad_mesh()
+        total = vars(stats[0]) if stats else {}
+        tally.statistics.update(total)
+        tally.visited += total.get("states", 0)
+
+
 register(PlantriGenerator())
 register(LoopsGenerator())
+register(TorusGenerator())

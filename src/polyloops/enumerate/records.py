@@ -30,8 +30,8 @@ from polyloops.core.errors import PolyloopsError
 from polyloops.core.symmetry import Symmetry
 from polyloops.io.files import InputError, check_regular, read_only_uri, write_atomic, writing
 
-__all__ = ["COLUMNS", "NAME_PREFIX", "CatalogEntry", "CatalogError", "CatalogRecord", "class_names",
-           "csv_text", "fill_tables", "query", "row", "write_jsonl", "write_sqlite"]
+__all__ = ["COLUMNS", "GENUS_PREFIX", "NAME_PREFIX", "CatalogEntry", "CatalogError", "CatalogRecord",
+           "class_names", "csv_text", "fill_tables", "query", "row", "write_jsonl", "write_sqlite"]
 
 
 class CatalogError(PolyloopsError, ValueError):
@@ -50,6 +50,7 @@ class CatalogRecord:
     automorphisms: int
     chiral: bool
     removable_loops: int  # loops whose removal leaves a polycube loop structure
+    holes: str | None = None  # positive genus: the hole-orientation invariant (core.holes)
 
     @property
     def irreducible(self) -> bool:
@@ -58,10 +59,13 @@ class CatalogRecord:
 
     def to_json(self) -> dict[str, Any]:
         """A JSON-ready dict: the record's fields and whether it is irreducible."""
-        return {"signature": self.signature, "corners": self.corners, "faces": self.faces,
-                "loops": self.loops, "corner_categories": self.categories,
-                "automorphisms": self.automorphisms, "chiral": self.chiral,
-                "removable_loops": self.removable_loops, "irreducible": self.irreducible}
+        out = {"signature": self.signature, "corners": self.corners, "faces": self.faces,
+               "loops": self.loops, "corner_categories": self.categories,
+               "automorphisms": self.automorphisms, "chiral": self.chiral,
+               "removable_loops": self.removable_loops, "irreducible": self.irreducible}
+        if self.holes is not None:
+            out["holes"] = self.holes
+        return out
 
     @classmethod
     def from_json(cls, data: Any) -> CatalogRecord:
@@ -74,7 +78,8 @@ class CatalogRecord:
             raise TypeError("signature must be text and corners an integer")
         return cls(signature, corners, int(data["faces"]), {a: int(n) for a, n in data["loops"].items()},
                    {c: int(data["corner_categories"][c]) for c in CATEGORIES}, int(data["automorphisms"]),
-                   bool(data["chiral"]), int(data["removable_loops"]))
+                   bool(data["chiral"]), int(data["removable_loops"]),
+                   None if data.get("holes") is None else str(data["holes"]))
 
 
 @dataclass(frozen=True)
@@ -115,18 +120,28 @@ class CatalogEntry:
 
 
 NAME_PREFIX = {"full": "P", "rotation": "R", "labelled": "L"}
+GENUS_PREFIX = {0: "", 1: "T"}  # genus 1: T32.1 (full), TR32.1, TL32.1
 
 
-def class_names(records: Sequence[CatalogRecord], symmetry: Symmetry | str) -> list[str]:
+def class_names(records: Sequence[CatalogRecord], symmetry: Symmetry | str, genus: int = 0) -> list[str]:
     """Short stable names, like a census's: ``P26.3`` is the third class with 26 corners up to
     all 48 symmetries (``R`` up to rotation, ``L`` labelled), classes of one corner count ranked
-    by signature (as strings; ``records`` in that order).  A name never changes once its corner
-    count is complete."""
+    by signature (as strings; ``records`` in that order); at genus 1 ``T32.1``, ``TR32.1`` and
+    ``TL32.1``.  A name never changes once its corner count is complete.
+
+    >>> rec = CatalogRecord("1o", 32, 32, {}, {}, 1, False, 0)
+    >>> class_names([rec], "full", genus=1), class_names([rec], "rotation", genus=1)
+    (['T32.1'], ['TR32.1'])
+    """
+    mode = str(Symmetry.parse(symmetry))
+    if genus not in GENUS_PREFIX:
+        raise ValueError(f"no class names for genus {genus}")
+    prefix = "T" + ("" if mode == "full" else NAME_PREFIX[mode]) if genus else NAME_PREFIX[mode]
     out, rank, last = [], 0, None
     for rec in records:
         rank = rank + 1 if rec.corners == last else 1
         last = rec.corners
-        out.append(f"{NAME_PREFIX[str(Symmetry.parse(symmetry))]}{rec.corners}.{rank}")
+        out.append(f"{prefix}{rec.corners}.{rank}")
     return out
 
 

@@ -779,30 +779,40 @@ def two_axis_bases(max_crossings: int, on_stats: Callable[[TorusSearchStats], No
             yield a
 
 
-def candidate_torus_arrangements(max_crossings: int,
+def candidate_torus_arrangements(max_crossings: int, res: int = 0, mod: int = 1,
                                  on_stats: Callable[[TorusSearchStats], None] | None = None
                                  ) -> Iterator[TorusArrangement]:
-    """Every candidate map of genus 1 with at most ``max_crossings`` crossings that carries a
-    polycube loop structure can carry, through the two stages: each ``B`` with at most a
-    third of the crossings, then its third axis's loops.  A candidate may come from several
-    ``B``: each is listed once (by its code)."""
+    """Every candidate map of genus 1 with at most ``max_crossings`` crossings through which the
+    two stages can pass (every map that carries a polycube loop structure among them), once up
+    to homeomorphism: each ``B`` with at most a third of the crossings, then its third axis's
+    loops.  ``res``/``mod`` keeps the ``B`` whose rank is ``res`` modulo ``mod`` (independent
+    shares: a map is listed from its canonical decomposition only)."""
     stats = TorusSearchStats()
-    seen: set[tuple] = set()
-    for base in list(two_axis_bases(max_crossings // 3, on_stats=stats.add)):
-        start = TorusArrangement(base.twin, (), (0,) * len(base.twin), base.code)
-        stack = [start]
+    for rank, base in enumerate(two_axis_bases(max_crossings // 3, on_stats=stats.add if res == 0 else None)):
+        if rank % mod != res:
+            continue
+        stack = [TorusArrangement(base.twin, (), (0,) * len(base.twin), base.code)]
         while stack:
             node = stack.pop()
             kids = torus_children(node, max_crossings, None, True, stats)
             for kid, facts in kids:
-                if facts.target and _balanced(kid, base.crossings):
-                    code = canonical(TorusArrangement(kid.twin))[0]
-                    if code not in seen:
-                        seen.add(code)
-                        yield TorusArrangement(kid.twin, (), (), code)
+                if facts.target and _balanced(kid, base.crossings) and _canonical_decomposition(kid):
+                    plain = TorusArrangement(kid.twin)
+                    yield TorusArrangement(kid.twin, (), (), canonical(plain)[0])
             stack.extend(kid for kid, _ in reversed(kids))
     if on_stats:
         on_stats(stats)
+
+
+def _canonical_decomposition(kid: TorusArrangement) -> bool:
+    """Whether a second-stage state is its map's canonical decomposition: the least code of
+    the map with the loops of a decomposition marked, over all its decompositions."""
+    plain = TorusArrangement(kid.twin)
+    codes = []
+    for chosen in two_stage_decompositions(plain, plain.crossings):
+        layer = tuple(int(plain.loop_of[d] in chosen) for d in range(len(plain.twin)))
+        codes.append(canonical(TorusArrangement(plain.twin, (), layer))[0])
+    return kid.code == min(codes, default=None)
 
 
 def _balanced(a: TorusArrangement, base_crossings: int) -> bool:
