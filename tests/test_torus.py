@@ -107,7 +107,7 @@ def genus_one_polycubes(max_corners: int):
 
 @pytest.fixture(scope="module")
 def genus_one():
-    return genus_one_polycubes(38)
+    return genus_one_polycubes(40)
 
 
 def test_deleting_one_axis_leaves_a_cellular_two_axis_arrangement(genus_one):
