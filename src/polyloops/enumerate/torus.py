@@ -749,15 +749,7 @@ def _zones_split_every_loop(a: TorusArrangement) -> bool:
     two different zones on its sides (zones: the components left when that class's loops are
     cut away).  A loop with one zone on both sides is a loop of its level graph, so no ``B``
     of a polycube has one."""
-    adj = a.crossing_graph()
-    side = {0: 0}
-    stack = [0]
-    while stack:
-        v = stack.pop()
-        for u in adj[v]:
-            if u not in side:
-                side[u] = 1 - side[v]
-                stack.append(u)
+    side = _classes(a)
     for cls in (0, 1):
         zones = DisjointSets(range(len(a.faces)))
         for d in range(len(a.twin)):
@@ -819,21 +811,7 @@ def _balanced(a: TorusArrangement, base_crossings: int) -> bool:
     """Whether ``B`` has the fewest crossings of the three two-axis arrangements: the third
     axis crosses each class of ``B``'s bipartition at least as often as ``B`` crosses itself."""
     third = a.third_loops()
-    b_adj: dict[int, set[int]] = {}
-    for v in range(a.crossings):
-        l1, l2 = a.loop_of[4 * v], a.loop_of[4 * v + 1]
-        if l1 not in third and l2 not in third:
-            b_adj.setdefault(l1, set()).add(l2)
-            b_adj.setdefault(l2, set()).add(l1)
-    start = next(iter(b_adj))
-    side = {start: 0}
-    stack = [start]
-    while stack:
-        v = stack.pop()
-        for u in b_adj[v]:
-            if u not in side:
-                side[u] = 1 - side[v]
-                stack.append(u)
+    side = _classes(a)
     with_class = [0, 0]
     for v in range(a.crossings):
         l1, l2 = a.loop_of[4 * v], a.loop_of[4 * v + 1]
