@@ -49,12 +49,12 @@ from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field, fields
 from functools import cached_property
 
-from polyloops.core.disjoint_sets import DisjointSets
+from polyloops.core.disjoint_sets import DisjointSets, ParitySets
 from polyloops.core.halfedge import HalfEdgeMap, permutation_orbits
 
 __all__ = ["ANNULUS", "HANDLE", "THIRD", "TorusArrangement", "TorusSearchStats",
-           "candidate_torus_arrangements", "face_need", "layered_need", "torus_arrangements",
-           "torus_children", "two_axis_bases", "two_stage_decompositions"]
+           "candidate_torus_arrangements", "face_need", "layered_need", "third_sides_consistent",
+           "torus_arrangements", "torus_children", "two_axis_bases", "two_stage_decompositions"]
 
 ANNULUS, HANDLE = "A", "H"  # an end of the annulus face; the face with the handle
 MARK_NEED = {HANDLE: 2, ANNULUS: 1}  # a holed torus is crossed twice at least, an annulus end once
@@ -518,6 +518,7 @@ class TorusSearchStats:
     over_bound: int = 0
     not_canonical: int = 0
     not_colourable: int = 0
+    inconsistent_sides: int = 0  # second stage: third-axis loops that no orientation fits
     states: int = 0
     targets: int = 0
 
@@ -646,6 +647,9 @@ def torus_children(parent: TorusArrangement | int, max_crossings: int, colours: 
             return
         if not facts.colourable:
             stats.not_colourable += 1
+            return
+        if layered and not third_sides_consistent(child):
+            stats.inconsistent_sides += 1
             return
         lc = child.loop_crossings()
         if layered:
@@ -807,6 +811,31 @@ def _canonical_decomposition(kid: TorusArrangement) -> bool:
     return kid.code == min(codes, default=None)
 
 
+def third_sides_consistent(a: TorusArrangement) -> bool:
+    """Whether the third axis's loops of a second-stage state can be oriented so that every
+    face between two of them lies on the ``+`` side of one and the ``-`` side of the other.
+
+    In a polycube each region of ``B`` is a path of corners along the third axis, and a corner
+    between two edges of that axis has one ``+`` and one ``-`` edge.  A later third-axis loop
+    through such a face cuts it into two faces whose two constraints imply the old one, so an
+    inconsistency is never repaired: no polycube grows from the state."""
+    forward = [0] * len(a.twin)  # +1 along the loop's own walk (from its least dart), -1 back
+    for d in range(len(a.twin)):
+        if forward[d] == 0 and a.layer[d]:
+            e = d
+            while forward[e] == 0:
+                forward[e], forward[a.twin[e]] = 1, -1
+                e = _rot4(_rot4(a.twin[e]))
+    sides: ParitySets[int] = ParitySets()
+    for face in a.faces:
+        third = [d for d in face if a.layer[d]]
+        if len(third) == 2 and a.loop_of[third[0]] != a.loop_of[third[1]]:
+            d1, d2 = third
+            if not sides.relate(a.loop_of[d1], a.loop_of[d2], -forward[d1] * forward[d2]):
+                return False
+    return True
+
+
 def _balanced(a: TorusArrangement, base_crossings: int) -> bool:
     """Whether ``B`` has the fewest crossings of the three two-axis arrangements: the third
     axis crosses each class of ``B``'s bipartition at least as often as ``B`` crosses itself."""
@@ -826,8 +855,11 @@ def two_stage_decompositions(a: TorusArrangement, max_crossings: int) -> list[fr
     it within ``max_crossings`` crossings (the object of the two-stage theorem, by brute
     force over sets of loops): no two loops of ``D`` cross, what is left (``B``) is cellular with a
     bipartite crossing graph, at most a third of ``max_crossings`` crossings and loops with two
-    zones on their sides, each loop of ``D`` passes each region of ``B`` at most once, and ``D``
-    crosses each class of ``B`` at least as often as ``B`` crosses itself."""
+    zones on their sides, each loop of ``D`` passes each region of ``B`` at most once, ``D``
+    crosses each class of ``B`` at least as often as ``B`` crosses itself, the loops of ``D``
+    can be oriented as :func:`third_sides_consistent` asks, and no region has more than two
+    sides of one class (:func:`layered_need`): exactly the final states the second stage
+    keeps, so a map's canonical decomposition is one the search reaches."""
     from itertools import combinations
 
     adj = a.crossing_graph()
@@ -849,6 +881,7 @@ def two_stage_decompositions(a: TorusArrangement, max_crossings: int) -> list[fr
             region = _regions_of_base(layered)
             once = all(len({region[d] for d in range(len(a.twin)) if a.loop_of[d] == lp})
                        == a.loop_crossings()[lp] for lp in third)
-            if once and _balanced(layered, base.crossings):
+            if (once and _balanced(layered, base.crossings) and third_sides_consistent(layered)
+                    and _facts(layered, True, None).target):
                 out.append(frozenset(chosen))
     return out
