@@ -35,7 +35,7 @@ def cmd_catalog(args: argparse.Namespace) -> int:
     try:
         generator, note = choose_generator(args.generator, args.method, args.plantri, args.genus)
     except CatalogRunError as err:
-        raise CliError(f"--generator {args.generator}: {err}") from None
+        raise CliError(f"--generator {args.generator}: {err}" if args.generator else str(err)) from None
     try:
         configured = GENERATORS[generator].with_options(plantri=args.plantri, method=args.method)
     except (KeyError, ValueError):

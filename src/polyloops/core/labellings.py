@@ -29,11 +29,16 @@ from polyloops.core.structure import LoopStructure
 from polyloops.core.symmetry import Symmetry
 
 __all__ = ["MapStructureError", "SignSystem", "only_structure_on", "polycube_classes_on",
-           "polycube_structures", "sign_components", "sign_system"]
+           "polycube_structures", "proper_colourings", "sign_components", "sign_system"]
 
 
-def _colourings(adjacency: list[set[int]]) -> Iterator[list[int]]:
-    """Every proper colouring with colours 0, 1, 2 (backtracking, most constrained first)."""
+def proper_colourings(adjacency: Sequence[set[int]], colours: int = 3) -> Iterator[list[int]]:
+    """Every proper colouring with colours ``0 .. colours - 1`` (backtracking, most constrained
+    first).
+
+    >>> len(list(proper_colourings([{1}, {0, 2}, {1}], 2)))
+    2
+    """
     n = len(adjacency)
     order = sorted(range(n), key=lambda v: -len(adjacency[v]))
     colour = [-1] * n
@@ -44,7 +49,7 @@ def _colourings(adjacency: list[set[int]]) -> Iterator[list[int]]:
             return
         v = order[i]
         used = {colour[w] for w in adjacency[v]}
-        for c in (0, 1, 2):
+        for c in range(colours):
             if c not in used:
                 colour[v] = c
                 yield from extend(i + 1)
@@ -118,7 +123,7 @@ def polycube_structures(m: HalfEdgeMap) -> Iterator[LoopStructure]:
         a, b = system.loops_of_face(m, f)
         adjacency[a].add(b)
         adjacency[b].add(a)
-    for colouring in _colourings(adjacency):
+    for colouring in proper_colourings(adjacency):
         comps = sign_components(m, colouring)
         if comps is None:
             continue

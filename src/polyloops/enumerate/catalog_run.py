@@ -66,8 +66,9 @@ def choose_generator(generator: str | None, method: str = "auto",
             return g.name, note
         skipped.append((g.name, why))
     if not skipped:
-        raise CatalogRunError(f"no catalog generator makes maps of genus {genus}"
-                              + (" with the strip filter's options" if given else ""))
+        takes = " or ".join(f"--{k}" for k in sorted(given))
+        raise CatalogRunError(f"no catalog generator of genus {genus} takes {takes}" if given
+                              else f"no catalog generator makes maps of genus {genus}")
     raise CatalogRunError("no catalog generator can run here: " + "; ".join(why for _, why in skipped))
 
 

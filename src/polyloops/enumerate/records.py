@@ -136,7 +136,7 @@ def class_names(records: Sequence[CatalogRecord], symmetry: Symmetry | str, genu
     mode = str(Symmetry.parse(symmetry))
     if genus not in GENUS_PREFIX:
         raise ValueError(f"no class names for genus {genus}")
-    prefix = "T" + ("" if mode == "full" else NAME_PREFIX[mode]) if genus else NAME_PREFIX[mode]
+    prefix = GENUS_PREFIX[genus] + ("" if genus and mode == "full" else NAME_PREFIX[mode])
     out, rank, last = [], 0, None
     for rec in records:
         rank = rank + 1 if rec.corners == last else 1

@@ -51,6 +51,7 @@ from functools import cached_property
 
 from polyloops.core.disjoint_sets import DisjointSets, ParitySets
 from polyloops.core.halfedge import HalfEdgeMap, permutation_orbits
+from polyloops.core.labellings import proper_colourings
 
 __all__ = ["ANNULUS", "HANDLE", "THIRD", "TorusArrangement", "TorusSearchStats",
            "candidate_torus_arrangements", "face_need", "layered_need", "third_sides_consistent",
@@ -327,24 +328,7 @@ def _classes(a: TorusArrangement) -> list[int]:
 
 
 def _colourable(adj: list[set[int]], colours: int) -> bool:
-    n = len(adj)
-    order = sorted(range(n), key=lambda v: -len(adj[v]))
-    colour = [-1] * n
-
-    def extend(i: int) -> bool:
-        if i == n:
-            return True
-        v = order[i]
-        used = {colour[u] for u in adj[v]}
-        for c in range(colours):
-            if c not in used:
-                colour[v] = c
-                if extend(i + 1):
-                    return True
-        colour[v] = -1
-        return False
-
-    return extend(0)
+    return next(proper_colourings(adj, colours), None) is not None
 
 
 def _simple_quad_mesh(a: TorusArrangement) -> bool:
@@ -454,16 +438,13 @@ class _Drawing:
         return total
 
     def snapshot(self) -> tuple:
-        return len(self.rot), list(self.rot), list(self.twin), list(self.marks)
+        return len(self.rot), list(self.rot), list(self.irot), list(self.twin), list(self.marks)
 
     def restore(self, snap: tuple) -> None:
-        n, rot, twin, marks = snap
-        self.rot, self.twin, self.marks = list(rot), list(twin), marks
+        n, rot, irot, twin, marks = snap
+        self.rot, self.irot, self.twin, self.marks = list(rot), list(irot), list(twin), marks
         for lst in (self.loop, self.layer, self.region):
             del lst[n:]
-        self.irot = [0] * n
-        for d, r in enumerate(self.rot):
-            self.irot[r] = d
 
 
 def _finish(w: _Drawing, layered: bool) -> tuple[TorusArrangement, int]:
@@ -863,6 +844,7 @@ def two_stage_decompositions(a: TorusArrangement, max_crossings: int) -> list[fr
     from itertools import combinations
 
     adj = a.crossing_graph()
+    crossings = a.loop_crossings()
     out = []
     for k in range(1, a.num_loops):
         for third in combinations(range(a.num_loops), k):
@@ -879,8 +861,8 @@ def two_stage_decompositions(a: TorusArrangement, max_crossings: int) -> list[fr
             layer = tuple(int(a.loop_of[d] in chosen) for d in range(len(a.twin)))
             layered = TorusArrangement(a.twin, (), layer)
             region = _regions_of_base(layered)
-            once = all(len({region[d] for d in range(len(a.twin)) if a.loop_of[d] == lp})
-                       == a.loop_crossings()[lp] for lp in third)
+            once = all(len({region[d] for d in range(len(a.twin)) if a.loop_of[d] == lp}) == crossings[lp]
+                       for lp in third)
             if (once and _balanced(layered, base.crossings) and third_sides_consistent(layered)
                     and _facts(layered, True, None).target):
                 out.append(frozenset(chosen))
