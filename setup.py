@@ -15,6 +15,8 @@ INSTEAD = {
     "_strips": ("the compiled strip filter", "plantri's generator will use the numpy filter" + CATALOG_NOTE),
     "_arrangements": ("the compiled arrangement search",
                       "the catalog will use plantri's generator" + CATALOG_NOTE),
+    "_torus": ("the compiled second stage of the torus search",
+               "the genus-1 search runs in Python (the same records, much slower)"),
     "_canonical": ("the compiled canonical form",
                    "canonical forms of small structures are computed in Python (the same forms, slower)"),
     "_cycles": ("the compiled count of additions",
@@ -47,7 +49,8 @@ class OptionalBuildExt(build_ext):
 setup(
     ext_modules=[Extension(f"polyloops.{name.replace('/', '.')}", [f"src/polyloops/{name}.c"],
                            extra_compile_args=["-O2"], optional=True)
-                 for name in ("enumerate/_strips", "enumerate/_arrangements", "core/_canonical",
+                 for name in ("enumerate/_strips", "enumerate/_arrangements", "enumerate/_torus",
+                              "core/_canonical",
                               "core/_cycles", "render/_raster")],
     cmdclass={"build_ext": OptionalBuildExt},
 )

@@ -11,6 +11,7 @@ from polyloops.enumerate.reach import explore, stored_signatures
 from polyloops.enumerate.torus import (
     TorusArrangement,
     canonical,
+    compiled_second_stage_available,
     layered_need,
     torus_arrangements,
     two_stage_decompositions,
@@ -255,3 +256,51 @@ def test_the_second_stage_orients_the_third_axis():
         for chosen in decompositions:
             layer = tuple(int(a.loop_of[d] in chosen) for d in range(len(a.twin)))
             assert third_sides_consistent(TorusArrangement(a.twin, (), layer))
+
+
+def _second_stage_states(n: int, compiled: bool, monkeypatch) -> tuple[dict, set]:
+    """Every state the second stage keeps up to ``n`` crossings, by Python canonical code, and
+    the targets among them."""
+    import polyloops.enumerate.torus as torus
+
+    monkeypatch.setattr(torus, "COMPILED_SECOND_STAGE", compiled)
+    states, targets = {}, set()
+    for base in torus.two_axis_bases(n // 3):
+        stack = [TorusArrangement(base.twin, (), (0,) * len(base.twin))]
+        while stack:
+            kids = torus.torus_children(stack.pop(), n, None, True)
+            for kid, facts in kids:
+                code = canonical(TorusArrangement(kid.twin, (), kid.layer))[0]
+                assert code not in states  # each state once
+                states[code] = kid
+                if facts.target:
+                    targets.add(code)
+            stack.extend(kid for kid, _ in kids)
+    return states, targets
+
+
+@pytest.mark.skipif(not compiled_second_stage_available(), reason="the compiled second stage was not built")
+@pytest.mark.parametrize("n", [14, 17, pytest.param(20, marks=pytest.mark.slow)])
+def test_the_compiled_second_stage_keeps_the_python_states(n, monkeypatch):
+    """The compiled second stage keeps exactly the states of the Python search (by canonical
+    code, every state once), with the same targets and the same candidate maps."""
+    from polyloops.enumerate import torus
+
+    slow, slow_targets = _second_stage_states(n, False, monkeypatch)
+    fast, fast_targets = _second_stage_states(n, True, monkeypatch)
+    assert set(fast) == set(slow) and fast_targets == slow_targets and len(slow) > 20
+    monkeypatch.setattr(torus, "COMPILED_SECOND_STAGE", True)
+    with_c = [a.code for a in torus.candidate_torus_arrangements(n)]
+    monkeypatch.setattr(torus, "COMPILED_SECOND_STAGE", False)
+    in_python = [a.code for a in torus.candidate_torus_arrangements(n)]
+    assert len(with_c) == len(set(with_c)) and set(with_c) == set(in_python) and with_c
+
+
+def test_the_second_stage_never_crosses_its_start_edge_again(monkeypatch):
+    """No state of the second stage has a face of two sides with a third-axis side (the cut
+    that skips crossing the start edge again loses nothing: such a face never becomes a
+    corner), in Python and compiled."""
+    for compiled in (False, True):
+        states, _ = _second_stage_states(14, compiled, monkeypatch)
+        for kid in states.values():
+            assert not any(len(f) == 2 and any(kid.layer[d] for d in f) for f in kid.faces)

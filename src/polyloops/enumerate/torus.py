@@ -53,8 +53,9 @@ from polyloops.core.disjoint_sets import DisjointSets, ParitySets
 from polyloops.core.halfedge import HalfEdgeMap, permutation_orbits
 from polyloops.core.labellings import proper_colourings
 
-__all__ = ["ANNULUS", "HANDLE", "THIRD", "TorusArrangement", "TorusSearchStats",
-           "candidate_torus_arrangements", "face_need", "layered_need", "third_sides_consistent",
+__all__ = ["ANNULUS", "COMPILED_SECOND_STAGE", "HANDLE", "THIRD", "TorusArrangement", "TorusSearchStats",
+           "candidate_torus_arrangements", "compiled_second_stage_available", "face_need", "layered_need",
+           "third_sides_consistent",
            "torus_arrangements", "torus_children", "two_axis_bases", "two_stage_decompositions"]
 
 ANNULUS, HANDLE = "A", "H"  # an end of the annulus face; the face with the handle
@@ -538,6 +539,9 @@ def torus_children(parent: TorusArrangement | int, max_crossings: int, colours: 
     of a candidate map (3 to 6 sides, no two on one loop) in the bound."""
     stats = stats if stats is not None else TorusSearchStats()
     layered = not isinstance(parent, int) and bool(parent.layer)
+    if layered and regions and colours is None and _compiled():
+        assert not isinstance(parent, int)
+        return _compiled_children(parent, max_crossings, stats)
     base_crossings, third_with = 0, [0, 0]
     rot: Sequence[int]
     twin: Sequence[int]
@@ -576,6 +580,10 @@ def torus_children(parent: TorusArrangement | int, max_crossings: int, colours: 
     found: dict[tuple, tuple[TorusArrangement, _Facts]] = {}
     met: dict[int, int] = {}  # the curve's crossings with each parent loop
     visited: set[int] = set()  # second stage: the regions of B the curve has passed
+    # Second stage: crossing the start edge again would leave a face of two sides, a piece of
+    # an edge of B and the new loop, which later third-axis loops (they cross only B, each
+    # region once) can only cut into more such faces, so nothing grows from it.
+    start_edge: set[int] = set()
 
     def unbalanced() -> bool:
         # B is the two-axis arrangement with fewest crossings: the third axis ends crossing
@@ -671,7 +679,7 @@ def torus_children(parent: TorusArrangement | int, max_crossings: int, colours: 
             return  # (second stage: in the last region of B the curve only closes)
         for y in targets:
             lp = w.loop[y]
-            if lp < 0 or w.layer[y]:
+            if lp < 0 or w.layer[y] or y in start_edge:
                 continue  # the curve does not cross itself, nor (second stage) the third axis
             if layered:
                 there = w.region[w.twin[y]]
@@ -696,18 +704,73 @@ def torus_children(parent: TorusArrangement | int, max_crossings: int, colours: 
         if w.layer[y0]:
             continue
         snap = w.snapshot()
+        t0 = w.twin[y0]
         p1, p2 = w.subdivide(y0)
+        if layered:  # the start edge's two pieces, which the curve does not cross again
+            start_edge.update((y0, t0, p1, p2))
         met[w.loop[y0]] = 1
         if layered:
             visited.add(w.region[p1])
         dfs(p1, p2, 1)
         visited.clear()
+        start_edge.clear()
         met.clear()
         w.restore(snap)
     kids = [found[k] for k in sorted(found)]
     stats.states += len(kids)
     stats.targets += sum(f.target for _, f in kids)
     return kids
+
+
+# The second stage runs in C when the install built it (``_torus.c``, the same children as the
+# Python search below: tested); False makes it run in Python.
+COMPILED_SECOND_STAGE = True
+
+
+def compiled_second_stage_available() -> bool:
+    """Whether the install built the compiled second stage (it needs a C compiler)."""
+    try:
+        import polyloops.enumerate._torus  # noqa: F401
+    except ImportError:
+        return False
+    return True
+
+
+def _compiled() -> bool:
+    return COMPILED_SECOND_STAGE and compiled_second_stage_available()
+
+
+def _base_crossings(a: TorusArrangement) -> int:
+    third = a.third_loops()
+    return sum(a.loop_of[4 * v] not in third and a.loop_of[4 * v + 1] not in third
+               for v in range(a.crossings))
+
+
+def _compiled_children(parent: TorusArrangement, max_crossings: int, stats: TorusSearchStats
+                       ) -> list[tuple[TorusArrangement, _Facts]]:
+    """:func:`torus_children` of a second-stage state, by the compiled search (one of each
+    child, ordered by its code)."""
+    import array
+
+    from polyloops.enumerate import _torus
+
+    found, counts = _torus.children(array.array("H", parent.twin).tobytes(), bytes(parent.layer),
+                                    max_crossings, _base_crossings(parent))
+    _, closed, over, inconsistent, rejected = counts
+    stats.closed += closed
+    stats.over_bound += over
+    stats.inconsistent_sides += inconsistent
+    stats.not_canonical += rejected
+    kids: dict[bytes, tuple[TorusArrangement, _Facts]] = {}
+    for twin, layer, target in found:
+        key = twin + layer
+        if key not in kids:
+            child = TorusArrangement(tuple(array.array("H", twin)), (), tuple(layer), (key,))
+            kids[key] = (child, _Facts(0, bool(target), True))
+    out = [kids[k] for k in sorted(kids)]
+    stats.states += len(out)
+    stats.targets += sum(f.target for _, f in out)
+    return out
 
 
 def torus_arrangements(max_crossings: int, colours: int | None = None, regions: bool = False,
@@ -785,11 +848,12 @@ def _canonical_decomposition(kid: TorusArrangement) -> bool:
     """Whether a second-stage state is its map's canonical decomposition: the least code of
     the map with the loops of a decomposition marked, over all its decompositions."""
     plain = TorusArrangement(kid.twin)
+    own = canonical(TorusArrangement(kid.twin, (), kid.layer))[0]
     codes = []
     for chosen in two_stage_decompositions(plain, plain.crossings):
         layer = tuple(int(plain.loop_of[d] in chosen) for d in range(len(plain.twin)))
         codes.append(canonical(TorusArrangement(plain.twin, (), layer))[0])
-    return kid.code == min(codes, default=None)
+    return own == min(codes, default=None)
 
 
 def third_sides_consistent(a: TorusArrangement) -> bool:

@@ -1,0 +1,473 @@
+/* The second stage of the torus search, compiled (polyloops/enumerate/torus.py describes the
+ * search and is the reference; docs/catalog.md, "Genus 1: the torus search", proves it).
+ *
+ * A state is a cellular arrangement on the torus, darts four a crossing counter-clockwise
+ * (rot(d) = 4 (d / 4) + (d + 1) % 4), with a layer bit per dart: 1 on the third axis's loops,
+ * 0 on the loops of the two-axis arrangement B.  A child adds one third-axis loop that crosses
+ * only edges of B and each region of B (faces joined across third-axis edges) at most once.
+ * Every face of the state is a disc that the new loop enters and leaves at most once, so the
+ * new loop is a simple cycle of faces, consecutive faces across an edge of B and no two in
+ * one region of B, and the child is built from the edges the cycle crosses.  Each cycle is
+ * drawn once: from the least edge it crosses, in the direction whose second edge is less than
+ * its last.
+ *
+ * children(twin, layer, limit, base_crossings) gives every child that
+ *   - has at most `limit` crossings plus half the needs of its faces (torus.layered_need),
+ *   - lets its third-axis loops be oriented face by face (torus.third_sides_consistent),
+ *   - has the new loop as its canonical loop to delete: among the third axis's loops with
+ *     fewest crossings, the one met first in the canonical numbering (McKay's test),
+ * each as (canonical twin array as uint16, layer bytes, is_target), possibly more than once
+ * (isomorphic cycles give the same child: the caller keeps one), with the counts of what it
+ * did.  While drawing, a path is abandoned when the faces it has cut already need more
+ * crossings than the limit leaves, when B could no longer have the fewest crossings of the
+ * three two-axis arrangements, or when the new loop already has more crossings than an old
+ * third-axis loop (it would not be the canonical one to delete).
+ *
+ * Not reentrant: one static context, used with the GIL held, one call at a time per process.
+ */
+#define PY_SSIZE_T_CLEAN
+#include <Python.h>
+#include <stdint.h>
+#include <string.h>
+
+#define MAXD 1024          /* darts of a child: four a crossing */
+#define MAXL 128           /* loops */
+#define THIRD 2            /* the class of the third axis's loops */
+#define HUGE_NEED (1 << 20)
+
+static inline int rot4(int d) { return (d & ~3) | ((d + 1) & 3); }
+static inline int irot4(int d) { return (d & ~3) | ((d + 3) & 3); }
+static inline int edge_of(const int *twin, int d) { return d < twin[d] ? d : twin[d]; }
+
+/* torus.layered_need: twice a lower bound on the later crossings a face takes, from its sides,
+ * the number of its sides of each class and whether it must still be cut (bad). */
+static int layered_need(int sides, const int *count, int bad)
+{
+    if (count[THIRD] > 2) return HUGE_NEED;
+    int n = 0;
+    if (sides - 6 > n) n = sides - 6;
+    if (6 - 2 * sides > n) n = 6 - 2 * sides;
+    if (bad && 2 > n) n = 2;
+    int k = (count[0] > 2 ? count[0] - 2 : 0) + (count[1] > 2 ? count[1] - 2 : 0);
+    return k > n ? k : n;
+}
+
+/* A map with its faces (darts in face order, face by face), loops and their classes. */
+typedef struct {
+    int D, nf, nl;
+    int twin[MAXD];
+    unsigned char layer[MAXD];
+    int face[MAXD];           /* the face on a dart's left */
+    int fdart[MAXD];          /* the faces' darts, face by face, in order along each */
+    int fstart[MAXD + 1];     /* face f: fdart[fstart[f] .. fstart[f + 1]) */
+    int fpos[MAXD];           /* a dart's index in fdart */
+    int loop[MAXD];           /* the loop a dart lies on */
+    int lcross[MAXL];         /* crossings of each loop */
+    int klass[MAXL];          /* 0 or 1 on B's loops (its bipartition), THIRD on the others */
+} Map;
+
+static void map_faces(Map *m)
+{
+    int k = 0;
+    m->nf = 0;
+    for (int d = 0; d < m->D; d++) m->face[d] = -1;
+    for (int d = 0; d < m->D; d++) {
+        if (m->face[d] >= 0) continue;
+        m->fstart[m->nf] = k;
+        int e = d;
+        do { m->face[e] = m->nf; m->fpos[e] = k; m->fdart[k++] = e; e = irot4(m->twin[e]); } while (e != d);
+        m->nf++;
+    }
+    m->fstart[m->nf] = k;
+}
+
+/* Loops (straight on through each crossing) and their crossings; -1 when a loop crosses itself
+ * or there are too many. */
+static int map_loops(Map *m)
+{
+    for (int d = 0; d < m->D; d++) m->loop[d] = -1;
+    m->nl = 0;
+    for (int d = 0; d < m->D; d++) {
+        if (m->loop[d] >= 0) continue;
+        if (m->nl >= MAXL) return -1;
+        int e = d;
+        do { m->loop[e] = m->loop[m->twin[e]] = m->nl; e = rot4(rot4(m->twin[e])); } while (e != d);
+        m->lcross[m->nl++] = 0;
+    }
+    for (int d = 0; d < m->D; d++) {
+        if (m->loop[d] == m->loop[rot4(d)]) return -1;
+        m->lcross[m->loop[d]]++;
+    }
+    for (int l = 0; l < m->nl; l++) m->lcross[l] /= 2;
+    return 0;
+}
+
+/* Twice the need of face f (layered_need with torus._bad: two sides on one loop, or a side
+ * whose other side is in the face too); *simple_pair is not touched. */
+static int face_need2(const Map *m, int f)
+{
+    static unsigned stamp[MAXL], now;
+    int count[3] = {0, 0, 0}, bad = 0, a = m->fstart[f], b = m->fstart[f + 1];
+    now++;
+    for (int i = a; i < b; i++) {
+        int d = m->fdart[i], l = m->loop[d];
+        count[m->klass[l]]++;
+        if (stamp[l] == now) bad = 1;
+        stamp[l] = now;
+        if (m->face[m->twin[d]] == f) bad = 1;
+    }
+    return layered_need(b - a, count, bad);
+}
+
+/* The search context: the parent, and the cycle being drawn. */
+typedef struct {
+    Map p;
+    int region[MAXD];         /* per face of the parent: its region of B */
+    int need2[MAXD];          /* per face of the parent: twice its need */
+    int total2;               /* their sum */
+    int limit, base, pc, budget;  /* the crossing limit, B's crossings, the parent's crossings */
+    int third_with[2];        /* crossings of the third axis with each class of B */
+    int with_class[2];        /* and those of the cycle being drawn */
+    int fewest_third;         /* fewest crossings of an old third-axis loop */
+    int path[MAXD];           /* the darts the cycle crosses (each in the face it leaves) */
+    unsigned char visited[MAXD];  /* per region of B */
+    int end_face, end_region, first_edge;
+    PyObject *out;
+    int failed;
+    long long nodes, closed, bounded, inconsistent, rejected;
+} Ctx;
+
+static Ctx ctx;
+static Map child;
+static int num[MAXD], order[MAXD], best[MAXD], code[MAXD];
+
+/* The child's code from root r in orientation o (rot, or irot when o is 1): per dart in the
+ * breadth-first numbering, twice its twin's number plus its layer.  Returns -1 when it exceeds
+ * best, 0 when equal, 1 when smaller (then it is in code); *first is the first loop of the
+ * numbering in the set cand. */
+static int code_from(const Map *h, int o, int r, int have_best, const unsigned char *cand, int *first)
+{
+    int cnt = 0, smaller = !have_best;
+    for (int d = 0; d < h->D; d++) num[d] = -1;
+    *first = -1;
+#define VISIT(t0) do { int t_ = (t0); for (int j_ = 0; j_ < 4; j_++) { num[t_] = cnt; order[cnt++] = t_; \
+        t_ = o ? irot4(t_) : rot4(t_); } } while (0)
+    VISIT(r);
+    for (int i = 0; i < h->D; i++) {
+        int d = order[i], t = h->twin[d];
+        if (*first < 0 && cand[h->loop[d]]) *first = h->loop[d];
+        if (num[t] < 0) VISIT(t);
+        int v = 2 * num[t] + h->layer[d];
+        code[i] = v;
+        if (!smaller) {
+            if (v > best[i]) return -1;
+            if (v < best[i]) smaller = 1;
+        }
+    }
+#undef VISIT
+    return smaller;
+}
+
+static int root_key(const Map *h, const int *fsize, int o, int d)
+{
+    int f = o ? h->face[h->twin[d]] : h->face[d];
+    return (h->lcross[h->loop[d]] * 2 + h->layer[d]) * 64 + fsize[f];
+}
+
+/* The least code over the roots of least key, into best; whether some numbering reaching it
+ * meets loop `wanted` before any other loop of cand (McKay's test). */
+static int least_code(const Map *h, const unsigned char *cand, int wanted)
+{
+    static int fsize[MAXD];
+    int low = 1 << 30, have = 0, accepted = 0;
+    for (int f = 0; f < h->nf; f++) fsize[f] = h->fstart[f + 1] - h->fstart[f];
+    for (int o = 0; o < 2; o++)
+        for (int d = 0; d < h->D; d++) { int k = root_key(h, fsize, o, d); if (k < low) low = k; }
+    for (int o = 0; o < 2; o++)
+        for (int d = 0; d < h->D; d++) {
+            if (root_key(h, fsize, o, d) != low) continue;
+            int first, r = code_from(h, o, d, have, cand, &first);
+            if (r < 0) continue;
+            if (r > 0) { memcpy(best, code, sizeof(int) * (size_t)h->D); have = 1; accepted = 0; }
+            if (first == wanted) accepted = 1;
+        }
+    return accepted;
+}
+
+/* torus.third_sides_consistent: orient each third-axis loop along its walk from its least
+ * dart; a face with two third-axis sides on different loops asks for a product of their signs;
+ * parity union-find over the loops. */
+static int sides_consistent(const Map *h)
+{
+    static int fwd[MAXD], up[MAXL], par[MAXL];
+    for (int d = 0; d < h->D; d++) fwd[d] = 0;
+    for (int l = 0; l < h->nl; l++) { up[l] = l; par[l] = 1; }
+    for (int d = 0; d < h->D; d++) {
+        if (fwd[d] || !h->layer[d]) continue;
+        int e = d;
+        while (!fwd[e]) { fwd[e] = 1; fwd[h->twin[e]] = -1; e = rot4(rot4(h->twin[e])); }
+    }
+    for (int f = 0; f < h->nf; f++) {
+        int third[3], k = 0;
+        for (int i = h->fstart[f]; i < h->fstart[f + 1] && k < 3; i++)
+            if (h->layer[h->fdart[i]]) third[k++] = h->fdart[i];
+        if (k != 2 || h->loop[third[0]] == h->loop[third[1]]) continue;
+        int want = -fwd[third[0]] * fwd[third[1]];
+        int a = h->loop[third[0]], b = h->loop[third[1]], pa = 1, pb = 1;
+        while (up[a] != a) { pa *= par[a]; a = up[a]; }
+        while (up[b] != b) { pb *= par[b]; b = up[b]; }
+        if (a == b) { if (pa * pb != want) return 0; }
+        else { up[a] = b; par[a] = pa * pb * want; }
+    }
+    return 1;
+}
+
+/* A simple quad mesh: no face on both sides of an edge, no two faces sharing two edges. */
+static int simple_quad_mesh(const Map *h)
+{
+    static unsigned char pair[MAXD / 4 * MAXD / 4];
+    int nf = h->nf;
+    if ((size_t)nf * nf > sizeof(pair)) return 0;
+    memset(pair, 0, (size_t)nf * nf);
+    for (int d = 0; d < h->D; d++) {
+        int a = h->face[d], b = h->face[h->twin[d]];
+        if (a == b || pair[a * nf + b]) return 0;
+        pair[a * nf + b] = 1;
+    }
+    return 1;
+}
+
+/* The child the cycle path[0..n) makes: a crossing on each crossed edge (darts forward, left,
+ * back, right counter-clockwise, forward along the crossed dart, left into the face it leaves),
+ * chords from each crossing to the next through the faces; then the keep tests. */
+static void close_cycle(Ctx *c, int n)
+{
+    const Map *p = &c->p;
+    Map *h = &child;
+    int V = p->D / 4;
+    c->closed++;
+    h->D = p->D + 4 * n;
+    memcpy(h->twin, p->twin, sizeof(int) * (size_t)p->D);
+    memcpy(h->layer, p->layer, (size_t)p->D);
+    for (int i = 0; i < n; i++) {
+        int v = V + i, y = c->path[i], t = p->twin[y];
+        h->twin[y] = 4 * v + 2; h->twin[4 * v + 2] = y;
+        h->twin[t] = 4 * v; h->twin[4 * v] = t;
+        h->layer[4 * v] = h->layer[4 * v + 2] = 0;
+        h->layer[4 * v + 1] = h->layer[4 * v + 3] = 1;
+    }
+    for (int i = 0; i < n; i++) {   /* out of crossing i, into crossing i + 1 (the last into 0) */
+        int from = i == 0 ? 4 * V + 1 : 4 * (V + i) + 3;
+        int to = i + 1 < n ? 4 * (V + i + 1) + 1 : 4 * V + 3;
+        h->twin[from] = to; h->twin[to] = from;
+    }
+    map_faces(h);
+    if (map_loops(h) < 0) { c->failed = 2; return; }
+    for (int l = 0; l < h->nl; l++) h->klass[l] = -1;
+    for (int d = 0; d < h->D; d++) {
+        int l = h->loop[d];
+        if (h->layer[d]) h->klass[l] = THIRD;
+        else if (h->klass[l] < 0 && d < p->D) h->klass[l] = p->klass[p->loop[d]];
+    }
+    int needs = 0;
+    for (int f = 0; f < h->nf; f++) needs += face_need2(h, f);
+    if (h->D / 4 + (needs + 1) / 2 > c->limit) { c->bounded++; return; }
+    if (!sides_consistent(h)) { c->inconsistent++; return; }
+    static unsigned char cand[MAXL];
+    int fewest = 1 << 30, wanted = h->loop[4 * V + 1];
+    for (int l = 0; l < h->nl; l++) if (h->klass[l] == THIRD && h->lcross[l] < fewest) fewest = h->lcross[l];
+    for (int l = 0; l < h->nl; l++) cand[l] = h->klass[l] == THIRD && h->lcross[l] == fewest;
+    if (!cand[wanted] || !least_code(h, cand, wanted)) { c->rejected++; return; }
+    int target = needs == 0 && simple_quad_mesh(h);
+    uint16_t tw[MAXD];
+    unsigned char ly[MAXD];
+    for (int i = 0; i < h->D; i++) { tw[i] = (uint16_t)(best[i] >> 1); ly[i] = (unsigned char)(best[i] & 1); }
+    PyObject *item = Py_BuildValue("(y#y#i)", (const char *)tw, (Py_ssize_t)(2 * h->D), (const char *)ly,
+                                   (Py_ssize_t)h->D, target);
+    if (!item || PyList_Append(c->out, item) < 0) c->failed = 1;
+    Py_XDECREF(item);
+}
+
+/* Twice the need of the piece of face f from its dart at index i to the one at index j
+ * (cyclically, both included, each split by the cycle) closed by the new loop's chord: a
+ * lower bound (a side whose other side is in the piece is not looked for). */
+static int piece_need2(const Ctx *c, int f, int i, int j)
+{
+    static unsigned stamp[MAXL], now;
+    const Map *p = &c->p;
+    int a = p->fstart[f], s = p->fstart[f + 1] - a, count[3] = {0, 0, 1}, bad = 0, k = 0;
+    now++;
+    for (int x = i;; x = x + 1 == s ? 0 : x + 1) {
+        int l = p->loop[p->fdart[a + x]];
+        count[p->klass[l]]++;
+        if (stamp[l] == now) bad = 1;
+        stamp[l] = now;
+        k++;
+        if (x == j) break;
+    }
+    return layered_need(k + 1, count, bad);
+}
+
+/* The cycle is in face f, entered across dart `in` of f, after n crossings (path[0..n));
+ * run2 is twice the needs of the faces that are not open (all but f and the end face). */
+static void dfs(Ctx *c, int f, int in, int n, int run2)
+{
+    const Map *p = &c->p;
+    if (c->failed) return;
+    c->nodes++;
+    if (n > c->fewest_third) return;
+    int sum = c->base;
+    for (int k = 0; k < 2; k++) {
+        int w = c->third_with[k] + c->with_class[k];
+        sum += w > c->base ? w : c->base;
+    }
+    if (sum > c->limit) return;
+    if (c->pc + n + (run2 + 1) / 2 > c->limit) { c->bounded++; return; }
+    if (f == c->end_face) {
+        int y0 = c->path[0], last = c->path[n - 1];
+        int once = n <= 2 ? y0 < p->twin[y0] : edge_of(p->twin, c->path[1]) < edge_of(p->twin, last);
+        if (once) close_cycle(c, n);
+    }
+    if (n >= c->budget || c->region[f] == c->end_region) return;
+    int a = p->fstart[f], s = p->fstart[f + 1] - a, i = p->fpos[in] - a;
+    for (int j = 0; j < s; j++) {
+        int y = p->fdart[a + j];
+        if (j == i || p->layer[y] || edge_of(p->twin, y) <= c->first_edge) continue;
+        int t = p->twin[y], g = p->face[t], rg = c->region[g];
+        if (c->visited[rg] || (rg == c->end_region && g != c->end_face)) continue;
+        int next2 = run2 + piece_need2(c, f, i, j) + piece_need2(c, f, j, i) - (g == c->end_face ? 0 : c->need2[g]);
+        int k = p->klass[p->loop[y]];
+        c->path[n] = y;
+        c->visited[rg] = 1;
+        c->with_class[k]++;
+        dfs(c, g, t, n + 1, next2);
+        c->with_class[k]--;
+        c->visited[rg] = 0;
+    }
+}
+
+/* Regions of B: faces joined across third-axis edges (union-find). */
+static void regions(Ctx *c)
+{
+    static int up[MAXD];
+    const Map *p = &c->p;
+    for (int f = 0; f < p->nf; f++) up[f] = f;
+    for (int d = 0; d < p->D; d++) {
+        if (!p->layer[d]) continue;
+        int a = p->face[d], b = p->face[p->twin[d]];
+        while (up[a] != a) a = up[a] = up[up[a]];
+        while (up[b] != b) b = up[b] = up[up[b]];
+        if (a != b) up[a] = b;
+    }
+    for (int f = 0; f < p->nf; f++) {
+        int a = f;
+        while (up[a] != a) a = up[a];
+        c->region[f] = a;
+    }
+}
+
+/* B's bipartition (B is cellular, so its crossing graph is connected); -1 if it is not one. */
+static int classes(Map *p)
+{
+    static int stack[MAXL];
+    int top = 0, start = -1;
+    for (int l = 0; l < p->nl; l++) p->klass[l] = -1;
+    for (int d = 0; d < p->D; d++) if (p->layer[d]) p->klass[p->loop[d]] = THIRD;
+    for (int l = 0; l < p->nl && start < 0; l++) if (p->klass[l] < 0) start = l;
+    if (start < 0) return -1;
+    p->klass[start] = 0;
+    stack[top++] = start;
+    while (top) {
+        int l = stack[--top];
+        for (int d = 0; d < p->D; d++) {
+            if (p->loop[d] != l) continue;
+            int m = p->loop[rot4(d)];
+            if (p->klass[m] == THIRD) continue;
+            if (p->klass[m] < 0) { p->klass[m] = 1 - p->klass[l]; stack[top++] = m; }
+            else if (p->klass[m] == p->klass[l]) return -1;
+        }
+    }
+    for (int l = 0; l < p->nl; l++) if (p->klass[l] < 0) return -1;
+    return 0;
+}
+
+static PyObject *children(PyObject *self, PyObject *args)
+{
+    Py_buffer tb, lb;
+    int limit, base;
+    if (!PyArg_ParseTuple(args, "y*y*ii", &tb, &lb, &limit, &base)) return NULL;
+    Ctx *c = &ctx;
+    Map *p = &c->p;
+    int D = (int)(tb.len / 2);
+    const uint16_t *twin = tb.buf;
+    const unsigned char *layer = lb.buf;
+    int bad = tb.len % 2 || D < 4 || D % 4 || lb.len != D || D > MAXD / 2;
+    for (int d = 0; d < D && !bad; d++)
+        bad = twin[d] >= D || twin[d] == d || twin[twin[d]] != d || layer[d] > 1;
+    if (!bad) {
+        p->D = D;
+        for (int d = 0; d < D; d++) { p->twin[d] = twin[d]; p->layer[d] = layer[d]; }
+    }
+    PyBuffer_Release(&tb);
+    PyBuffer_Release(&lb);
+    if (bad) return PyErr_Format(PyExc_ValueError, "not the twin and layer arrays of an arrangement");
+    map_faces(p);
+    if (p->nf != D / 4) return PyErr_Format(PyExc_ValueError, "the arrangement is not cellular on the torus");
+    if (map_loops(p) < 0) return PyErr_Format(PyExc_ValueError, "a loop crosses itself (or more than %d loops)", MAXL);
+    for (int d = 0; d < D; d++)
+        if (p->layer[d] != p->layer[p->twin[d]] || p->layer[d] != p->layer[rot4(rot4(d))])
+            return PyErr_Format(PyExc_ValueError, "a loop is not wholly in one layer");
+    if (classes(p) < 0) return PyErr_Format(PyExc_ValueError, "the loops outside the third layer are not a bipartite arrangement");
+    c->limit = limit;
+    c->base = base;
+    c->pc = D / 4;
+    c->budget = limit - c->pc;
+    c->third_with[0] = c->third_with[1] = 0;
+    for (int d = 0; d < D; d += 4) {
+        int k1 = p->klass[p->loop[d]], k2 = p->klass[p->loop[d + 1]];
+        if (k1 == THIRD && k2 != THIRD) c->third_with[k2]++;
+        if (k2 == THIRD && k1 != THIRD) c->third_with[k1]++;
+    }
+    c->fewest_third = 1 << 30;
+    for (int l = 0; l < p->nl; l++) if (p->klass[l] == THIRD && p->lcross[l] < c->fewest_third) c->fewest_third = p->lcross[l];
+    regions(c);
+    c->total2 = 0;
+    for (int f = 0; f < p->nf; f++) c->total2 += c->need2[f] = face_need2(p, f);
+    c->nodes = c->closed = c->bounded = c->inconsistent = c->rejected = 0;
+    c->failed = 0;
+    c->out = PyList_New(0);
+    if (!c->out) return NULL;
+    memset(c->visited, 0, (size_t)p->nf);
+    for (int y0 = 0; y0 < D && !c->failed; y0++) {
+        if (p->layer[y0]) continue;
+        int a = p->face[y0], b = p->face[p->twin[y0]];
+        c->first_edge = edge_of(p->twin, y0);
+        c->end_face = b;
+        c->end_region = c->region[b];
+        c->path[0] = y0;
+        c->with_class[0] = c->with_class[1] = 0;
+        c->with_class[p->klass[p->loop[y0]]]++;
+        c->visited[c->region[a]] = 1;
+        dfs(c, a, y0, 1, c->total2 - c->need2[a] - (b == a ? 0 : c->need2[b]));
+        c->visited[c->region[a]] = 0;
+    }
+    if (c->failed) {
+        Py_DECREF(c->out);
+        if (c->failed == 2) return PyErr_Format(PyExc_ValueError, "a child with more than %d loops", MAXL);
+        return NULL;
+    }
+    return Py_BuildValue("(N(LLLLL))", c->out, c->nodes, c->closed, c->bounded, c->inconsistent, c->rejected);
+}
+
+static PyMethodDef methods[] = {
+    {"children", children, METH_VARARGS,
+     "children(twin, layer, limit, base_crossings) -> (children, (paths drawn, cycles closed,\n"
+     "over the bound, third axis not orientable, not canonical)): the second-stage children of\n"
+     "a layered torus arrangement (twin as uint16, layer as bytes, four darts a crossing), each\n"
+     "as (canonical twin array, layer bytes, is_target), possibly repeated"},
+    {NULL, NULL, 0, NULL},
+};
+
+static struct PyModuleDef module = {PyModuleDef_HEAD_INIT, "_torus", NULL, -1, methods};
+
+PyMODINIT_FUNC PyInit__torus(void) { return PyModule_Create(&module); }
