@@ -11,7 +11,7 @@ from polyloops.enumerate.reach import explore, stored_signatures
 from polyloops.enumerate.torus import (
     TorusArrangement,
     canonical,
-    compiled_second_stage_available,
+    compiled_search_available,
     layered_need,
     torus_arrangements,
     two_stage_decompositions,
@@ -24,11 +24,18 @@ def by_size(arrangements, n):
     return {_least_code(list(a.twin)) for a in arrangements if a.crossings == n}
 
 
+@pytest.mark.parametrize("compiled", [False, True])
 @pytest.mark.parametrize("n", [1, 2, 3, 4, 5, pytest.param(6, marks=pytest.mark.slow)])
-def test_the_search_lists_what_brute_force_lists(n):
+def test_the_search_lists_what_brute_force_lists(n, compiled, monkeypatch):
     """Every cellular arrangement of simple loops on the torus with n crossings, once: the
-    canonical construction path over marked maps against a brute force over all pairings of
-    darts (the same arrangements, compared by the twin's own canonical code)."""
+    canonical construction path over marked maps, in Python and compiled, against a brute
+    force over all pairings of darts (the same arrangements, compared by the twin's own
+    canonical code)."""
+    import polyloops.enumerate.torus as torus
+
+    if compiled and not compiled_search_available():
+        pytest.skip("the compiled torus search was not built")
+    monkeypatch.setattr(torus, "COMPILED_SEARCH", compiled)
     found = list(torus_arrangements(n))
     codes = by_size(found, n)
     assert len(codes) == sum(a.crossings == n for a in found)  # none twice
@@ -263,7 +270,7 @@ def _second_stage_states(n: int, compiled: bool, monkeypatch) -> tuple[dict, set
     the targets among them."""
     import polyloops.enumerate.torus as torus
 
-    monkeypatch.setattr(torus, "COMPILED_SECOND_STAGE", compiled)
+    monkeypatch.setattr(torus, "COMPILED_SEARCH", compiled)
     states, targets = {}, set()
     for base in torus.two_axis_bases(n // 3):
         stack = [TorusArrangement(base.twin, (), (0,) * len(base.twin))]
@@ -279,7 +286,7 @@ def _second_stage_states(n: int, compiled: bool, monkeypatch) -> tuple[dict, set
     return states, targets
 
 
-@pytest.mark.skipif(not compiled_second_stage_available(), reason="the compiled second stage was not built")
+@pytest.mark.skipif(not compiled_search_available(), reason="the compiled second stage was not built")
 @pytest.mark.parametrize("n", [14, 17, pytest.param(20, marks=pytest.mark.slow)])
 def test_the_compiled_second_stage_keeps_the_python_states(n, monkeypatch):
     """The compiled second stage keeps exactly the states of the Python search (by canonical
@@ -289,9 +296,9 @@ def test_the_compiled_second_stage_keeps_the_python_states(n, monkeypatch):
     slow, slow_targets = _second_stage_states(n, False, monkeypatch)
     fast, fast_targets = _second_stage_states(n, True, monkeypatch)
     assert set(fast) == set(slow) and fast_targets == slow_targets and len(slow) > 20
-    monkeypatch.setattr(torus, "COMPILED_SECOND_STAGE", True)
+    monkeypatch.setattr(torus, "COMPILED_SEARCH", True)
     with_c = [a.code for a in torus.candidate_torus_arrangements(n)]
-    monkeypatch.setattr(torus, "COMPILED_SECOND_STAGE", False)
+    monkeypatch.setattr(torus, "COMPILED_SEARCH", False)
     in_python = [a.code for a in torus.candidate_torus_arrangements(n)]
     assert len(with_c) == len(set(with_c)) and set(with_c) == set(in_python) and with_c
 
@@ -304,3 +311,24 @@ def test_the_second_stage_never_crosses_its_start_edge_again(monkeypatch):
         states, _ = _second_stage_states(14, compiled, monkeypatch)
         for kid in states.values():
             assert not any(len(f) == 2 and any(kid.layer[d] for d in f) for f in kid.faces)
+
+
+@pytest.mark.skipif(not compiled_search_available(), reason="the compiled torus search was not built")
+@pytest.mark.parametrize(("n", "colours"), [(5, None), (6, 2), pytest.param(7, 2, marks=pytest.mark.slow)])
+def test_the_compiled_first_stage_keeps_the_python_states(n, colours, monkeypatch):
+    """The compiled marked search keeps exactly the states of the Python one (marked states
+    included, by canonical code), each once."""
+    import polyloops.enumerate.torus as torus
+
+    def states(compiled: bool) -> list:
+        monkeypatch.setattr(torus, "COMPILED_SEARCH", compiled)
+        out, stack = [], [1, 0]
+        while stack:
+            node = stack.pop()
+            kids = torus.torus_children(node, n, colours)
+            out += [canonical(kid)[0] for kid, _ in kids]
+            stack.extend(kid for kid, _ in kids)
+        return out
+
+    slow, fast = states(False), states(True)
+    assert len(fast) == len(set(fast)) and set(fast) == set(slow) and any(c[2] for c in slow)

@@ -124,7 +124,8 @@ def verify_path_file(source: str, data: dict[str, Any], as_json: bool) -> int:
     return EXIT_OK if check.valid else EXIT_INVALID
 
 
-def cmd_conjecture_genus0(args: argparse.Namespace) -> int:
+def cmd_conjecture_settle(args: argparse.Namespace) -> int:
+    """``conjecture genus0`` and ``conjecture genus1``: settle every class of a catalog."""
     from tqdm import tqdm
 
     from polyloops.enumerate.census import CatalogError, read_catalog
@@ -136,10 +137,11 @@ def cmd_conjecture_genus0(args: argparse.Namespace) -> int:
         settle_catalog,
     )
 
+    genus = 1 if args.which == "genus1" else 0
     check_output(args.output)
     try:
         census = read_catalog(Path(args.catalog))
-        covered = complete_range(census)
+        covered = complete_range(census, genus)
         total = len(catalog_signatures(census, args.max_corners))
     except (CatalogError, ConjectureError) as err:
         raise CliError(str(err)) from None
@@ -148,7 +150,7 @@ def cmd_conjecture_genus0(args: argparse.Namespace) -> int:
                        f"only through {covered} corners; extend it first (polyloops catalog)")
     if args.slack < 2:
         raise CliError("--slack must be at least 2")
-    bar = tqdm(total=total, desc="genus0", unit="class", disable=None, file=sys.stderr)
+    bar = tqdm(total=total, desc=args.which, unit="class", disable=None, file=sys.stderr)
     try:
         result = settle_catalog(census.directory, args.max_corners, args.slack, args.workers, args.dask,
                                 progress=lambda _: bar.update(1))
@@ -159,7 +161,11 @@ def cmd_conjecture_genus0(args: argparse.Namespace) -> int:
     write_text(args.output, "\n".join(certificate_lines(result)) + "\n")
     data = result.to_json()
     lines = ["corners  classes  irreducible  settled  largest detour (extra corners, moves)"]
+    orientation = None
     for row in result.table():
+        if row.orientation != orientation:
+            orientation = row.orientation
+            lines.append(f"orientation type {orientation}:")
         lines.append(f"{row.corners:>7}  {row.classes:>7}  {row.irreducible:>11}  "
                      f"{row.settled_irreducible:>7}  "
                      + (f"+{row.largest_detour_corners}, {row.largest_detour_moves}"
@@ -184,7 +190,7 @@ def cmd_conjecture_check(args: argparse.Namespace) -> int:
     except CatalogError as err:
         raise CliError(str(err)) from None
     problems = check.problems
-    data = {"valid": check.valid, "max_corners": check.header["max_corners"],
+    data = {"valid": check.valid, "genus": check.genus, "max_corners": check.header["max_corners"],
             "checked_corners": check.checked_corners, "catalog_corners": check.catalog_corners,
             "records": check.records, "problems": [str(p) for p in problems]}
     checked = (f"checked every class of {args.catalog} through {check.checked_corners} corners "
@@ -194,8 +200,10 @@ def cmd_conjecture_check(args: argparse.Namespace) -> int:
         text = (f"{args.certificate}: INVALID: {plural(len(problems), 'problem')}; first: {problems[0]}\n"
                 f"  {checked}")
     else:
-        text = (f"{args.certificate}: valid: every genus-0 class through {check.checked_corners} corners "
-                f"is reachable from the cube\n  {checked}; each record replayed with the Definition-4 "
+        start = ("from the cube" if check.genus == 0
+                 else "from the base class of its hole-orientation type")
+        text = (f"{args.certificate}: valid: every genus-{check.genus} class through {check.checked_corners} "
+                f"corners is reachable {start}\n  {checked}; each record replayed with the Definition-4 "
                 "checker")
     emit(args, data, text)
     return EXIT_INVALID if problems else EXIT_OK
@@ -227,24 +235,29 @@ def add_commands(command: AddCommand) -> None:
     p.add_argument("--moves", default="add,remove", help=moves_help)
     p.add_argument("-o", "--output", metavar="OUT.json", help="write the path: every step as a loop "
                    "structure ('polyloops verify OUT.json' checks it)")
-    p = command("conjecture", cmd_conjecture_genus0, "the genus-0 reachability conjecture: "
-                "'conjecture genus0' settles every catalog class, 'conjecture check' re-checks a "
+    p = command("conjecture", cmd_conjecture_settle, "the reachability conjecture: 'conjecture genus0' "
+                "and 'conjecture genus1' settle every catalog class, 'conjecture check' re-checks a "
                 "certificate", file_arg=False, json_flag=False)
     sub = p.add_subparsers(dest="which", metavar="WHICH", parser_class=Parser)
     sub.required = True
-    g = sub.add_parser("genus0", help="settle every class of a genus-0 catalog up to N corners",
-                       description="settle every class of a genus-0 catalog up to N corners: a removable "
-                       "loop, or a detour to fewer corners within the slack; exit 1 if some class "
-                       "is not settled")
-    g.add_argument("--catalog", required=True, metavar="DIR", help="a catalog directory (catalogs/genus0)")
-    g.add_argument("--max-corners", type=count_arg(8), required=True, metavar="N")
-    g.add_argument("--slack", type=count_arg(2), default=10, metavar="K",
-                   help="detours may go up to K corners above the class (tried 2, 4, ..., K; default 10)")
-    g.add_argument("-o", "--output", required=True, metavar="CERT", help="the certificate (JSON lines)")
-    g.add_argument("--workers", type=count_arg(1), default=1, metavar="K", help="local worker processes")
-    g.add_argument("--dask", metavar="ADDRESS", help="a Dask cluster (an address, or local)")
-    g.add_argument("--json", action="store_true", help="print one JSON object for scripts")
-    g.set_defaults(func=cmd_conjecture_genus0)
+    for genus, what in ((0, "a removable loop, or a detour to fewer corners within the slack"),
+                        (1, "within each hole-orientation type (the invariant up to the axes' "
+                            "symmetries), a base class with fewest corners, and for every other "
+                            "class a removable loop, or a detour to fewer corners (or, at the "
+                            "type's fewest corners, to the base) within the slack")):
+        g = sub.add_parser(f"genus{genus}", help=f"settle every class of a genus-{genus} catalog up to N "
+                           "corners", description=f"settle every class of a genus-{genus} catalog up to N "
+                           f"corners: {what}; exit 1 if some class is not settled")
+        g.add_argument("--catalog", required=True, metavar="DIR",
+                       help=f"a catalog directory (catalogs/genus{genus})")
+        g.add_argument("--max-corners", type=count_arg(8), required=True, metavar="N")
+        g.add_argument("--slack", type=count_arg(2), default=10, metavar="K",
+                       help="detours may go up to K corners above the class (tried 2, 4, ..., K; default 10)")
+        g.add_argument("-o", "--output", required=True, metavar="CERT", help="the certificate (JSON lines)")
+        g.add_argument("--workers", type=count_arg(1), default=1, metavar="K", help="local worker processes")
+        g.add_argument("--dask", metavar="ADDRESS", help="a Dask cluster (an address, or local)")
+        g.add_argument("--json", action="store_true", help="print one JSON object for scripts")
+        g.set_defaults(func=cmd_conjecture_settle)
     c = sub.add_parser("check", help="re-check a certificate without trusting the search",
                        description="re-check a certificate against a catalog: every class present, "
                        "every removal and detour replayed with the Definition-4 checker")

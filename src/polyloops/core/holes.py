@@ -117,6 +117,18 @@ class HoleOrientation:
             out[pair_name(x, y)] = self.factors[pair_name(a, b)]
         return HoleOrientation(out)
 
+    def up_to_axes(self) -> HoleOrientation:
+        """The least image (by text) under the six permutations of the axes: the invariant of
+        a class up to rotations and reflections, where the three rings are one.
+
+        >>> from polyloops.io.examples import load_example
+        >>> print(hole_orientation(load_example("ring").dualize()).up_to_axes())
+        XY: rank 0; XZ: rank 1 (1); YZ: rank 1 (1)
+        """
+        from itertools import permutations
+
+        return min((self.permuted(p) for p in permutations(range(3))), key=str)
+
     def to_json(self) -> dict[str, list[int]]:
         """A JSON-ready dict: per pair of axes, the invariant factors."""
         return {k: list(v) for k, v in self.factors.items()}

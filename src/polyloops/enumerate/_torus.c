@@ -459,12 +459,488 @@ static PyObject *children(PyObject *self, PyObject *args)
     return Py_BuildValue("(N(LLLLL))", c->out, c->nodes, c->closed, c->bounded, c->inconsistent, c->rejected);
 }
 
+/* ---- the first stage: arrangements with marked faces ------------------------------------------
+ *
+ * first_children(twin, marks, limit, colours) gives the canonical children of a state of the
+ * marked search (torus.torus_children without layers and without the regions' bound): twin as
+ * uint16 (four darts a crossing; empty for a single loop, when marks is 0 for the essential loop
+ * and 1 for the one bounding a disc), marks as a list of (kind, dart) with kind "A" (an end of
+ * the annulus face) or "H" (the face with the handle), colours 0 (any crossing graph) or 2 (a
+ * bipartite one).  The curve is drawn arc by arc through the faces as in torus._Drawing, each
+ * arc through a marked face in each of its kinds; a child is kept when it is within the limit
+ * (its crossings plus half the marked faces' needs), colourable, and its new loop is the
+ * canonical loop to delete (among loops whose deletion leaves it connected, those with fewest
+ * crossings, the first met in the canonical numbering of the marked map).  Each child comes as
+ * (canonical twin array, marks, is_cellular), possibly more than once. */
+
+#define A_MARK 0
+#define H_MARK 1
+#define MAXL1 64
+
+typedef struct {
+    int n;                    /* darts of the drawing: the parent's, then 2 per point or chord */
+    int rot[MAXD], irot[MAXD], twin[MAXD];
+    int loop[MAXD];           /* the parent loop a dart lies on; -1 on the curve */
+    int nmarks, mkind[2], mdart[2];
+    int nloops, lcross[MAXL1], deletable[MAXL1], klass[MAXL1];
+    int pc, limit, budget, colours, side;  /* side: the class the curve crosses (-1: not yet) */
+    int met[MAXL1], crossed;  /* the curve's crossings with each parent loop; loops crossed */
+    unsigned stamp[MAXD], now;  /* face membership */
+    PyObject *out;
+    int failed;
+    long long nodes, closed, bounded, rejected, uncolourable;
+} Draw;
+
+static Draw dw;
+
+typedef struct {              /* a child in canonical form's making */
+    int D, nf, nl, nmarks, mkind[2], mdart[2];
+    int twin[MAXD], face[MAXD], fsize[MAXD], loop[MAXD], lcross[MAXL1];
+    uint64_t adj[MAXL1];
+    int marked[MAXD];
+} Kid;
+
+static Kid kid;
+static int mark_need(int kind) { return kind == H_MARK ? 2 : 1; }
+
+static void sub1(Draw *w, int y, int *q1, int *q2)
+{
+    int t = w->twin[y], a = w->n, b = w->n + 1;
+    w->n += 2;
+    w->loop[a] = w->loop[b] = w->loop[y];
+    w->rot[a] = b; w->rot[b] = a; w->irot[a] = b; w->irot[b] = a;
+    w->twin[y] = b; w->twin[b] = y; w->twin[a] = t; w->twin[t] = a;
+    *q1 = a; *q2 = b;
+}
+
+static void unsub1(Draw *w, int y, int q1)
+{
+    int t = w->twin[q1];
+    w->twin[y] = t; w->twin[t] = y;
+    w->n -= 2;
+}
+
+static void chord1(Draw *w, int x, int y)
+{
+    int a = w->n, b = w->n + 1, nx, ny;
+    w->n += 2;
+    w->loop[a] = w->loop[b] = -1;
+    nx = w->rot[x]; w->rot[x] = a; w->rot[a] = nx; w->irot[a] = x; w->irot[nx] = a;
+    ny = w->rot[y]; w->rot[y] = b; w->rot[b] = ny; w->irot[b] = y; w->irot[ny] = b;
+    w->twin[a] = b; w->twin[b] = a;
+}
+
+static void unchord1(Draw *w, int x, int y)
+{
+    int a = w->n - 2, b = w->n - 1, nx, ny;
+    ny = w->rot[b]; w->rot[y] = ny; w->irot[ny] = y;
+    nx = w->rot[a]; w->rot[x] = nx; w->irot[nx] = x;
+    w->n -= 2;
+}
+
+/* Stamps the face on the left of d; returns its darts in order in buf and their number. */
+static int face1(Draw *w, int d, int *buf)
+{
+    int k = 0, e = d;
+    w->now++;
+    do { w->stamp[e] = w->now; buf[k++] = e; e = w->irot[w->twin[e]]; } while (e != d);
+    return k;
+}
+
+static int in_face(Draw *w, int d, int x)
+{
+    int e = d;
+    do { if (e == x) return 1; e = w->irot[w->twin[e]]; } while (e != d);
+    return 0;
+}
+
+/* Twice the crossings the marked faces still need, those holding x or end aside. */
+static int needs1(Draw *w, int x, int end)
+{
+    int total = 0;
+    for (int k = 0; k < w->nmarks; k++)
+        if (!in_face(w, w->mdart[k], x) && !in_face(w, w->mdart[k], end)) total += mark_need(w->mkind[k]);
+    return total;
+}
+
+static int kid_code(Kid *h, int o, int r, int have_best, const unsigned char *cand, int *first, int *mcode)
+{
+    int cnt = 0, smaller = !have_best;
+    for (int d = 0; d < h->D; d++) num[d] = -1;
+    *first = -1;
+#define VISIT(t0) do { int t_ = (t0); for (int j_ = 0; j_ < 4; j_++) { num[t_] = cnt; order[cnt++] = t_; \
+        t_ = o ? irot4(t_) : rot4(t_); } } while (0)
+    VISIT(r);
+    for (int i = 0; i < h->D; i++) {
+        int d = order[i], t = h->twin[d];
+        if (*first < 0 && cand[h->loop[d]]) *first = h->loop[d];
+        if (num[t] < 0) VISIT(t);
+        code[i] = num[t];
+        if (!smaller) {
+            if (code[i] > best[i]) return -1;
+            if (code[i] < best[i]) smaller = 1;
+        }
+    }
+#undef VISIT
+    /* the marked faces, each by its least dart number (in the mirror image, a face's darts
+     * are rot of the original's), then kind; sorted */
+    for (int k = 0; k < h->nmarks; k++) {
+        int low = 1 << 30, d = h->mdart[k], e = d;
+        do { int g = o ? rot4(e) : e; if (num[g] < low) low = num[g]; e = irot4(h->twin[e]); } while (e != d);
+        mcode[k] = 2 * low + h->mkind[k];
+    }
+    if (h->nmarks == 2 && mcode[0] > mcode[1]) { int t = mcode[0]; mcode[0] = mcode[1]; mcode[1] = t; }
+    if (!smaller)
+        for (int k = 0; k < h->nmarks; k++) {
+            if (mcode[k] > best[h->D + k]) return -1;
+            if (mcode[k] < best[h->D + k]) { smaller = 1; break; }
+        }
+    return smaller;
+}
+
+static int connected_without1(const Kid *h, int skip)
+{
+    uint64_t all = 0, seen, frontier;
+    for (int l = 0; l < h->nl; l++) if (l != skip) all |= (uint64_t)1 << l;
+    if (!all) return 1;
+    seen = frontier = all & -all;
+    while (frontier) {
+        uint64_t next = 0;
+        for (int l = 0; l < h->nl; l++) if (frontier >> l & 1) next |= h->adj[l];
+        next &= all & ~seen;
+        seen |= next;
+        frontier = next;
+    }
+    return seen == all;
+}
+
+static int bipartite(const Kid *h)
+{
+    int side[MAXL1], stack[MAXL1], top = 0;
+    for (int l = 0; l < h->nl; l++) side[l] = -1;
+    for (int s = 0; s < h->nl; s++) {
+        if (side[s] >= 0) continue;
+        side[s] = 0;
+        stack[top++] = s;
+        while (top) {
+            int l = stack[--top];
+            for (int m = 0; m < h->nl; m++) {
+                if (!(h->adj[l] >> m & 1)) continue;
+                if (side[m] < 0) { side[m] = 1 - side[l]; stack[top++] = m; }
+                else if (side[m] == side[l]) return 0;
+            }
+        }
+    }
+    return 1;
+}
+
+/* The closed curve's child: points of degree 2 smoothed away, four darts a crossing; the keep
+ * tests; the child in canonical numbering appended to the output. */
+static void emit1(Draw *w)
+{
+    static int id[MAXD], orbit[8];
+    Kid *h = &kid;
+    int D = 0, curve = -1;
+    w->closed++;
+    for (int d = 0; d < w->n; d++) id[d] = -2;
+    for (int d = 0; d < w->n; d++) {
+        if (id[d] != -2) continue;
+        int k = 0, e = d;
+        do { if (k < 8) orbit[k] = e; k++; e = w->rot[e]; } while (e != d);
+        if (k == 4) for (int j = 0; j < 4; j++) id[orbit[j]] = D++;
+        else { e = d; do { id[e] = -1; e = w->rot[e]; } while (e != d); }
+    }
+    if (D > MAXD) { w->failed = 2; return; }
+    h->D = D;
+    for (int d = 0; d < w->n; d++) {
+        if (id[d] < 0) continue;
+        int t = w->twin[d];
+        while (id[t] < 0) t = w->twin[w->rot[t]];
+        h->twin[id[d]] = id[t];
+        if (curve < 0 && w->loop[d] < 0) curve = id[d];
+    }
+    h->nmarks = w->nmarks;
+    for (int k = 0; k < w->nmarks; k++) {
+        int e = w->mdart[k];
+        while (id[e] < 0) e = w->irot[w->twin[e]];
+        h->mkind[k] = w->mkind[k];
+        h->mdart[k] = id[e];
+    }
+    /* faces, loops */
+    for (int d = 0; d < D; d++) h->face[d] = -1;
+    h->nf = 0;
+    for (int d = 0; d < D; d++) {
+        if (h->face[d] >= 0) continue;
+        int k = 0, e = d;
+        do { h->face[e] = h->nf; k++; e = irot4(h->twin[e]); } while (e != d);
+        h->marked[h->nf] = 0;
+        h->fsize[h->nf++] = k;
+    }
+    for (int k = 0; k < h->nmarks; k++) h->marked[h->face[h->mdart[k]]] = 1;
+    for (int d = 0; d < D; d++) h->loop[d] = -1;
+    h->nl = 0;
+    for (int d = 0; d < D; d++) {
+        if (h->loop[d] >= 0) continue;
+        if (h->nl >= MAXL1) { w->failed = 2; return; }
+        int e = d;
+        do { h->loop[e] = h->loop[h->twin[e]] = h->nl; e = rot4(rot4(h->twin[e])); } while (e != d);
+        h->lcross[h->nl] = 0;
+        h->adj[h->nl++] = 0;
+    }
+    for (int d = 0; d < D; d++) {
+        int a = h->loop[d], b = h->loop[rot4(d)];
+        if (a == b) { w->failed = 3; return; }
+        h->lcross[a]++;
+        h->adj[a] |= (uint64_t)1 << b;
+    }
+    for (int l = 0; l < h->nl; l++) h->lcross[l] /= 2;
+    int needs = 0;
+    for (int k = 0; k < h->nmarks; k++) needs += mark_need(h->mkind[k]);
+    if (D / 4 + (needs + 1) / 2 > w->limit) { w->bounded++; return; }
+    if (w->colours == 2 && !bipartite(h)) { w->uncolourable++; return; }
+    static unsigned char cand[MAXL1];
+    int fewest = 1 << 30, wanted = h->loop[curve];
+    for (int l = 0; l < h->nl; l++) {
+        cand[l] = (unsigned char)connected_without1(h, l);
+        if (cand[l] && h->lcross[l] < fewest) fewest = h->lcross[l];
+    }
+    for (int l = 0; l < h->nl; l++) cand[l] = cand[l] && h->lcross[l] == fewest;
+    if (!cand[wanted]) { w->rejected++; return; }
+    /* the least code over the roots of least key, and McKay's test */
+    int low = 1 << 30, have = 0, accepted = 0, mcode[2];
+    for (int o = 0; o < 2; o++)
+        for (int d = 0; d < D; d++) {
+            int f = o ? h->face[h->twin[d]] : h->face[d];
+            int key = ((h->lcross[h->loop[d]] * 64 + (h->fsize[f] < 63 ? h->fsize[f] : 63)) * 2) + h->marked[f];
+            if (key < low) low = key;
+        }
+    for (int o = 0; o < 2; o++)
+        for (int d = 0; d < D; d++) {
+            int f = o ? h->face[h->twin[d]] : h->face[d];
+            int key = ((h->lcross[h->loop[d]] * 64 + (h->fsize[f] < 63 ? h->fsize[f] : 63)) * 2) + h->marked[f];
+            if (key != low) continue;
+            int first, r = kid_code(h, o, d, have, cand, &first, mcode);
+            if (r < 0) continue;
+            if (r > 0) {
+                memcpy(best, code, sizeof(int) * (size_t)D);
+                for (int k = 0; k < h->nmarks; k++) best[D + k] = mcode[k];
+                have = 1; accepted = 0;
+            }
+            if (first == wanted) accepted = 1;
+        }
+    if (!accepted) { w->rejected++; return; }
+    uint16_t tw[MAXD];
+    for (int i = 0; i < D; i++) tw[i] = (uint16_t)best[i];
+    PyObject *marks = PyList_New(h->nmarks);
+    if (!marks) { w->failed = 1; return; }
+    for (int k = 0; k < h->nmarks; k++)
+        PyList_SET_ITEM(marks, k, Py_BuildValue("(si)", (best[D + k] & 1) ? "H" : "A", best[D + k] >> 1));
+    PyObject *item = Py_BuildValue("(y#Ni)", (const char *)tw, (Py_ssize_t)(2 * D), marks, h->nmarks == 0);
+    if (!item || PyList_Append(w->out, item) < 0) w->failed = 1;
+    Py_XDECREF(item);
+}
+
+static void dfs1(Draw *w, int x, int end, int cr);
+
+/* Draws the chord from x to y in each way the faces allow; after each, emits the child
+ * (then = -1) or continues the curve from dart `then` with cr crossings. */
+static void chords1(Draw *w, int x, int y, int then, int end, int cr)
+{
+    int mi = -1, e = x, skind[2], sdart[2], snm = w->nmarks;
+    for (int k = 0; k < 2; k++) { skind[k] = w->mkind[k]; sdart[k] = w->mdart[k]; }
+    int same = in_face(w, x, y);
+    do {
+        for (int k = 0; k < w->nmarks; k++) if (w->mdart[k] == e) mi = k;
+        e = w->irot[w->twin[e]];
+    } while (e != x);
+    int kind = mi < 0 ? -1 : w->mkind[mi];
+    int options = !same ? 1 : kind < 0 ? 1 : kind == H_MARK ? 3 : 2;
+    for (int opt = 0; opt < options; opt++) {
+        chord1(w, x, y);
+        int a = w->n - 2, b = w->n - 1;
+        if (!same) w->nmarks = 0;  /* across the annulus: every face a disc */
+        else if (kind >= 0) {
+            if (opt == 2) { w->nmarks = 2; w->mkind[0] = w->mkind[1] = A_MARK; w->mdart[0] = a; w->mdart[1] = b; }
+            else w->mdart[mi] = opt == 0 ? a : b;
+        }
+        if (then < 0) emit1(w);
+        else dfs1(w, then, end, cr);
+        w->nmarks = snm;
+        for (int k = 0; k < 2; k++) { w->mkind[k] = skind[k]; w->mdart[k] = sdart[k]; }
+        unchord1(w, x, y);
+        if (w->failed) return;
+    }
+}
+
+static void dfs1(Draw *w, int x, int end, int cr)
+{
+    static int fbuf[64][MAXD];
+    int *targets = fbuf[cr < 64 ? cr : 63];
+    if (w->failed) return;
+    w->nodes++;
+    for (int l = 0; l < w->nloops; l++)
+        if (w->deletable[l] && w->crossed > (w->met[l] > 0) && cr > w->lcross[l] + w->met[l]) return;
+    if (w->pc + cr + (needs1(w, x, end) + 1) / 2 > w->limit) { w->bounded++; return; }
+    int k = face1(w, x, targets), mi = -1;
+    for (int j = 0; j < w->nmarks; j++) if (w->stamp[w->mdart[j]] == w->now) mi = j;
+    if (mi >= 0 && w->mkind[mi] == A_MARK) {
+        int other = w->mdart[1 - mi];
+        k += face1(w, other, targets + k);
+    }
+    int closable = 0;
+    for (int j = 0; j < k; j++) if (targets[j] == end) closable = 1;
+    if (closable) chords1(w, x, end, -1, end, cr);
+    if (cr >= w->budget || w->n + 8 > MAXD || cr >= 63) return;
+    for (int j = 0; j < k && !w->failed; j++) {
+        int y = targets[j], lp = w->loop[y];
+        if (lp < 0) continue;
+        if (w->colours == 2 && w->side >= 0 && w->klass[lp] != w->side) continue;
+        int q1, q2, side = w->side;
+        sub1(w, y, &q1, &q2);
+        if (!w->met[lp]++) w->crossed++;
+        if (w->colours == 2) w->side = w->klass[lp];
+        chords1(w, x, q1, q2, end, cr + 1);
+        w->side = side;
+        if (!--w->met[lp]) w->crossed--;
+        unsub1(w, y, q1);
+    }
+}
+
+static int parse_marks(PyObject *marks, int *kind, int *dart, int D)
+{
+    if (!PyList_Check(marks) && !PyTuple_Check(marks)) return -1;
+    Py_ssize_t m = PySequence_Size(marks);
+    if (m != 0 && m != 1 && m != 2) return -1;
+    for (Py_ssize_t k = 0; k < m; k++) {
+        PyObject *it = PySequence_GetItem(marks, k);
+        const char *s;
+        int d;
+        int ok = it && PyArg_ParseTuple(it, "si", &s, &d);
+        Py_XDECREF(it);
+        if (!ok) { PyErr_Clear(); return -1; }
+        if (d < 0 || d >= D || (s[0] != 'A' && s[0] != 'H') || s[1]) return -1;
+        kind[k] = s[0] == 'H' ? H_MARK : A_MARK;
+        dart[k] = d;
+    }
+    if ((m == 1 && kind[0] != H_MARK) || (m == 2 && (kind[0] != A_MARK || kind[1] != A_MARK))) return -1;
+    return (int)m;
+}
+
+static PyObject *first_children(PyObject *self, PyObject *args)
+{
+    Py_buffer tb;
+    PyObject *marks;
+    int limit, colours;
+    (void)self;
+    if (!PyArg_ParseTuple(args, "y*Oii", &tb, &marks, &limit, &colours)) return NULL;
+    Draw *w = &dw;
+    int D = (int)(tb.len / 2), bad = tb.len % 2 || D % 4 || D > MAXD / 4 || (colours != 0 && colours != 2);
+    const uint16_t *twin = tb.buf;
+    for (int d = 0; d < D && !bad; d++) bad = twin[d] >= D || twin[d] == d || twin[twin[d]] != d;
+    if (!bad) for (int d = 0; d < D; d++) w->twin[d] = twin[d];
+    PyBuffer_Release(&tb);
+    if (bad) return PyErr_Format(PyExc_ValueError, "not the twin array of a 4-regular map (or colours not 0 or 2)");
+    w->colours = colours;
+    w->limit = limit;
+    w->nodes = w->closed = w->bounded = w->rejected = w->uncolourable = 0;
+    w->failed = 0;
+    w->crossed = 0;
+    w->side = -1;
+    memset(w->met, 0, sizeof(w->met));
+    if (D == 0) {             /* a single loop: a point of degree 2 on it */
+        long root = PyLong_AsLong(marks);
+        if (PyErr_Occurred() || (root != 0 && root != 1))
+            return PyErr_Format(PyExc_ValueError, "a single loop is 0 (essential) or 1 (bounding a disc)");
+        w->n = 2;
+        w->rot[0] = w->irot[0] = 1; w->rot[1] = w->irot[1] = 0;
+        w->twin[0] = 1; w->twin[1] = 0;
+        w->loop[0] = w->loop[1] = 0;
+        if (root == 0) { w->nmarks = 2; w->mkind[0] = w->mkind[1] = A_MARK; w->mdart[0] = 0; w->mdart[1] = 1; }
+        else { w->nmarks = 1; w->mkind[0] = H_MARK; w->mdart[0] = 1; }
+        w->nloops = 1; w->lcross[0] = 0; w->deletable[0] = 0; w->klass[0] = 0;
+        w->pc = 0;
+    } else {
+        int m = parse_marks(marks, w->mkind, w->mdart, D);
+        if (m < 0) return PyErr_Format(PyExc_ValueError, "marks are none, one (\"H\", dart) or two (\"A\", dart)");
+        w->nmarks = m;
+        w->n = D;
+        for (int d = 0; d < D; d++) { w->rot[d] = rot4(d); w->irot[d] = irot4(d); }
+        Kid *h = &kid;        /* the parent's loops, crossing graph, deletable loops, classes */
+        h->D = D;
+        memcpy(h->twin, w->twin, sizeof(int) * (size_t)D);
+        for (int d = 0; d < D; d++) h->loop[d] = -1;
+        h->nl = 0;
+        for (int d = 0; d < D; d++) {
+            if (h->loop[d] >= 0) continue;
+            if (h->nl >= MAXL1) return PyErr_Format(PyExc_ValueError, "more than %d loops", MAXL1);
+            int e = d;
+            do { h->loop[e] = h->loop[h->twin[e]] = h->nl; e = rot4(rot4(h->twin[e])); } while (e != d);
+            h->lcross[h->nl] = 0;
+            h->adj[h->nl++] = 0;
+        }
+        for (int d = 0; d < D; d++) {
+            if (h->loop[d] == h->loop[rot4(d)]) return PyErr_Format(PyExc_ValueError, "a loop crosses itself");
+            h->lcross[h->loop[d]]++;
+            h->adj[h->loop[d]] |= (uint64_t)1 << h->loop[rot4(d)];
+        }
+        w->nloops = h->nl;
+        for (int l = 0; l < h->nl; l++) {
+            w->lcross[l] = h->lcross[l] / 2;
+            w->deletable[l] = connected_without1(h, l);
+            w->klass[l] = -1;
+        }
+        for (int d = 0; d < D; d++) w->loop[d] = h->loop[d];
+        if (colours == 2) {   /* the parent's bipartition (its crossing graph is connected) */
+            int stack[MAXL1], top = 0;
+            w->klass[0] = 0;
+            stack[top++] = 0;
+            while (top) {
+                int l = stack[--top];
+                for (int k = 0; k < h->nl; k++) {
+                    if (!(h->adj[l] >> k & 1)) continue;
+                    if (w->klass[k] < 0) { w->klass[k] = 1 - w->klass[l]; stack[top++] = k; }
+                    else if (w->klass[k] == w->klass[l])
+                        return PyErr_Format(PyExc_ValueError, "the crossing graph is not bipartite");
+                }
+            }
+        }
+        w->pc = D / 4;
+    }
+    w->budget = limit - w->pc;
+    w->out = PyList_New(0);
+    if (!w->out) return NULL;
+    int n0 = w->n;
+    for (int y0 = 0; y0 < n0 && !w->failed; y0++) {
+        int p1, p2, lp = w->loop[y0];
+        sub1(w, y0, &p1, &p2);
+        w->met[lp] = 1;
+        w->crossed = 1;
+        w->side = colours == 2 ? w->klass[lp] : -1;
+        dfs1(w, p1, p2, 1);
+        w->met[lp] = 0;
+        w->crossed = 0;
+        unsub1(w, y0, p1);
+    }
+    if (w->failed) {
+        Py_DECREF(w->out);
+        if (w->failed == 1) return NULL;
+        return PyErr_Format(PyExc_ValueError, w->failed == 2 ? "a child too large" : "a loop crosses itself");
+    }
+    return Py_BuildValue("(N(LLLLL))", w->out, w->nodes, w->closed, w->bounded, w->rejected, w->uncolourable);
+}
+
 static PyMethodDef methods[] = {
     {"children", children, METH_VARARGS,
      "children(twin, layer, limit, base_crossings) -> (children, (paths drawn, cycles closed,\n"
      "over the bound, third axis not orientable, not canonical)): the second-stage children of\n"
      "a layered torus arrangement (twin as uint16, layer as bytes, four darts a crossing), each\n"
      "as (canonical twin array, layer bytes, is_target), possibly repeated"},
+    {"first_children", first_children, METH_VARARGS,
+     "first_children(twin, marks, limit, colours) -> (children, (paths drawn, curves closed, over\n"
+     "the bound, not canonical, not colourable)): the children of a state of the marked search (twin\n"
+     "as uint16, four darts a crossing, with marks [(kind, dart)]; an empty twin with marks 0 or 1\n"
+     "for the single loop, essential or not), colours 0 or 2, each as (canonical twin array, marks,\n"
+     "is_cellular), possibly repeated"},
     {NULL, NULL, 0, NULL},
 };
 

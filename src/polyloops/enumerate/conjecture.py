@@ -14,6 +14,15 @@ A certificate is JSON lines: a header, then one record per catalog class:
 {"slack", "max_corners", "moves": [...]}}`` (moves replayed from ``from_signature(signature)``),
 or ``{"signature", "corners", "unsettled": true}``.  :func:`check_certificate` replays every
 record with the Definition-4 checker and trusts nothing else.
+
+**Genus 1.**  Moves never change the hole orientation (:mod:`polyloops.core.holes`), so the
+question is asked within each *orientation type* (the invariant up to the symmetries of the
+axes, :meth:`~polyloops.core.holes.HoleOrientation.up_to_axes`): is every class reachable from a
+smallest class of its type?  The same induction, started at one *base* per type (the first
+class of the catalog among those of the type with fewest corners); the other classes of that
+size have no smaller class to go down to, so their detours end at the base instead.  The
+certificate's header says ``genus1-reachability-certificate``, and each record carries its
+type (``orientation``), which the checker computes again.
 """
 
 from __future__ import annotations
@@ -31,8 +40,17 @@ from polyloops.core.structure import LoopStructure
 from polyloops.enumerate.census import Census, read_catalog
 from polyloops.enumerate.reach import Move, neighbours
 
-CERTIFICATE_KIND = "genus0-reachability-certificate"
+CERTIFICATE_KINDS = {0: "genus0-reachability-certificate", 1: "genus1-reachability-certificate"}
+CERTIFICATE_KIND = CERTIFICATE_KINDS[0]
 CUBE_CORNERS = 8  # the cube is the only polycube with 8 corners (and none has fewer)
+
+
+def orientation_type(ls: LoopStructure) -> str:
+    """The hole orientation of a structure up to the symmetries of the axes, as text: moves
+    keep it, and it names the question's classes at genus 1."""
+    from polyloops.core.holes import hole_orientation
+
+    return str(hole_orientation(ls).up_to_axes())
 
 
 def removable_loop(ls: LoopStructure) -> int | None:
@@ -40,10 +58,11 @@ def removable_loop(ls: LoopStructure) -> int | None:
     return next((lp.id for lp in ls.loops if check_removal(ls, lp.id).valid), None)
 
 
-def find_detour(ls: LoopStructure, max_corners: int) -> list[Move] | None:
-    """A shortest sequence of moves from ``ls`` to a structure with fewer corners, every
-    structure on the way within ``max_corners`` (breadth-first, states up to all 48
-    symmetries); the moves apply one after the other starting from ``ls`` itself."""
+def find_detour(ls: LoopStructure, max_corners: int, target: str | None = None) -> list[Move] | None:
+    """A shortest sequence of moves from ``ls`` to a structure with fewer corners (or, given a
+    ``target`` signature up to all 48 symmetries, to that class), every structure on the way
+    within ``max_corners`` (breadth-first, states up to all 48 symmetries); the moves apply one
+    after the other starting from ``ls`` itself."""
     n = ls.map.num_corners
     start = canonical_form(ls, "full").signature
     seen = {start}
@@ -55,6 +74,8 @@ def find_detour(ls: LoopStructure, max_corners: int) -> list[Move] | None:
                 if child.map.num_corners < n:
                     return [*moves, move]
                 s = canonical_form(child, "full").signature
+                if s == target:
+                    return [*moves, move]
                 if s not in seen:
                     seen.add(s)
                     nxt.append((child, [*moves, move]))
@@ -68,11 +89,12 @@ class ClassRecord:
 
     signature: str
     corners: int
-    base: bool = False  # the cube, where the induction starts
+    base: bool = False  # where the induction starts: the cube (genus 0), one class a type (genus 1)
     removable: int | None = None
     detour: list[Move] | None = None
     slack: int | None = None
     max_corners: int | None = None
+    orientation: str | None = None  # genus 1: the orientation type (orientation_type)
 
     @property
     def settled(self) -> bool:
@@ -97,6 +119,8 @@ class ClassRecord:
     def to_json(self) -> dict[str, Any]:
         """A JSON-ready dict, one line of the certificate."""
         out: dict[str, Any] = {"signature": self.signature, "corners": self.corners}
+        if self.orientation is not None:
+            out["orientation"] = self.orientation
         if self.base:
             out["base"] = True
         elif self.removable is not None:
@@ -109,25 +133,53 @@ class ClassRecord:
         return out
 
 
-def settle(signature: str, slack: int) -> ClassRecord:
+def settle(signature: str, slack: int, *, base: bool = False, target: str | None = None,
+           orientation: str | None = None) -> ClassRecord:
     """Settle one class: its lowest removable loop, or the shortest detour with the least
-    slack ``K = 2, 4, ...`` up to ``slack``."""
+    slack ``K = 2, 4, ...`` up to ``slack`` (to fewer corners, or to the class ``target``).
+    At genus 0 the cube is the base; at genus 1 the caller says which class is (``base``) and
+    gives each class its ``orientation`` type."""
     ls = from_signature(signature)
     n = ls.map.num_corners
-    if n == CUBE_CORNERS:
-        return ClassRecord(signature, n, base=True)
+    if base or (orientation is None and n == CUBE_CORNERS):
+        return ClassRecord(signature, n, base=True, orientation=orientation)
     loop = removable_loop(ls)
     if loop is not None:
-        return ClassRecord(signature, n, removable=loop)
+        return ClassRecord(signature, n, removable=loop, orientation=orientation)
     for k in range(2, slack + 1, 2):
-        moves = find_detour(ls, n + k)
+        moves = find_detour(ls, n + k, target)
         if moves is not None:
-            return ClassRecord(signature, n, detour=moves, slack=k, max_corners=n + k)
-    return ClassRecord(signature, n)
+            return ClassRecord(signature, n, detour=moves, slack=k, max_corners=n + k,
+                               orientation=orientation)
+    return ClassRecord(signature, n, orientation=orientation)
 
 
-def _settle_job(task: tuple[str, int]) -> ClassRecord:
-    return settle(*task)
+@dataclass(frozen=True)
+class _Task:
+    signature: str
+    slack: int
+    base: bool = False
+    target: str | None = None
+    orientation: str | None = None
+
+
+def _settle_job(task: _Task) -> ClassRecord:
+    return settle(task.signature, task.slack, base=task.base, target=task.target,
+                  orientation=task.orientation)
+
+
+def _orientation_job(signature: str) -> str:
+    return orientation_type(from_signature(signature))
+
+
+def orientation_bases(types: dict[str, str], corners: dict[str, int]) -> dict[str, str]:
+    """Per orientation type, its base: the first signature (in the given order) among those of
+    the type with fewest corners."""
+    out: dict[str, str] = {}
+    for sig, t in types.items():
+        if t not in out or corners[sig] < corners[out[t]]:
+            out[t] = sig
+    return out
 
 
 @dataclass
@@ -140,10 +192,11 @@ class CornerRow:
     settled_irreducible: int = 0
     largest_detour_corners: int = 0
     largest_detour_moves: int = 0
+    orientation: str | None = None  # genus 1: the orientation type the row counts
 
-    def to_json(self) -> dict[str, int]:
+    def to_json(self) -> dict[str, Any]:
         """A JSON-ready dict of the row."""
-        return dict(self.__dict__)
+        return {k: v for k, v in self.__dict__.items() if v is not None}
 
 
 @dataclass
@@ -153,6 +206,7 @@ class ConjectureResult:
     max_corners: int
     slack: int
     records: list[ClassRecord] = field(default_factory=list)
+    genus: int = 0
 
     @property
     def unsettled(self) -> list[ClassRecord]:
@@ -160,10 +214,11 @@ class ConjectureResult:
         return [r for r in self.records if not r.settled]
 
     def table(self) -> list[CornerRow]:
-        """The results by number of corners."""
-        rows: dict[int, CornerRow] = {}
+        """The results by number of corners (at genus 1, by orientation type and corners)."""
+        rows: dict[tuple[str, int], CornerRow] = {}
         for r in self.records:
-            row = rows.setdefault(r.corners, CornerRow(r.corners))
+            key = (r.orientation or "", r.corners)
+            row = rows.setdefault(key, CornerRow(r.corners, orientation=r.orientation))
             row.classes += 1
             if r.irreducible:
                 row.irreducible += 1
@@ -172,11 +227,11 @@ class ConjectureResult:
                     assert r.detour is not None
                     row.largest_detour_corners = max(row.largest_detour_corners, r.detour_peak())
                     row.largest_detour_moves = max(row.largest_detour_moves, len(r.detour))
-        return [rows[n] for n in sorted(rows)]
+        return [rows[k] for k in sorted(rows)]
 
     def to_json(self) -> dict[str, Any]:
         """A JSON-ready summary: counts, unsettled classes, the table."""
-        return {"max_corners": self.max_corners, "slack": self.slack,
+        return {"genus": self.genus, "max_corners": self.max_corners, "slack": self.slack,
                 "classes": len(self.records), "settled": len(self.records) - len(self.unsettled),
                 "unsettled": [r.signature for r in self.unsettled],
                 "by_corners": [row.to_json() for row in self.table()]}
@@ -187,9 +242,9 @@ class ConjectureError(PolyloopsError, ValueError):
     or a certificate that is not one; the message names both sides."""
 
 
-def complete_range(census: Census) -> int:
-    """The largest ``N`` such that the catalog holds every genus-0 class with at most ``N``
-    corners: its counts start at the cube's 8 and it is not one share of a split run.
+def complete_range(census: Census, genus: int = 0) -> int:
+    """The largest ``N`` such that the catalog holds every class of ``genus`` with at most
+    ``N`` corners: its counts start at the cube's 8 and it is not one share of a split run.
 
     Raises
     ------
@@ -201,8 +256,8 @@ def complete_range(census: Census) -> int:
     True
     """
     where = census.directory
-    if census.genus != 0:
-        raise ConjectureError(f"{where}: a catalog of genus {census.genus}, not 0")
+    if census.genus != genus:
+        raise ConjectureError(f"{where}: a catalog of genus {census.genus}, not {genus}")
     if "partial" in census.summary or "share" in census.summary:
         raise ConjectureError(f"{where}: a partial catalog (one share of a split run): it does not "
                               "hold every class")
@@ -235,12 +290,27 @@ def settle_catalog(directory: Path, max_corners: int, slack: int, workers: int =
     from polyloops.enumerate.parallel import run_jobs
 
     census = read_catalog(directory)
-    covered = complete_range(census)
+    genus = census.genus
+    if genus not in CERTIFICATE_KINDS:
+        raise ConjectureError(f"{census.directory}: a catalog of genus {genus}: the conjecture is "
+                              "asked at genus 0 and 1")
+    covered = complete_range(census, genus)
     if max_corners > covered:
         raise ConjectureError(f"{census.directory}: the catalog holds every class only through {covered} "
                               f"corners, not through {max_corners}")
-    tasks = [(sig, slack) for sig, _ in catalog_signatures(census, max_corners)]
-    result = ConjectureResult(max_corners, slack)
+    classes = catalog_signatures(census, max_corners)
+    if genus == 0:
+        tasks = [_Task(sig, slack) for sig, _ in classes]
+    else:
+        types = dict(zip([sig for sig, _ in classes],
+                         run_jobs(_orientation_job, [sig for sig, _ in classes], workers, dask), strict=True))
+        corners = dict(classes)
+        bases = orientation_bases(types, corners)
+        lowest = {t: corners[b] for t, b in bases.items()}
+        tasks = [_Task(sig, slack, base=bases[types[sig]] == sig,
+                       target=bases[types[sig]] if n == lowest[types[sig]] else None, orientation=types[sig])
+                 for sig, n in classes]
+    result = ConjectureResult(max_corners, slack, genus=genus)
     for record in run_jobs(_settle_job, tasks, workers, dask):
         result.records.append(record)
         if progress:
@@ -250,8 +320,9 @@ def settle_catalog(directory: Path, max_corners: int, slack: int, workers: int =
 
 def certificate_lines(result: ConjectureResult) -> Iterator[str]:
     """The certificate as JSON lines: a header, then one line per class."""
-    yield json.dumps({"polyloops": 1, "kind": CERTIFICATE_KIND, "max_corners": result.max_corners,
-                      "slack": result.slack, "classes": len(result.records)})
+    yield json.dumps({"polyloops": 1, "kind": CERTIFICATE_KINDS[result.genus],
+                      "max_corners": result.max_corners, "slack": result.slack,
+                      "classes": len(result.records)})
     for r in result.records:
         yield json.dumps(r.to_json(), separators=(",", ":"))
 
@@ -286,9 +357,20 @@ def _is_count(value: Any) -> TypeGuard[int]:
     return type(value) is int
 
 
-def check_record(data: Any, corners_bound: int, slack_bound: int | None = None) -> str | None:
+@dataclass(frozen=True)
+class Bases:
+    """Genus 1: per orientation type, the fewest corners of a catalog class of that type, and
+    the certificate's base class of the type (if it names one)."""
+
+    lowest: dict[str, int]
+    base: dict[str, str]
+
+
+def check_record(data: Any, corners_bound: int, slack_bound: int | None = None,
+                 bases: Bases | None = None) -> str | None:
     """Replay one record with the Definition-4 checker, and check every field it states
-    against what the replay shows; the problem, or ``None``."""
+    against what the replay shows; the problem, or ``None``.  ``bases`` (genus 1) gives each
+    orientation type's fewest corners and base class."""
     if not isinstance(data, dict):
         return "not a certificate record (a JSON object)"
     sig, n = data.get("signature"), data.get("corners")
@@ -309,7 +391,20 @@ def check_record(data: Any, corners_bound: int, slack_bound: int | None = None) 
     kinds = [k for k in ("base", "removable", "detour", "unsettled") if k in data]
     if len(kinds) > 1:
         return f"states more than one way of being settled ({', '.join(kinds)})"
-    if n == CUBE_CORNERS:
+    target = None
+    if bases is not None:
+        kind = orientation_type(ls)
+        if data.get("orientation") != kind:
+            return f"states orientation {data.get('orientation')!r}; the class has {kind!r}"
+        if "base" in data:
+            if data["base"] is not True or n != bases.lowest[kind] or bases.base.get(kind) != sig:
+                return (f"only one class of each orientation type with its fewest corners "
+                        f"({bases.lowest[kind]}) is a base")
+            return None
+        target = bases.base.get(kind) if n == bases.lowest[kind] else None
+        if "detour" in data:
+            return _check_detour(ls, n, data["detour"], slack_bound, target)
+    if n == CUBE_CORNERS and bases is None:
         if data.get("base") is not True:
             return "the cube is the base of the induction and must be marked so"
         return None
@@ -330,7 +425,8 @@ def check_record(data: Any, corners_bound: int, slack_bound: int | None = None) 
     return "unsettled"
 
 
-def _check_detour(ls: LoopStructure, n: int, detour: Any, slack_bound: int | None) -> str | None:
+def _check_detour(ls: LoopStructure, n: int, detour: Any, slack_bound: int | None,
+                  target: str | None = None) -> str | None:
     if not isinstance(detour, dict) or not isinstance(detour.get("moves"), list):
         return "bad detour: not an object with a list of moves"
     bound, slack = detour.get("max_corners"), detour.get("slack")
@@ -353,9 +449,27 @@ def _check_detour(ls: LoopStructure, n: int, detour: Any, slack_bound: int | Non
             return f"detour step {step} ({move}) does not give a polycube loop structure"
         if ls.map.num_corners > bound:
             return f"detour step {step} has {ls.map.num_corners} corners, above {bound}"
-    if ls.map.num_corners >= n:
-        return "the detour does not end below the class's corners"
-    return None
+    if ls.map.num_corners < n or (target is not None and canonical_form(ls, "full").signature == target):
+        return None
+    if target is not None:
+        return "the detour ends neither below the class's corners nor at the base of its orientation type"
+    return "the detour does not end below the class's corners"
+
+
+def _certificate_bases(parsed: list[tuple[int, Any]], wanted: dict[str, int]) -> Bases:
+    """The orientation types of the catalog's classes in range (computed, not read), their
+    fewest corners, and the base each type's records name (the first, if several: the others
+    are then refused by :func:`check_record`)."""
+    types = {sig: orientation_type(from_signature(sig)) for sig in wanted}
+    lowest: dict[str, int] = {}
+    for sig, t in types.items():
+        lowest[t] = min(lowest.get(t, wanted[sig]), wanted[sig])
+    base: dict[str, str] = {}
+    for _, data in parsed:
+        sig = data.get("signature") if isinstance(data, dict) else None
+        if isinstance(sig, str) and sig in types and data.get("base") is True:
+            base.setdefault(types[sig], sig)
+    return Bases(lowest, base)
 
 
 @dataclass(frozen=True)
@@ -369,6 +483,7 @@ class CertificateCheck:
     catalog_corners: int
     records: int
     problems: tuple[CertificateProblem, ...]
+    genus: int = 0
 
     @property
     def valid(self) -> bool:
@@ -389,9 +504,9 @@ def read_header(first: str) -> dict[str, Any]:
         header = json.loads(first)
     except ValueError as err:
         raise ConjectureError(f"not a reachability certificate (the first line is not JSON: {err})") from None
-    if not isinstance(header, dict) or header.get("kind") != CERTIFICATE_KIND:
+    if not isinstance(header, dict) or header.get("kind") not in CERTIFICATE_KINDS.values():
         raise ConjectureError("not a reachability certificate (the first line is not a "
-                              f"{CERTIFICATE_KIND} header)")
+                              f"{' or '.join(CERTIFICATE_KINDS.values())} header)")
     for key in ("max_corners", "slack"):
         if not _is_count(header.get(key)) or header[key] < 1:
             raise ConjectureError(f"the header's {key} {header.get(key)!r} is not a positive integer")
@@ -405,7 +520,8 @@ def check_certificate(lines: Iterable[str], directory: Path | Census) -> Certifi
     range, a record for every class through it, each replayed by :func:`check_record`, and the
     header's counts.  A certificate proves, when it checks, that every genus-0 polycube class
     with at most ``checked_corners`` corners is reachable from the cube (by the induction of the
-    module docstring), given that the catalog is complete through that range.
+    module docstring), given that the catalog is complete through that range; at genus 1, that
+    every class is reachable from the base of its orientation type.
 
     Raises
     ------
@@ -418,7 +534,8 @@ def check_certificate(lines: Iterable[str], directory: Path | Census) -> Certifi
     it = iter(enumerate(lines, 1))
     first = next(it, (1, ""))[1]
     header = read_header(first)
-    claimed, covered = header["max_corners"], complete_range(census)
+    genus = next(g for g, kind in CERTIFICATE_KINDS.items() if kind == header["kind"])
+    claimed, covered = header["max_corners"], complete_range(census, genus)
     checked = min(claimed, covered)
     problems: list[CertificateProblem] = []
     if claimed > covered:
@@ -428,15 +545,17 @@ def check_certificate(lines: Iterable[str], directory: Path | Census) -> Certifi
     wanted = dict(catalog_signatures(census, checked))
     covered_sigs: set[str] = set()
     records = 0
+    parsed: list[tuple[int, Any]] = []
     for number, line in it:
         if not line.strip():
             continue
         records += 1
         try:
-            data = json.loads(line)
+            parsed.append((number, json.loads(line)))
         except (ValueError, RecursionError):
             problems.append(CertificateProblem(number, "", "not JSON"))
-            continue
+    bases = _certificate_bases(parsed, wanted) if genus else None
+    for number, data in parsed:
         sig = data.get("signature") if isinstance(data, dict) else None
         if not isinstance(sig, str):
             problems.append(CertificateProblem(number, "", "not a JSON record with a signature (text)"))
@@ -449,7 +568,7 @@ def check_certificate(lines: Iterable[str], directory: Path | Census) -> Certifi
             problems.append(CertificateProblem(number, sig, "a second record for this class", names[sig]))
             continue
         covered_sigs.add(sig)
-        why = check_record(data, checked, header["slack"])
+        why = check_record(data, checked, header["slack"], bases)
         if why is not None:
             problems.append(CertificateProblem(number, sig, why, names[sig]))
     if "classes" in header and header["classes"] != records:
@@ -459,4 +578,4 @@ def check_certificate(lines: Iterable[str], directory: Path | Census) -> Certifi
         if sig not in covered_sigs:
             problems.append(CertificateProblem(0, sig, "catalog class missing from the certificate",
                                                names[sig]))
-    return CertificateCheck(header, checked, covered, records, tuple(problems))
+    return CertificateCheck(header, checked, covered, records, tuple(problems), genus)

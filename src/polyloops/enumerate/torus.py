@@ -53,8 +53,8 @@ from polyloops.core.disjoint_sets import DisjointSets, ParitySets
 from polyloops.core.halfedge import HalfEdgeMap, permutation_orbits
 from polyloops.core.labellings import proper_colourings
 
-__all__ = ["ANNULUS", "COMPILED_SECOND_STAGE", "HANDLE", "THIRD", "TorusArrangement", "TorusSearchStats",
-           "candidate_torus_arrangements", "compiled_second_stage_available", "face_need", "layered_need",
+__all__ = ["ANNULUS", "COMPILED_SEARCH", "HANDLE", "THIRD", "TorusArrangement", "TorusSearchStats",
+           "candidate_torus_arrangements", "compiled_search_available", "face_need", "layered_need",
            "third_sides_consistent",
            "torus_arrangements", "torus_children", "two_axis_bases", "two_stage_decompositions"]
 
@@ -539,9 +539,12 @@ def torus_children(parent: TorusArrangement | int, max_crossings: int, colours: 
     of a candidate map (3 to 6 sides, no two on one loop) in the bound."""
     stats = stats if stats is not None else TorusSearchStats()
     layered = not isinstance(parent, int) and bool(parent.layer)
-    if layered and regions and colours is None and _compiled():
-        assert not isinstance(parent, int)
-        return _compiled_children(parent, max_crossings, stats)
+    if _compiled():
+        if layered and regions and colours is None:
+            assert not isinstance(parent, int)
+            return _compiled_children(parent, max_crossings, stats)
+        if not layered and not regions and colours in (None, 2):
+            return _compiled_first_children(parent, max_crossings, colours or 0, stats)
     base_crossings, third_with = 0, [0, 0]
     rot: Sequence[int]
     twin: Sequence[int]
@@ -722,13 +725,14 @@ def torus_children(parent: TorusArrangement | int, max_crossings: int, colours: 
     return kids
 
 
-# The second stage runs in C when the install built it (``_torus.c``, the same children as the
-# Python search below: tested); False makes it run in Python.
-COMPILED_SECOND_STAGE = True
+# Both stages run in C when the install built it (``_torus.c``: the same children as the
+# Python search, tested), the first for the marked search without a regions' bound and with
+# two colours or none; False makes everything run in Python.
+COMPILED_SEARCH = True
 
 
-def compiled_second_stage_available() -> bool:
-    """Whether the install built the compiled second stage (it needs a C compiler)."""
+def compiled_search_available() -> bool:
+    """Whether the install built the compiled torus search (it needs a C compiler)."""
     try:
         import polyloops.enumerate._torus  # noqa: F401
     except ImportError:
@@ -737,7 +741,7 @@ def compiled_second_stage_available() -> bool:
 
 
 def _compiled() -> bool:
-    return COMPILED_SECOND_STAGE and compiled_second_stage_available()
+    return COMPILED_SEARCH and compiled_search_available()
 
 
 def _base_crossings(a: TorusArrangement) -> int:
@@ -767,6 +771,36 @@ def _compiled_children(parent: TorusArrangement, max_crossings: int, stats: Toru
         if key not in kids:
             child = TorusArrangement(tuple(array.array("H", twin)), (), tuple(layer), (key,))
             kids[key] = (child, _Facts(0, bool(target), True))
+    out = [kids[k] for k in sorted(kids)]
+    stats.states += len(out)
+    stats.targets += sum(f.target for _, f in out)
+    return out
+
+
+def _compiled_first_children(parent: TorusArrangement | int, max_crossings: int, colours: int,
+                             stats: TorusSearchStats) -> list[tuple[TorusArrangement, _Facts]]:
+    """:func:`torus_children` of a state of the marked search (no layer, no regions' bound), by
+    the compiled search (one of each child, ordered by its code)."""
+    import array
+
+    from polyloops.enumerate import _torus
+
+    if isinstance(parent, int):
+        found, counts = _torus.first_children(b"", parent, max_crossings, colours)
+    else:
+        found, counts = _torus.first_children(array.array("H", parent.twin).tobytes(), list(parent.marks),
+                                              max_crossings, colours)
+    _, closed, over, rejected, uncolourable = counts
+    stats.closed += closed
+    stats.over_bound += over
+    stats.not_canonical += rejected
+    stats.not_colourable += uncolourable
+    kids: dict[tuple, tuple[TorusArrangement, _Facts]] = {}
+    for twin, marks, cellular in found:
+        key = (twin, tuple(marks))
+        if key not in kids:
+            child = TorusArrangement(tuple(array.array("H", twin)), tuple(marks), (), key)
+            kids[key] = (child, _Facts(0, bool(cellular), True))
     out = [kids[k] for k in sorted(kids)]
     stats.states += len(out)
     stats.targets += sum(f.target for _, f in out)
