@@ -235,9 +235,13 @@ def test_catalog_readme_table_is_the_summary():
     summary = json.loads((SHIPPED / "summary.json").read_text())
     readme = (ROOT / "catalogs" / "README.md").read_text()
     rows = mod.certificate_rows(SHIPPED / "reachability-certificate.jsonl")
-    assert mod.render(readme, summary, rows) == readme, "run: python tools/catalog_readme.py"
+    genus1 = mod.genus1()
+    assert genus1 is not None and genus1[1]  # the genus-1 catalog ships, with its certificate
+    assert mod.render(readme, summary, rows, genus1) == readme, "run: python tools/catalog_readme.py"
     page = (ROOT / "docs" / "reachability.md").read_text()
     assert mod._replace(page, mod.REACH_BEGIN, mod.REACH_END, mod.reach_table(rows)) == page
+    assert mod._replace(page, mod.G1_REACH_BEGIN, mod.G1_REACH_END, mod.reach_table(genus1[1])) == page
+    assert mod.G1_REACH_BEGIN in page and mod.G1_BEGIN in readme
     rows = len((SHIPPED / "catalog.jsonl").read_text().splitlines())
     assert rows == sum(c["full"] for c in summary["counts"].values())
 
@@ -424,8 +428,9 @@ def test_counts_page_and_bfiles_are_the_summary():
     spec = importlib.util.spec_from_file_location("counts_page", ROOT / "tools" / "counts_page.py")
     mod = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(mod)
-    summary = json.loads((SHIPPED / "summary.json").read_text())
-    for path, text in mod.write_all(summary).items():
+    files = mod.write_all()
+    assert ROOT / "docs" / "bfiles" / "genus1-full.txt" in files  # the genus-1 catalog ships
+    for path, text in files.items():
         assert path.read_text() == text, "run: python tools/counts_page.py"
 
 

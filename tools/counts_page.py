@@ -1,5 +1,5 @@
-"""Write docs/counts.md and the b-files in docs/bfiles/ from catalogs/genus0/summary.json
-(a test checks they agree).
+"""Write docs/counts.md and the b-files in docs/bfiles/ from catalogs/genus0/summary.json and,
+when the genus-1 catalog ships, catalogs/genus1 (a test checks they agree).
 
 Run from the repository root: ``python tools/counts_page.py``.
 """
@@ -132,16 +132,71 @@ def drafts(summary: dict) -> list[str]:
     return lines
 
 
-def write_all(summary: dict) -> dict[Path, str]:
-    files = {ROOT / "docs" / "counts.md": page(summary)}
+def orientation_counts(catalog: Path) -> dict[str, dict[int, int]]:
+    """Per hole-orientation type (the invariant up to the axes' symmetries), the classes up to
+    all symmetries by corners, from a catalog's records (computed from their signatures)."""
+    from polyloops.core.canonical import from_signature
+    from polyloops.enumerate.conjecture import orientation_type
+
+    out: dict[str, dict[int, int]] = {}
+    for line in (catalog / "catalog.jsonl").read_text().splitlines():
+        record = json.loads(line)
+        kind = orientation_type(from_signature(record["signature"]))
+        row = out.setdefault(kind, {})
+        row[record["corners"]] = row.get(record["corners"], 0) + 1
+    return out
+
+
+def genus1_section(summary: dict, types: dict[str, dict[int, int]]) -> list[str]:
+    counts = summary["counts"]
+    top = max(int(n) for n in counts)
+    first = next((int(n) for n, c in counts.items() if c["labelled"]), None)
+    lines = ["## Genus 1", "",
+             "Computed by `polyloops catalog --genus 1` (the torus search of",
+             "[catalog.md](catalog.md#genus-1-the-torus-search)) and regenerated from",
+             "`catalogs/genus1/summary.json`. On the torus a loop structure has as many corners as",
+             "crossings, and two loops may cross an odd number of times, so every number of corners",
+             f"is searched. Through {top} corners the search is complete: "
+             + (f"no genus-1 polycube has fewer than {first} corners." if first is not None
+                else "no genus-1 polycube has that many corners or fewer."), ""]
+    if first is not None:
+        lines += ["| corners | labelled | up to rotation | up to rotation and reflection |",
+                  "|---:|---:|---:|---:|"]
+        for n, c in counts.items():
+            if int(n) >= first:
+                lines.append(f"| {n} | {c['labelled']} | {c['rotation']} | {c['full']} |")
+        sizes = sorted({n for row in types.values() for n in row})
+        lines += ["", "By hole orientation (the invariant of `polyloops.core.holes`, up to the symmetries of",
+                  "the axes; moves never change it), classes up to rotation and reflection:", "",
+                  "| orientation type | " + " | ".join(f"{n} corners" for n in sizes) + " |",
+                  "|---|" + "---:|" * len(sizes)]
+        for kind, row in sorted(types.items()):
+            lines.append(f"| {kind} | " + " | ".join(str(row.get(n, 0)) for n in sizes) + " |")
+    lines += ["", "B-files (`n a(n)` for every `n` from 8, zeros included): "
+              + ", ".join(f"[{mode}](bfiles/genus1-{mode}.txt)" for mode in SEQUENCES) + ".", ""]
+    return lines
+
+
+def write_all(summary: dict | None = None, genus1: dict | None = None) -> dict[Path, str]:
+    """Every file the shipped summaries give (read from catalogs/ when not given)."""
+    summary = summary or json.loads((ROOT / "catalogs" / "genus0" / "summary.json").read_text())
+    g1_dir = ROOT / "catalogs" / "genus1"
+    if genus1 is None and (g1_dir / "summary.json").exists():
+        genus1 = json.loads((g1_dir / "summary.json").read_text())
+    text = page(summary)
+    files: dict[Path, str] = {}
+    if genus1 is not None:
+        text += "\n" + "\n".join(genus1_section(genus1, orientation_counts(g1_dir)))
+        for mode in SEQUENCES:
+            files[ROOT / "docs" / "bfiles" / f"genus1-{mode}.txt"] = bfile(genus1, mode)
+    files[ROOT / "docs" / "counts.md"] = text
     for mode in (*SEQUENCES, "simple-strips"):
         files[ROOT / "docs" / "bfiles" / f"{mode}.txt"] = bfile(summary, mode)
     return files
 
 
 if __name__ == "__main__":
-    summary = json.loads((ROOT / "catalogs" / "genus0" / "summary.json").read_text())
-    for path, text in write_all(summary).items():
+    for path, text in write_all().items():
         path.parent.mkdir(exist_ok=True)
         path.write_text(text)
         print(f"wrote {path}")

@@ -1,6 +1,6 @@
-"""Ship a larger catalog run as the package's genus-0 catalog, checked, with its certificate.
+"""Ship a larger catalog run as the package's catalog of its genus, checked, with its certificate.
 
-    python tools/ship_catalog.py RUN_DIR [--into src/polyloops/catalogs/genus0] [--slack 10]
+    python tools/ship_catalog.py RUN_DIR [--into src/polyloops/catalogs/genusG] [--slack 10]
 
 RUN_DIR is a finished ``polyloops catalog`` run (full classes) that goes further than the
 shipped catalog. Before anything is replaced, the run must agree with the shipped catalog
@@ -22,6 +22,11 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 SHIPPED = ROOT / "src" / "polyloops" / "catalogs" / "genus0"
+
+
+def shipped(genus: int) -> Path:
+    """Where the package's catalog of ``genus`` lives in the source tree."""
+    return ROOT / "src" / "polyloops" / "catalogs" / f"genus{genus}"
 
 
 class ShipError(Exception):
@@ -59,9 +64,17 @@ def ship(run: Path, into: Path = SHIPPED, slack: int = 10, workers: int = 1) -> 
     from polyloops.enumerate.conjecture import certificate_lines, check_certificate, settle_catalog
     from polyloops.io.files import write_atomic
 
-    check_records(into, run)
-    summary = merged_summary(json.loads((into / "summary.json").read_text()),
-                             json.loads((run / "summary.json").read_text()))
+    new = json.loads((run / "summary.json").read_text())
+    if (into / "summary.json").exists():
+        old = json.loads((into / "summary.json").read_text())
+        if old.get("genus", 0) != new.get("genus", 0):
+            raise ShipError(f"the run is of genus {new.get('genus', 0)}, "
+                            f"the shipped catalog of {old.get('genus', 0)}")
+        check_records(into, run)
+        summary = merged_summary(old, new)
+    else:  # the first catalog of its genus
+        into.mkdir(parents=True, exist_ok=True)
+        summary = new
     # The records ship once: queries of a catalog without catalog.sqlite build the table in
     # memory from catalog.jsonl (census.query), so the database is not copied.
     shutil.copyfile(run / "catalog.jsonl", into / ".catalog.jsonl.new")
@@ -90,18 +103,19 @@ def _tool(name: str):
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("run", type=Path)
-    parser.add_argument("--into", type=Path, default=SHIPPED)
+    parser.add_argument("--into", type=Path, help="default: the package's catalog of the run's genus")
     parser.add_argument("--slack", type=int, default=10)
     parser.add_argument("--workers", type=int, default=1)
     args = parser.parse_args()
+    genus = json.loads((args.run / "summary.json").read_text()).get("genus", 0)
+    into = args.into or shipped(genus)
     try:
-        report = ship(args.run, args.into, args.slack, args.workers)
+        report = ship(args.run, into, args.slack, args.workers)
     except ShipError as err:
         sys.exit(f"ship_catalog: {err}")
     print(json.dumps(report, indent=1))
-    if args.into.resolve() == SHIPPED.resolve():
-        summary = json.loads((SHIPPED / "summary.json").read_text())
-        for path, text in _tool("counts_page").write_all(summary).items():
+    if into.resolve() == shipped(genus).resolve():
+        for path, text in _tool("counts_page").write_all().items():
             path.write_text(text)
         _tool("catalog_readme").write_all()
 

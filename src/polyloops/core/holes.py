@@ -115,7 +115,7 @@ class HoleOrientation:
         for a, b in PAIRS:
             x, y = sorted((Axis(perm[int(a)]), Axis(perm[int(b)])))
             out[pair_name(x, y)] = self.factors[pair_name(a, b)]
-        return HoleOrientation(out)
+        return HoleOrientation({pair_name(a, b): out[pair_name(a, b)] for a, b in PAIRS})  # XY, XZ, YZ
 
     def up_to_axes(self) -> HoleOrientation:
         """The least image (by text) under the six permutations of the axes: the invariant of

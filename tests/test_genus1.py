@@ -1,0 +1,146 @@
+"""The genus-1 catalog and its certificate: package data, every class the moves reach from the
+three rings within its range, and the conjecture checked within each hole-orientation type."""
+
+import json
+from pathlib import Path
+
+import pytest
+
+from polyloops.cli import main
+from polyloops.core.canonical import canonical_form, from_signature
+from polyloops.enumerate.catalog import map_classes
+from polyloops.enumerate.census import default_catalog, read_catalog
+from polyloops.enumerate.conjecture import (
+    CERTIFICATE_KINDS,
+    ConjectureError,
+    certificate_lines,
+    check_certificate,
+    complete_range,
+    orientation_type,
+    settle_catalog,
+)
+from polyloops.enumerate.reach import explore, stored_signatures
+from polyloops.io.examples import load_example
+
+G1 = default_catalog(1)
+CERT = G1 / "reachability-certificate.jsonl"
+
+
+def reached(name: str, max_corners: int, tmp: Path) -> list[str]:
+    """The classes (up to all symmetries) the moves reach from an example within a bound."""
+    explore(load_example(name).dualize(), max_corners, directory=tmp / name, mode="full")
+    return stored_signatures(tmp / name)
+
+
+def test_the_shipped_genus_one_certificate_checks():
+    """The certificate settles every class of the shipped genus-1 catalog within its type."""
+    census = read_catalog(G1)
+    top = complete_range(census, 1)
+    check = check_certificate(CERT.read_text().splitlines(), G1)
+    assert check.valid and check.genus == 1 and check.checked_corners == top >= 32
+    assert check.records == len(census.entries)
+
+
+def test_every_class_the_rings_reach_is_in_the_catalog(tmp_path):
+    """Within the catalog's range, the classes reached from the rings along X, Y and Z are
+    catalog classes (one family: the three rings are one class up to symmetry), the ring is
+    the smallest, and each class keeps the ring's orientation type."""
+    census = read_catalog(G1)
+    top = complete_range(census, 1)
+    catalog = {e.signature: e for e in census.entries}
+    ring_type = orientation_type(load_example("ring").dualize())
+    for name in ("ring", "ring-x", "ring-y"):
+        found = reached(name, top, tmp_path)
+        assert found and set(found) <= set(catalog)
+        assert all(orientation_type(from_signature(sig)) == ring_type for sig in found)
+    smallest = min(e.corners for e in census.entries)
+    ring = canonical_form(load_example("ring").dualize(), "full").signature
+    assert catalog[ring].corners == smallest == 32 and catalog[ring].name == "T32.1"
+
+
+def test_identify_names_the_ring(capsys):
+    assert main(["identify", "example:ring-x", "--catalog", str(G1)]) == 0
+    assert "T32.1" in capsys.readouterr().out
+
+
+def test_conjecture_genus1_writes_the_shipped_certificate(tmp_path, capsys):
+    top = complete_range(read_catalog(G1), 1)
+    out = tmp_path / "cert.jsonl"
+    argv = ["conjecture", "genus1", "--catalog", str(G1), "--max-corners", str(top), "-o", str(out)]
+    assert main(argv) == 0
+    assert out.read_text() == CERT.read_text()
+    assert main(["conjecture", "check", str(out), "--catalog", str(G1)]) == 0
+    assert "reachable from the base class of its hole-orientation type" in capsys.readouterr().out
+    # a genus-0 catalog is refused by the genus-1 command, and the other way round
+    assert main(["conjecture", "genus1", "--catalog", str(default_catalog(0)), "--max-corners", "20",
+                 "-o", str(tmp_path / "x.jsonl")]) == 2
+    assert "genus 0, not 1" in capsys.readouterr().err
+
+
+def _extended_catalog(tmp: Path, extra: list[str], top: int) -> Path:
+    """The shipped genus-1 catalog with more classes and a summary that claims every class
+    through ``top`` (made up: the checker trusts a catalog's range, which is not under test
+    here)."""
+    out = tmp / "g1"
+    out.mkdir()
+    records = [json.loads(line) for line in (G1 / "catalog.jsonl").read_text().splitlines()]
+    for i, sig in enumerate(extra):
+        ls = from_signature(sig)
+        record = next(r for r in map_classes(ls.map)["full"] if r.signature == sig).to_json()
+        records.append({**record, "name": f"T{ls.map.num_corners}.{90 + i}"})
+    (out / "catalog.jsonl").write_text("".join(json.dumps(r) + "\n" for r in records))
+    summary = json.loads((G1 / "summary.json").read_text())
+    summary["counts"] = {str(n): {"labelled": 0, "rotation": 0, "full": 0} for n in range(8, top + 1)}
+    (out / "summary.json").write_text(json.dumps(summary))
+    return out
+
+
+@pytest.fixture(scope="module")
+def extended(tmp_path_factory):
+    """A catalog with the ring, two classes one addition above it, and the bridged ring (its
+    own orientation type, every invariant zero), with a certificate that checks."""
+    tmp = tmp_path_factory.mktemp("genus1")
+    above = [sig for sig in reached("ring", 36, tmp) if from_signature(sig).map.num_corners == 36][:2]
+    bridged = canonical_form(load_example("bridged-ring").dualize(), "full").signature
+    catalog = _extended_catalog(tmp, [*above, bridged], 40)
+    result = settle_catalog(catalog, 40, 2)
+    lines = list(certificate_lines(result))
+    return catalog, lines, above, bridged
+
+
+def _edit(lines: list[str], signature: str, **changes) -> list[str]:
+    out = []
+    for line in lines:
+        data = json.loads(line)
+        if data.get("signature") == signature:
+            data = {k: v for k, v in {**data, **changes}.items() if v is not None}
+        out.append(json.dumps(data))
+    return out
+
+
+def test_the_bases_are_the_smallest_class_of_each_type(extended):
+    """Two orientation types, two bases: the ring, and the bridged ring (the only class of its
+    type); the classes above the ring have removable loops."""
+    catalog, lines, above, bridged = extended
+    check = check_certificate(lines, catalog)
+    assert check.valid, check.problems
+    records = {json.loads(line)["signature"]: json.loads(line) for line in lines[1:]}
+    assert records[bridged].get("base") is True
+    assert records[bridged]["orientation"] != records[above[0]]["orientation"]
+    assert all("removable" in records[sig] for sig in above)
+    assert json.loads(lines[0])["kind"] == CERTIFICATE_KINDS[1]
+
+
+def test_a_genus_one_certificate_claims_only_what_it_checked(extended):
+    """A wrong orientation, a base that is not the smallest of its type, a second base, or a
+    class left unsettled is a problem; a genus-0 header on a genus-1 catalog is refused."""
+    catalog, lines, above, bridged = extended
+    wrong = _edit(lines, above[0], orientation="XY: rank 0; XZ: rank 0; YZ: rank 0")
+    assert "states orientation" in str(check_certificate(wrong, catalog).problems[0])
+    not_smallest = _edit(lines, above[0], base=True, removable=None)
+    assert "is a base" in str(check_certificate(not_smallest, catalog).problems[0])
+    unsettled = _edit(lines, bridged, base=None, unsettled=True)
+    assert "unsettled" in str(check_certificate(unsettled, catalog).problems[0])
+    header = {**json.loads(lines[0]), "kind": CERTIFICATE_KINDS[0]}
+    with pytest.raises(ConjectureError, match="genus 1, not 0"):
+        check_certificate([json.dumps(header), *lines[1:]], catalog)
