@@ -11,12 +11,15 @@
  * drawn once: from the least edge it crosses, in the direction whose second edge is less than
  * its last.
  *
- * children(twin, layer, limit, base_crossings) gives every child that
+ * children(twin, layer, limit) gives every child that
  *   - has at most `limit` crossings plus half the needs of its faces (torus.layered_need),
  *   - lets its third-axis loops be oriented face by face (torus.third_sides_consistent),
  *   - has the new loop as its canonical loop to delete: among the third axis's loops with
  *     fewest crossings, the one met first in the canonical numbering (McKay's test),
- * each as (canonical twin array as uint16, layer bytes, is_target), possibly more than once
+ * each as (canonical twin array as uint16, layer bytes, flags), flags bit 0 when it is a target
+ * (a candidate map) and bit 1 when the third axis crosses each class of B at least as often as
+ * B crosses itself (B has the fewest crossings of the three two-axis arrangements), possibly
+ * more than once
  * (isomorphic cycles give the same child: the caller keeps one), with the counts of what it
  * did.  While drawing, a path is abandoned when the faces it has cut already need more
  * crossings than the limit leaves, when B could no longer have the fewest crossings of the
@@ -278,12 +281,13 @@ static void close_cycle(Ctx *c, int n)
     for (int l = 0; l < h->nl; l++) if (h->klass[l] == THIRD && h->lcross[l] < fewest) fewest = h->lcross[l];
     for (int l = 0; l < h->nl; l++) cand[l] = h->klass[l] == THIRD && h->lcross[l] == fewest;
     if (!cand[wanted] || !least_code(h, cand, wanted)) { c->rejected++; return; }
-    int target = needs == 0 && simple_quad_mesh(h);
+    int target = needs == 0 && simple_quad_mesh(h), balanced = 1;
+    for (int k = 0; k < 2; k++) balanced &= c->third_with[k] + c->with_class[k] >= c->base;
     uint16_t tw[MAXD];
     unsigned char ly[MAXD];
     for (int i = 0; i < h->D; i++) { tw[i] = (uint16_t)(best[i] >> 1); ly[i] = (unsigned char)(best[i] & 1); }
     PyObject *item = Py_BuildValue("(y#y#i)", (const char *)tw, (Py_ssize_t)(2 * h->D), (const char *)ly,
-                                   (Py_ssize_t)h->D, target);
+                                   (Py_ssize_t)h->D, target | balanced << 1);
     if (!item || PyList_Append(c->out, item) < 0) c->failed = 1;
     Py_XDECREF(item);
 }
@@ -394,8 +398,8 @@ static int classes(Map *p)
 static PyObject *children(PyObject *self, PyObject *args)
 {
     Py_buffer tb, lb;
-    int limit, base;
-    if (!PyArg_ParseTuple(args, "y*y*ii", &tb, &lb, &limit, &base)) return NULL;
+    int limit;
+    if (!PyArg_ParseTuple(args, "y*y*i", &tb, &lb, &limit)) return NULL;
     Ctx *c = &ctx;
     Map *p = &c->p;
     int D = (int)(tb.len / 2);
@@ -419,14 +423,15 @@ static PyObject *children(PyObject *self, PyObject *args)
             return PyErr_Format(PyExc_ValueError, "a loop is not wholly in one layer");
     if (classes(p) < 0) return PyErr_Format(PyExc_ValueError, "the loops outside the third layer are not a bipartite arrangement");
     c->limit = limit;
-    c->base = base;
+    c->base = 0;
     c->pc = D / 4;
     c->budget = limit - c->pc;
     c->third_with[0] = c->third_with[1] = 0;
-    for (int d = 0; d < D; d += 4) {
+    for (int d = 0; d < D; d += 4) {  /* B's crossings, and the third axis's with each class */
         int k1 = p->klass[p->loop[d]], k2 = p->klass[p->loop[d + 1]];
         if (k1 == THIRD && k2 != THIRD) c->third_with[k2]++;
         if (k2 == THIRD && k1 != THIRD) c->third_with[k1]++;
+        if (k1 != THIRD && k2 != THIRD) c->base++;
     }
     c->fewest_third = 1 << 30;
     for (int l = 0; l < p->nl; l++) if (p->klass[l] == THIRD && p->lcross[l] < c->fewest_third) c->fewest_third = p->lcross[l];
@@ -457,6 +462,36 @@ static PyObject *children(PyObject *self, PyObject *args)
         return NULL;
     }
     return Py_BuildValue("(N(LLLLL))", c->out, c->nodes, c->closed, c->bounded, c->inconsistent, c->rejected);
+}
+
+/* layered_code(twin, layer): the canonical code of a layered arrangement (the least over roots
+ * and both orientations of the breadth-first code of twins and layers, as children() uses it),
+ * as bytes: equal exactly for isomorphic layered arrangements, mirror images identified. */
+static PyObject *layered_code(PyObject *self, PyObject *args)
+{
+    Py_buffer tb, lb;
+    (void)self;
+    if (!PyArg_ParseTuple(args, "y*y*", &tb, &lb)) return NULL;
+    Map *h = &child;
+    int D = (int)(tb.len / 2);
+    const uint16_t *twin = tb.buf;
+    const unsigned char *layer = lb.buf;
+    int bad = tb.len % 2 || D < 4 || D % 4 || lb.len != D || D > MAXD;
+    for (int d = 0; d < D && !bad; d++) bad = twin[d] >= D || twin[d] == d || twin[twin[d]] != d || layer[d] > 1;
+    if (!bad) {
+        h->D = D;
+        for (int d = 0; d < D; d++) { h->twin[d] = twin[d]; h->layer[d] = layer[d]; }
+    }
+    PyBuffer_Release(&tb);
+    PyBuffer_Release(&lb);
+    if (bad) return PyErr_Format(PyExc_ValueError, "not the twin and layer arrays of an arrangement");
+    map_faces(h);
+    if (map_loops(h) < 0) return PyErr_Format(PyExc_ValueError, "a loop crosses itself (or more than %d loops)", MAXL);
+    static unsigned char none[MAXL];
+    least_code(h, none, -1);
+    uint16_t out[MAXD];
+    for (int i = 0; i < D; i++) out[i] = (uint16_t)best[i];
+    return PyBytes_FromStringAndSize((const char *)out, (Py_ssize_t)(2 * D));
 }
 
 /* ---- the first stage: arrangements with marked faces ------------------------------------------
@@ -931,10 +966,12 @@ static PyObject *first_children(PyObject *self, PyObject *args)
 
 static PyMethodDef methods[] = {
     {"children", children, METH_VARARGS,
-     "children(twin, layer, limit, base_crossings) -> (children, (paths drawn, cycles closed,\n"
-     "over the bound, third axis not orientable, not canonical)): the second-stage children of\n"
-     "a layered torus arrangement (twin as uint16, layer as bytes, four darts a crossing), each\n"
-     "as (canonical twin array, layer bytes, is_target), possibly repeated"},
+     "children(twin, layer, limit) -> (children, (paths drawn, cycles closed, over the bound,\n"
+     "third axis not orientable, not canonical)): the second-stage children of a layered torus\n"
+     "arrangement (twin as uint16, layer as bytes, four darts a crossing), each as (canonical\n"
+     "twin array, layer bytes, flags: 1 a target, 2 balanced), possibly repeated"},
+    {"layered_code", layered_code, METH_VARARGS,
+     "layered_code(twin, layer) -> the canonical code of a layered arrangement, as bytes"},
     {"first_children", first_children, METH_VARARGS,
      "first_children(twin, marks, limit, colours) -> (children, (paths drawn, curves closed, over\n"
      "the bound, not canonical, not colourable)): the children of a state of the marked search (twin\n"

@@ -504,10 +504,14 @@ class TorusGenerator(Generator):
     statistics_key = "search"
 
     def plan(self, low: int, high: int, share: tuple[int, int] | None, workers: int) -> list[Job]:
-        """One search over every corner count, cut into ``workers`` shares."""
+        """One search over every corner count, cut into 16 shares (more with more than 16
+        workers): a finished share is kept, so a stopped run loses at most the shares under way
+        and resumes with any number of workers up to 16; each worker process lists the two-axis
+        arrangements once for all its shares."""
         if share is not None:
             return [Job(self.name, high, low, *share)]
-        return [Job(self.name, high, low, r, max(workers, 1)) for r in range(max(workers, 1))]
+        mod = 16 * -(-max(workers, 1) // 16)
+        return [Job(self.name, high, low, r, mod) for r in range(mod)]
 
     def candidates(self, job: Job, context: Any, tally: Tally) -> Iterator[HalfEdgeMap]:
         """The share's candidate maps; the search's statistics go to ``tally``."""

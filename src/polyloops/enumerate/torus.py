@@ -47,7 +47,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field, fields
-from functools import cached_property
+from functools import cached_property, lru_cache
 
 from polyloops.core.disjoint_sets import DisjointSets, ParitySets
 from polyloops.core.halfedge import HalfEdgeMap, permutation_orbits
@@ -744,12 +744,6 @@ def _compiled() -> bool:
     return COMPILED_SEARCH and compiled_search_available()
 
 
-def _base_crossings(a: TorusArrangement) -> int:
-    third = a.third_loops()
-    return sum(a.loop_of[4 * v] not in third and a.loop_of[4 * v + 1] not in third
-               for v in range(a.crossings))
-
-
 def _compiled_children(parent: TorusArrangement, max_crossings: int, stats: TorusSearchStats
                        ) -> list[tuple[TorusArrangement, _Facts]]:
     """:func:`torus_children` of a second-stage state, by the compiled search (one of each
@@ -758,8 +752,8 @@ def _compiled_children(parent: TorusArrangement, max_crossings: int, stats: Toru
 
     from polyloops.enumerate import _torus
 
-    found, counts = _torus.children(array.array("H", parent.twin).tobytes(), bytes(parent.layer),
-                                    max_crossings, _base_crossings(parent))
+    twin = array.array("H", parent.twin).tobytes()
+    found, counts = _torus.children(twin, bytes(parent.layer), max_crossings)
     _, closed, over, inconsistent, rejected = counts
     stats.closed += closed
     stats.over_bound += over
@@ -770,7 +764,7 @@ def _compiled_children(parent: TorusArrangement, max_crossings: int, stats: Toru
         key = twin + layer
         if key not in kids:
             child = TorusArrangement(tuple(array.array("H", twin)), (), tuple(layer), (key,))
-            kids[key] = (child, _Facts(0, bool(target), True))
+            kids[key] = (child, _Facts(0, bool(target & 1), True))
     out = [kids[k] for k in sorted(kids)]
     stats.states += len(out)
     stats.targets += sum(f.target for _, f in out)
@@ -860,34 +854,89 @@ def candidate_torus_arrangements(max_crossings: int, res: int = 0, mod: int = 1,
     two stages can pass (every map that carries a polycube loop structure among them), once up
     to homeomorphism: each ``B`` with at most a third of the crossings, then its third axis's
     loops.  ``res``/``mod`` keeps the ``B`` whose rank is ``res`` modulo ``mod`` (independent
-    shares: a map is listed from its canonical decomposition only)."""
+    shares: a map is listed from its canonical decomposition only).  The maps come without a
+    ``code`` (:func:`canonical` gives it)."""
     stats = TorusSearchStats()
-    for rank, base in enumerate(two_axis_bases(max_crossings // 3, on_stats=stats.add if res == 0 else None)):
+    second_stage = _second_stage_compiled if _compiled() else _second_stage
+    bases, first_stage = _bases(max_crossings // 3, _compiled())
+    if res == 0:
+        stats.add(first_stage)
+    for rank, base in enumerate(bases):
         if rank % mod != res:
             continue
-        stack = [TorusArrangement(base.twin, (), (0,) * len(base.twin), base.code)]
-        while stack:
-            node = stack.pop()
-            kids = torus_children(node, max_crossings, None, True, stats)
-            for kid, facts in kids:
-                if facts.target and _balanced(kid, base.crossings) and _canonical_decomposition(kid):
-                    plain = TorusArrangement(kid.twin)
-                    yield TorusArrangement(kid.twin, (), (), canonical(plain)[0])
-            stack.extend(kid for kid, _ in reversed(kids))
+        for kid in second_stage(base, max_crossings, stats):
+            if _canonical_decomposition(kid):
+                yield TorusArrangement(kid.twin)
     if on_stats:
         on_stats(stats)
+
+
+@lru_cache(maxsize=4)
+def _bases(max_crossings: int, compiled: bool) -> tuple[tuple[TorusArrangement, ...], TorusSearchStats]:
+    """:func:`two_axis_bases` and the first stage's statistics, kept for the process's later
+    shares (a catalog's worker runs several)."""
+    stats = TorusSearchStats()
+    return tuple(two_axis_bases(max_crossings, on_stats=stats.add)), stats
+
+
+def _second_stage(base: TorusArrangement, max_crossings: int, stats: TorusSearchStats
+                  ) -> Iterator[TorusArrangement]:
+    """The second stage from ``base``: every target state in which ``B`` has the fewest
+    crossings of the three two-axis arrangements."""
+    stack = [TorusArrangement(base.twin, (), (0,) * len(base.twin))]
+    while stack:
+        kids = torus_children(stack.pop(), max_crossings, None, True, stats)
+        for kid, facts in kids:
+            if facts.target and _balanced(kid, base.crossings):
+                yield kid
+        stack.extend(kid for kid, _ in reversed(kids))
+
+
+def _second_stage_compiled(base: TorusArrangement, max_crossings: int, stats: TorusSearchStats
+                           ) -> Iterator[TorusArrangement]:
+    """:func:`_second_stage` by the compiled search, the states kept as the bytes it works on
+    (the same targets, in another order)."""
+    import array
+
+    from polyloops.enumerate import _torus
+
+    stack = [(array.array("H", base.twin).tobytes(), bytes(len(base.twin)))]
+    while stack:
+        found, counts = _torus.children(*stack.pop(), max_crossings)
+        _, closed, over, inconsistent, rejected = counts
+        stats.closed += closed
+        stats.over_bound += over
+        stats.inconsistent_sides += inconsistent
+        stats.not_canonical += rejected
+        kids = sorted({(twin, layer): flags for twin, layer, flags in found}.items())
+        stats.states += len(kids)
+        for (twin, layer), flags in kids:
+            stats.targets += flags & 1
+            if flags == 3:  # a target, balanced
+                yield TorusArrangement(tuple(array.array("H", twin)), (), tuple(layer))
+        stack.extend(key for key, _ in reversed(kids))
 
 
 def _canonical_decomposition(kid: TorusArrangement) -> bool:
     """Whether a second-stage state is its map's canonical decomposition: the least code of
     the map with the loops of a decomposition marked, over all its decompositions."""
     plain = TorusArrangement(kid.twin)
-    own = canonical(TorusArrangement(kid.twin, (), kid.layer))[0]
+    code = _layered_code if _compiled() else (lambda a: canonical(a)[0])
+    own = code(TorusArrangement(kid.twin, (), kid.layer))
     codes = []
     for chosen in two_stage_decompositions(plain, plain.crossings):
         layer = tuple(int(plain.loop_of[d] in chosen) for d in range(len(plain.twin)))
-        codes.append(canonical(TorusArrangement(plain.twin, (), layer))[0])
+        codes.append(code(TorusArrangement(plain.twin, (), layer)))
     return own == min(codes, default=None)
+
+
+def _layered_code(a: TorusArrangement) -> bytes:
+    """The compiled search's canonical code of a layered arrangement (its own order)."""
+    import array
+
+    from polyloops.enumerate import _torus
+
+    return _torus.layered_code(array.array("H", a.twin).tobytes(), bytes(a.layer))
 
 
 def third_sides_consistent(a: TorusArrangement) -> bool:
@@ -931,37 +980,41 @@ def _balanced(a: TorusArrangement, base_crossings: int) -> bool:
 
 def two_stage_decompositions(a: TorusArrangement, max_crossings: int) -> list[frozenset[int]]:
     """The sets of loops ``D`` of a cellular arrangement through which the second stage builds
-    it within ``max_crossings`` crossings (the object of the two-stage theorem, by brute
-    force over sets of loops): no two loops of ``D`` cross, what is left (``B``) is cellular with a
-    bipartite crossing graph, at most a third of ``max_crossings`` crossings and loops with two
-    zones on their sides, each loop of ``D`` passes each region of ``B`` at most once, ``D``
-    crosses each class of ``B`` at least as often as ``B`` crosses itself, the loops of ``D``
-    can be oriented as :func:`third_sides_consistent` asks, and no region has more than two
-    sides of one class (:func:`layered_need`): exactly the final states the second stage
-    keeps, so a map's canonical decomposition is one the search reaches."""
-    from itertools import combinations
-
-    adj = a.crossing_graph()
+    it within ``max_crossings`` crossings (the object of the two-stage theorem): no two loops
+    of ``D`` cross, what is left (``B``) is cellular with a bipartite crossing graph, at most a
+    third of ``max_crossings`` crossings and loops with two zones on their sides, each loop of
+    ``D`` passes each region of ``B`` at most once, ``D`` crosses each class of ``B`` at least
+    as often as ``B`` crosses itself, the loops of ``D`` can be oriented as
+    :func:`third_sides_consistent` asks, and no region has more than two sides of one class
+    (:func:`layered_need`): exactly the final states the second stage keeps, so a map's
+    canonical decomposition is one the search reaches.  The sets tried are the colour classes
+    of the proper 3-colourings of the crossing graph (``D`` and the two classes of ``B``),
+    sorted (a test compares them with every set of loops)."""
     crossings = a.loop_crossings()
     out = []
-    for k in range(1, a.num_loops):
-        for third in combinations(range(a.num_loops), k):
-            chosen = set(third)
-            if any(adj[lp] & chosen for lp in third):
-                continue
-            try:
-                base = a.without_loops(chosen)
-            except ValueError:
-                continue
-            if (base.crossings > max_crossings // 3 or not _colourable(base.crossing_graph(), 2)
-                    or not _zones_split_every_loop(base)):
-                continue
-            layer = tuple(int(a.loop_of[d] in chosen) for d in range(len(a.twin)))
-            layered = TorusArrangement(a.twin, (), layer)
-            region = _regions_of_base(layered)
-            once = all(len({region[d] for d in range(len(a.twin)) if a.loop_of[d] == lp}) == crossings[lp]
-                       for lp in third)
-            if (once and _balanced(layered, base.crossings) and third_sides_consistent(layered)
-                    and _facts(layered, True, None).target):
-                out.append(frozenset(chosen))
+    for chosen in _independent_with_bipartite_rest(a.crossing_graph()):
+        try:
+            base = a.without_loops(set(chosen))
+        except ValueError:
+            continue
+        if base.crossings > max_crossings // 3 or not _zones_split_every_loop(base):
+            continue
+        layer = tuple(int(a.loop_of[d] in chosen) for d in range(len(a.twin)))
+        layered = TorusArrangement(a.twin, (), layer)
+        region = _regions_of_base(layered)
+        once = all(len({region[d] for d in range(len(a.twin)) if a.loop_of[d] == lp}) == crossings[lp]
+                   for lp in chosen)
+        if (once and _balanced(layered, base.crossings) and third_sides_consistent(layered)
+                and _facts(layered, True, None).target):
+            out.append(chosen)
     return out
+
+
+def _independent_with_bipartite_rest(adj: list[set[int]]) -> list[frozenset[int]]:
+    """Every nonempty set of loops, not all of them, no two of which cross, whose complement's
+    crossing graph is bipartite: the colour classes of proper 3-colourings (such a set and the
+    two sides of its complement are one), sorted."""
+    every = frozenset(range(len(adj)))
+    found = {frozenset(v for v, c in enumerate(colouring) if c == k)
+             for colouring in proper_colourings(adj, 3) for k in range(3)}
+    return sorted((d for d in found if d and d != every), key=sorted)
