@@ -332,3 +332,25 @@ def test_the_compiled_first_stage_keeps_the_python_states(n, colours, monkeypatc
 
     slow, fast = states(False), states(True)
     assert len(fast) == len(set(fast)) and set(fast) == set(slow) and any(c[2] for c in slow)
+
+
+def test_decompositions_are_tried_over_every_set_of_loops():
+    """The sets of loops the decompositions are chosen from (colour classes of 3-colourings)
+    are exactly the nonempty proper sets, no two of which cross, whose complement has a
+    bipartite crossing graph: checked against every set of loops."""
+    from itertools import combinations
+
+    from polyloops.enumerate.torus import _independent_with_bipartite_rest
+
+    arrangements = list(torus_arrangements(5)) + list(torus_arrangements(9, 3, True))
+    assert len(arrangements) > 50
+    for a in arrangements:
+        adj = a.crossing_graph()
+        want = set()
+        for k in range(1, a.num_loops):
+            for chosen in combinations(range(a.num_loops), k):
+                rest = [v for v in range(a.num_loops) if v not in chosen]
+                sub = [{rest.index(u) for u in adj[v] if u in rest} for v in rest]
+                if not any(adj[v] & set(chosen) for v in chosen) and next(proper_colourings(sub, 2), None):
+                    want.add(frozenset(chosen))
+        assert set(_independent_with_bipartite_rest(adj)) == want
