@@ -144,3 +144,17 @@ def test_a_genus_one_certificate_claims_only_what_it_checked(extended):
     header = {**json.loads(lines[0]), "kind": CERTIFICATE_KINDS[0]}
     with pytest.raises(ConjectureError, match="genus 1, not 0"):
         check_certificate([json.dumps(header), *lines[1:]], catalog)
+
+
+def test_the_gallery_walks_to_the_base_of_each_orientation(tmp_path):
+    """A genus-1 gallery: each class page leads to the base of its orientation type (no class
+    of genus 1 reaches the cube), and the move graph starts at the certificate's bases."""
+    from polyloops.enumerate.move_graph import move_graph
+
+    graph = move_graph(read_catalog(G1))
+    assert graph.bases == ("T32.1",) and graph.genus == 1
+    assert graph.path_from_cube("T32.1") == ("T32.1",)
+    assert main(["gallery", str(G1), "-o", str(tmp_path / "site")]) == 0
+    page = (tmp_path / "site" / "class" / "T32.1.html").read_text()
+    assert "base of its hole orientation (T32.1)" in page and "the cube" not in page
+    assert "base of its hole orientation" in (tmp_path / "site" / "index.html").read_text()

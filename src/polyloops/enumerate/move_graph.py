@@ -14,6 +14,10 @@ catalog's classes (breadth first: within the catalog an addition is a removal re
 backwards), so a shortest path that stays within the catalog's range of corners; a class
 reached only through larger structures has none.
 
+At genus 1 the ways start at the *bases* of the reachability certificate instead, one class
+per hole-orientation type (:mod:`polyloops.enumerate.conjecture`), since no move changes the
+type: each class's distance and way down lead to the base of its type.
+
 >>> from polyloops.enumerate.census import read_catalog
 >>> graph = move_graph(read_catalog().through(16))
 >>> [(r.loop, r.axis, r.leaves) for r in graph.removals["P12.1"]]
@@ -93,6 +97,8 @@ class MoveGraph:
     above: dict[str, tuple[str, ...]]
     descents: dict[str, Descent]
     parent: dict[str, str | None]
+    bases: tuple[str, ...] = ()  # where the ways start: the cube, or one class a type (genus 1)
+    genus: int = 0
 
     @cached_property
     def distance(self) -> dict[str, int]:
@@ -101,8 +107,9 @@ class MoveGraph:
         return {name: len(self.path_from_cube(name)) - 1 for name in self.parent}
 
     def path_from_cube(self, name: str) -> tuple[str, ...]:
-        """A shortest path of moves from the cube to class ``name`` among the catalog's
-        classes (empty when there is none within the catalog's range)."""
+        """A shortest path of moves from the cube (at genus 1, from the base of the class's
+        orientation type) to class ``name`` among the catalog's classes (empty when there is
+        none within the catalog's range)."""
         if name not in self.parent:
             return ()
         out = [name]
@@ -111,21 +118,44 @@ class MoveGraph:
         return tuple(reversed(out))
 
 
-def _parents(names: list[str], removals: dict[str, tuple[Removal, ...]]) -> dict[str, str | None]:
-    """Breadth first from the cube (the catalog's first class) over the catalog's classes, a
-    move an edge: within the catalog, an addition is a removal read backwards, so the removals
-    are all the edges.  Neighbours in catalog order, so the paths depend on nothing else."""
+def _parents(names: list[str], removals: dict[str, tuple[Removal, ...]],
+             bases: tuple[str, ...]) -> dict[str, str | None]:
+    """Breadth first from the bases (at genus 0 the cube, the catalog's first class) over the
+    catalog's classes, a move an edge: within the catalog, an addition is a removal read
+    backwards, so the removals are all the edges.  Neighbours in catalog order, so the paths
+    depend on nothing else."""
     import networkx as nx
 
-    if not names:
+    if not names or not bases:
         return {}
     order = {n: i for i, n in enumerate(names)}
     g = nx.Graph()
     g.add_nodes_from(names)
     g.add_edges_from((name, r.leaves) for name, found in removals.items() for r in found
                      if r.leaves in order)
-    edges = nx.bfs_edges(g, names[0], sort_neighbors=lambda ns: sorted(ns, key=order.__getitem__))
-    return {names[0]: None, **{child: parent for parent, child in edges}}
+    root = object()  # joined to every base: one search from all of them
+    g.add_edges_from((root, b) for b in bases)
+    order[root] = -1  # type: ignore[index]
+    edges = nx.bfs_edges(g, root, sort_neighbors=lambda ns: sorted(ns, key=order.__getitem__))
+    return {child: (None if parent is root else parent) for parent, child in edges}
+
+
+def _bases(census: Census) -> tuple[str, ...]:
+    """Where the ways start: the cube at genus 0; at genus 1 the certificate's base records
+    (without a certificate, the first class of each orientation type with fewest corners)."""
+    entries = list(census)
+    if census.genus == 0:
+        return tuple(e.name for e in entries if e.corners == 8)
+    path = census.directory / CERTIFICATE
+    if path.is_file():
+        based = {json.loads(line)["signature"] for line in path.read_text(encoding="utf-8").splitlines()[1:]
+                 if '"base"' in line}
+        return tuple(e.name for e in entries if e.signature in based)
+    from polyloops.enumerate.conjecture import orientation_bases, orientation_type
+
+    types = {e.signature: orientation_type(e.structure()) for e in entries}
+    chosen = set(orientation_bases(types, {e.signature: e.corners for e in entries}).values())
+    return tuple(e.name for e in entries if e.signature in chosen)
 
 
 def _detours(census: Census) -> dict[str, list[Move]]:
@@ -181,11 +211,12 @@ def move_graph(census: Census, progress: Callable[[str], None] | None = None,
             if r.leaves is not None and name not in above[r.leaves]:
                 above[r.leaves].append(name)
     detours = _detours(census)
+    bases = _bases(census)
     descents: dict[str, Descent] = {}
     for entry in sorted(census, key=lambda e: e.corners):  # smaller classes first (stable)
         ls = structures[entry.name]
         first = DescentStep(None, ls, entry.name)
-        if entry.corners == 8:  # the cube
+        if entry.name in bases:  # the cube, or the base of an orientation type
             descents[entry.name] = Descent((first,))
             continue
         options = []
@@ -217,4 +248,4 @@ def move_graph(census: Census, progress: Callable[[str], None] | None = None,
             descents[entry.name] = Descent((*steps[:k], DescentStep(steps[k].move, *_named(below.steps[0])),
                                             *below.steps[1:]))
     return MoveGraph(removals, {k: tuple(v) for k, v in above.items()}, descents,
-                     _parents([e.name for e in entries], removals))
+                     _parents([e.name for e in entries], removals, bases), bases, census.genus)

@@ -75,38 +75,50 @@ def class_page(entry: CatalogEntry, graph: MoveGraph, listed: set[str],
     parts.append(f"<h2>One addition above, within the gallery ({len(above)})</h2>")
     parts.append(f'<div class="row above">{"".join(_cell(a) for a in above)}</div>' if above
                  else '<p class="note">None within the gallery.</p>')
-    parts.append(_shortest_html(name, graph, listed))
+    start = _start(name, graph)
+    parts.append(_shortest_html(name, graph, listed, start))
     descent = graph.descents.get(name)
-    parts.append(_descent_html(name, descent, listed, step_images))
+    parts.append(_descent_html(name, descent, listed, step_images, start))
     return _page(f"{name}: {r.corners} corners", "\n".join(parts))
 
 
-def _shortest_html(name: str, graph: MoveGraph, listed: set[str]) -> str:
+def _start(name: str, graph: MoveGraph) -> str:
+    """What the ways start from: the cube, or at genus 1 the base of the class's orientation
+    type (named when its way is known)."""
+    if graph.genus:
+        path = graph.path_from_cube(name)
+        base = path[0] if path else None
+        return (f"the base of its hole orientation ({html.escape(base)})" if base
+                else "the base of its hole orientation")
+    return "the cube"
+
+
+def _shortest_html(name: str, graph: MoveGraph, listed: set[str], start: str = "the cube") -> str:
     path = graph.path_from_cube(name)
     if not path:
-        return ('<h2>From the cube</h2><p class="note">Not reachable by moves that stay among the '
+        return (f'<h2>From {start}</h2><p class="note">Not reachable by moves that stay among the '
                 "gallery's classes: every way to it passes through larger structures (see its way "
                 "down below).</p>")
     cells = []
     for before, here in zip((None, *path), path, strict=False):
         if before is None:
-            caption = "the cube"
+            caption = start.split(" (")[0]
         else:
             down = next((r for r in graph.removals[before] if r.leaves == here), None)
             up = next((r for r in graph.removals[here] if r.leaves == before), None)
             caption = (f"remove {down.axis}-loop {down.loop}" if down is not None
                        else f"add its {up.axis}-loop {up.loop}" if up is not None else "")
         cells.append(_cell(here, caption))
-    return (f'<h2>From the cube: {len(path) - 1} moves</h2><p class="note">A shortest path of loop '
+    return (f'<h2>From {start}: {len(path) - 1} moves</h2><p class="note">A shortest path of loop '
             f"moves among the gallery's classes (breadth first; so within their range of corners: a "
             f"path through larger structures could be shorter).</p><div class=\"row shortest\">"
             f"{''.join(cells)}</div>")
 
 
 def _descent_html(name: str, descent: Descent | None, listed: set[str],
-                  step_images: dict[tuple[str, int], str]) -> str:
+                  step_images: dict[tuple[str, int], str], start: str = "the cube") -> str:
     if descent is None:
-        return ('<h2>To the cube</h2><p class="note">No way down is known here (no removable loop, '
+        return (f'<h2>To {start}</h2><p class="note">No way down is known here (no removable loop, '
                 "and no certificate detour in this catalog).</p>")
     cells = []
     for k, step in enumerate(descent.steps):
@@ -122,7 +134,7 @@ def _descent_html(name: str, descent: Descent | None, listed: set[str],
     climbs = any(s.move is not None and s.move.kind.value == "add" for s in descent.steps)
     note = (" It climbs first: the detour of the reachability certificate, through larger structures "
             "to a smaller class, then removals." if climbs else " Each step removes a loop.")
-    return (f"<h2>To the cube: {descent.moves} moves</h2><p class=\"note\">A way down with the fewest "
+    return (f"<h2>To {start}: {descent.moves} moves</h2><p class=\"note\">A way down with the fewest "
             f"moves among removals and the certificate's detours (not necessarily a shortest path of "
             f"the move graph).{note}</p><div class=\"row strip\">{''.join(cells)}</div>")
 

@@ -1,6 +1,7 @@
 """A catalog as a static web site: every class with its picture, name and columns, filters by
 those columns, a button that copies the signature, a viewer page per class, and the move
-graph: a page per class with its moves and its way down to the cube, and an overview.
+graph: a page per class with its moves and its way down to the cube (at genus 1, to the base of
+its hole orientation), and an overview.
 
 The site is a directory: ``index.html`` (the list, with the data inside it), ``img/NAME.png``
 (one picture per class, drawn by :func:`polyloops.render.polycube.write_thumbnail`),
@@ -107,7 +108,8 @@ def build_gallery(census: Census, out: str | Path, limit: int | None = None,
 
         listed = Census(census.directory, tuple(entries), census.summary)
         write_class_pages(out, entries, move_graph(listed, workers=workers), title)
-    write_atomic(out / "index.html", gallery_html([_row(e) for e in entries], title, class_pages=full))
+    write_atomic(out / "index.html", gallery_html([_row(e) for e in entries], title, class_pages=full,
+                                                  genus=census.genus))
     return GalleryBuild(out, len(entries))
 
 
@@ -126,7 +128,7 @@ def _draw_class(task: tuple[str, str, int, str, str]) -> str:
     return name
 
 
-def gallery_html(rows: list[dict[str, object]], title: str, class_pages: bool = True) -> str:
+def gallery_html(rows: list[dict[str, object]], title: str, class_pages: bool = True, genus: int = 0) -> str:
     """The gallery's index page: the rows as data inside it, filters and cards drawn by a
     small script (no library, nothing loaded from elsewhere); each card leads to its class's
     page (``class_pages``) or else to its viewer."""
@@ -135,7 +137,9 @@ def gallery_html(rows: list[dict[str, object]], title: str, class_pages: bool = 
     page = files("polyloops.render").joinpath("gallery.html").read_text(encoding="utf-8")
     data = json.dumps(rows, separators=(",", ":")).replace("</", "<\\/")
     moves = ('<p><a href="moves.html">The move graph</a>: every class by corners, loop removals as '
-             "edges; each class's page shows its moves and its way down to the cube.</p>"
+             "edges; each class's page shows its moves and its way down to "
+             + ("the base of its hole orientation (one class of each orientation type with fewest "
+                "corners: moves never change it)" if genus else "the cube") + ".</p>"
              if class_pages else "")
     return (page.replace("@TITLE@", html.escape(title))
             .replace("@MOVES@", moves)
