@@ -14,6 +14,9 @@
  * children(twin, layer, limit) gives every child that
  *   - has at most `limit` crossings plus half the needs of its faces (torus.layered_need),
  *   - lets its third-axis loops be oriented face by face (torus.third_sides_consistent),
+ *   - has a new loop whose crossings run in four runs at least, alternately with the two
+ *     classes of B (torus.axis_runs), and leaves every loop of B room for two crossings with
+ *     the third axis within the limit,
  *   - has the new loop as its canonical loop to delete: among the third axis's loops with
  *     fewest crossings, the one met first in the canonical numbering (McKay's test),
  * each as (canonical twin array as uint16, layer bytes, flags), flags bit 0 when it is a target
@@ -132,12 +135,15 @@ typedef struct {
     int third_with[2];        /* crossings of the third axis with each class of B */
     int with_class[2];        /* and those of the cycle being drawn */
     int fewest_third;         /* fewest crossings of an old third-axis loop */
+    int zc[MAXL];             /* per loop of B: its crossings with the third axis */
+    int met[MAXL];            /* per loop of B: the cycle's crossings with it */
+    int deficit;              /* third-axis crossings the loops of B still lack (two each) */
     int path[MAXD];           /* the darts the cycle crosses (each in the face it leaves) */
     unsigned char visited[MAXD];  /* per region of B */
     int end_face, end_region, first_edge;
     PyObject *out;
     int failed;
-    long long nodes, closed, bounded, inconsistent, rejected;
+    long long nodes, closed, bounded, inconsistent, rejected, straight;
 } Ctx;
 
 static Ctx ctx;
@@ -272,10 +278,22 @@ static void close_cycle(Ctx *c, int n)
         if (h->layer[d]) h->klass[l] = THIRD;
         else if (h->klass[l] < 0 && d < p->D) h->klass[l] = p->klass[p->loop[d]];
     }
-    int needs = 0;
+    int needs = 0, lacking = 0;
+    static int third[MAXL];
     for (int f = 0; f < h->nf; f++) needs += face_need2(h, f);
-    if (h->D / 4 + (needs + 1) / 2 > c->limit) { c->bounded++; return; }
+    for (int l = 0; l < h->nl; l++) third[l] = 0;
+    for (int d = 0; d < h->D; d += 4) {
+        int l1 = h->loop[d], l2 = h->loop[d + 1];
+        if ((h->klass[l1] == THIRD) != (h->klass[l2] == THIRD)) third[h->klass[l1] == THIRD ? l2 : l1]++;
+    }
+    for (int l = 0; l < h->nl; l++) if (h->klass[l] != THIRD && third[l] < 2) lacking += 2 - third[l];
+    int later = (needs + 1) / 2 > lacking ? (needs + 1) / 2 : lacking;
+    if (h->D / 4 + later > c->limit) { c->bounded++; return; }
     if (!sides_consistent(h)) { c->inconsistent++; return; }
+    int changes = 0;
+    for (int i = 0; i < n; i++)
+        changes += p->klass[p->loop[c->path[i]]] != p->klass[p->loop[c->path[(i + n - 1) % n]]];
+    if (changes < 4) { c->straight++; return; }
     static unsigned char cand[MAXL];
     int fewest = 1 << 30, wanted = h->loop[4 * V + 1];
     for (int l = 0; l < h->nl; l++) if (h->klass[l] == THIRD && h->lcross[l] < fewest) fewest = h->lcross[l];
@@ -326,7 +344,8 @@ static void dfs(Ctx *c, int f, int in, int n, int run2)
         sum += w > c->base ? w : c->base;
     }
     if (sum > c->limit) return;
-    if (c->pc + n + (run2 + 1) / 2 > c->limit) { c->bounded++; return; }
+    int later = (run2 + 1) / 2 > c->deficit ? (run2 + 1) / 2 : c->deficit;
+    if (c->pc + n + later > c->limit) { c->bounded++; return; }
     if (f == c->end_face) {
         int y0 = c->path[0], last = c->path[n - 1];
         int once = n <= 2 ? y0 < p->twin[y0] : edge_of(p->twin, c->path[1]) < edge_of(p->twin, last);
@@ -340,11 +359,15 @@ static void dfs(Ctx *c, int f, int in, int n, int run2)
         int t = p->twin[y], g = p->face[t], rg = c->region[g];
         if (c->visited[rg] || (rg == c->end_region && g != c->end_face)) continue;
         int next2 = run2 + piece_need2(c, f, i, j) + piece_need2(c, f, j, i) - (g == c->end_face ? 0 : c->need2[g]);
-        int k = p->klass[p->loop[y]];
+        int l = p->loop[y], k = p->klass[l], serves = c->zc[l] + c->met[l] < 2;
         c->path[n] = y;
         c->visited[rg] = 1;
         c->with_class[k]++;
+        c->met[l]++;
+        c->deficit -= serves;
         dfs(c, g, t, n + 1, next2);
+        c->deficit += serves;
+        c->met[l]--;
         c->with_class[k]--;
         c->visited[rg] = 0;
     }
@@ -433,12 +456,19 @@ static PyObject *children(PyObject *self, PyObject *args)
         if (k2 == THIRD && k1 != THIRD) c->third_with[k1]++;
         if (k1 != THIRD && k2 != THIRD) c->base++;
     }
+    for (int l = 0; l < p->nl; l++) { c->zc[l] = 0; c->met[l] = 0; }
+    for (int d = 0; d < D; d += 4) {
+        int l1 = p->loop[d], l2 = p->loop[d + 1];
+        if ((p->klass[l1] == THIRD) != (p->klass[l2] == THIRD)) c->zc[p->klass[l1] == THIRD ? l2 : l1]++;
+    }
+    c->deficit = 0;
+    for (int l = 0; l < p->nl; l++) if (p->klass[l] != THIRD && c->zc[l] < 2) c->deficit += 2 - c->zc[l];
     c->fewest_third = 1 << 30;
     for (int l = 0; l < p->nl; l++) if (p->klass[l] == THIRD && p->lcross[l] < c->fewest_third) c->fewest_third = p->lcross[l];
     regions(c);
     c->total2 = 0;
     for (int f = 0; f < p->nf; f++) c->total2 += c->need2[f] = face_need2(p, f);
-    c->nodes = c->closed = c->bounded = c->inconsistent = c->rejected = 0;
+    c->nodes = c->closed = c->bounded = c->inconsistent = c->rejected = c->straight = 0;
     c->failed = 0;
     c->out = PyList_New(0);
     if (!c->out) return NULL;
@@ -449,19 +479,25 @@ static PyObject *children(PyObject *self, PyObject *args)
         c->first_edge = edge_of(p->twin, y0);
         c->end_face = b;
         c->end_region = c->region[b];
+        int l0 = p->loop[y0], serves = c->zc[l0] < 2;
         c->path[0] = y0;
         c->with_class[0] = c->with_class[1] = 0;
-        c->with_class[p->klass[p->loop[y0]]]++;
+        c->with_class[p->klass[l0]]++;
+        c->met[l0]++;
+        c->deficit -= serves;
         c->visited[c->region[a]] = 1;
         dfs(c, a, y0, 1, c->total2 - c->need2[a] - (b == a ? 0 : c->need2[b]));
         c->visited[c->region[a]] = 0;
+        c->deficit += serves;
+        c->met[l0]--;
     }
     if (c->failed) {
         Py_DECREF(c->out);
         if (c->failed == 2) return PyErr_Format(PyExc_ValueError, "a child with more than %d loops", MAXL);
         return NULL;
     }
-    return Py_BuildValue("(N(LLLLL))", c->out, c->nodes, c->closed, c->bounded, c->inconsistent, c->rejected);
+    return Py_BuildValue("(N(LLLLLL))", c->out, c->nodes, c->closed, c->bounded, c->inconsistent, c->rejected,
+                         c->straight);
 }
 
 /* layered_code(twin, layer): the canonical code of a layered arrangement (the least over roots
@@ -967,7 +1003,7 @@ static PyObject *first_children(PyObject *self, PyObject *args)
 static PyMethodDef methods[] = {
     {"children", children, METH_VARARGS,
      "children(twin, layer, limit) -> (children, (paths drawn, cycles closed, over the bound,\n"
-     "third axis not orientable, not canonical)): the second-stage children of a layered torus\n"
+     "third axis not orientable, not canonical, fewer than four runs)): the second-stage children of a layered torus\n"
      "arrangement (twin as uint16, layer as bytes, four darts a crossing), each as (canonical\n"
      "twin array, layer bytes, flags: 1 a target, 2 balanced), possibly repeated"},
     {"layered_code", layered_code, METH_VARARGS,

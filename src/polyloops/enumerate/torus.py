@@ -54,9 +54,9 @@ from polyloops.core.halfedge import HalfEdgeMap, permutation_orbits
 from polyloops.core.labellings import proper_colourings
 
 __all__ = ["ANNULUS", "COMPILED_SEARCH", "HANDLE", "THIRD", "TorusArrangement", "TorusSearchStats",
-           "candidate_torus_arrangements", "compiled_search_available", "face_need", "layered_need",
-           "third_sides_consistent",
-           "torus_arrangements", "torus_children", "two_axis_bases", "two_stage_decompositions"]
+           "axis_runs", "candidate_torus_arrangements", "compiled_search_available", "face_need",
+           "layered_need", "third_sides_consistent", "torus_arrangements", "torus_children",
+           "two_axis_bases", "two_stage_decompositions"]
 
 ANNULUS, HANDLE = "A", "H"  # an end of the annulus face; the face with the handle
 MARK_NEED = {HANDLE: 2, ANNULUS: 1}  # a holed torus is crossed twice at least, an annulus end once
@@ -343,6 +343,38 @@ def _simple_quad_mesh(a: TorusArrangement) -> bool:
     return True
 
 
+def axis_runs(a: TorusArrangement, loop: int) -> int:
+    """The number of maximal runs of crossings with loops of one class of a second-stage state
+    (:func:`_classes`) along ``loop``, cyclically (1 when every crossing is with one class).
+
+    In a polycube the loop's strip of faces, cut at its level, is a closed rectilinear curve
+    that goes straight through faces of one normal (consecutive faces of the same normal are
+    coplanar, and a fold back would overlap edges) and turns at each change: so it has at least
+    four runs, alternately of the two other axes (``docs/catalog.md``, "Two stages")."""
+    klass = _classes(a)
+    start = next(d for d in range(len(a.twin)) if a.loop_of[d] == loop)
+    seq, e = [], start
+    while True:
+        seq.append(klass[a.loop_of[_rot4(e)]])
+        e = _rot4(_rot4(a.twin[e]))
+        if e == start:
+            break
+    changes = sum(seq[i] != seq[i - 1] for i in range(len(seq)))
+    return max(changes, 1)
+
+
+def _deficit(a: TorusArrangement, klass: Sequence[int]) -> int:
+    """The crossings with the third axis that the loops of ``B`` still lack: each ends with at
+    least two (its crossings run in four runs at least, :func:`axis_runs`), and one later
+    crossing serves one loop."""
+    third = [0] * a.num_loops
+    for v in range(a.crossings):
+        l1, l2 = a.loop_of[4 * v], a.loop_of[4 * v + 1]
+        if (klass[l1] == THIRD) != (klass[l2] == THIRD):
+            third[l2 if klass[l1] == THIRD else l1] += 1
+    return sum(max(0, 2 - third[lp]) for lp in range(a.num_loops) if klass[lp] != THIRD)
+
+
 def _facts(a: TorusArrangement, regions: bool, colours: int | None) -> _Facts:
     needs = 0
     klass = _classes(a) if a.layer else None
@@ -355,7 +387,10 @@ def _facts(a: TorusArrangement, regions: bool, colours: int | None) -> _Facts:
             needs += layered_need(len(face), classes, _bad(face, a.loop_of, a.twin))
         elif regions:
             needs += face_need(len(face), _bad(face, a.loop_of, a.twin))
-    bound = a.crossings + (needs + 1) // 2
+    later = (needs + 1) // 2
+    if regions and klass is not None:
+        later = max(later, _deficit(a, klass))
+    bound = a.crossings + later
     target = a.cellular and (not regions or (needs == 0 and _simple_quad_mesh(a)))
     colourable = colours is None or _colourable(a.crossing_graph(), colours)
     return _Facts(bound, target, colourable)
@@ -501,6 +536,7 @@ class TorusSearchStats:
     not_canonical: int = 0
     not_colourable: int = 0
     inconsistent_sides: int = 0  # second stage: third-axis loops that no orientation fits
+    not_rectilinear: int = 0  # second stage: a new loop whose crossings run in fewer than 4 runs
     states: int = 0
     targets: int = 0
 
@@ -643,6 +679,9 @@ def torus_children(parent: TorusArrangement | int, max_crossings: int, colours: 
         if layered and not third_sides_consistent(child):
             stats.inconsistent_sides += 1
             return
+        if layered and axis_runs(child, child.loop_of[curve]) < 4:
+            stats.not_rectilinear += 1
+            return
         lc = child.loop_crossings()
         if layered:
             may = sorted(child.third_loops())
@@ -754,11 +793,12 @@ def _compiled_children(parent: TorusArrangement, max_crossings: int, stats: Toru
 
     twin = array.array("H", parent.twin).tobytes()
     found, counts = _torus.children(twin, bytes(parent.layer), max_crossings)
-    _, closed, over, inconsistent, rejected = counts
+    _, closed, over, inconsistent, rejected, straight = counts
     stats.closed += closed
     stats.over_bound += over
     stats.inconsistent_sides += inconsistent
     stats.not_canonical += rejected
+    stats.not_rectilinear += straight
     kids: dict[bytes, tuple[TorusArrangement, _Facts]] = {}
     for twin, layer, target in found:
         key = twin + layer
@@ -903,11 +943,12 @@ def _second_stage_compiled(base: TorusArrangement, max_crossings: int, stats: To
     stack = [(array.array("H", base.twin).tobytes(), bytes(len(base.twin)))]
     while stack:
         found, counts = _torus.children(*stack.pop(), max_crossings)
-        _, closed, over, inconsistent, rejected = counts
+        _, closed, over, inconsistent, rejected, straight = counts
         stats.closed += closed
         stats.over_bound += over
         stats.inconsistent_sides += inconsistent
         stats.not_canonical += rejected
+        stats.not_rectilinear += straight
         kids = sorted({(twin, layer): flags for twin, layer, flags in found}.items())
         stats.states += len(kids)
         for (twin, layer), flags in kids:
@@ -985,9 +1026,11 @@ def two_stage_decompositions(a: TorusArrangement, max_crossings: int) -> list[fr
     third of ``max_crossings`` crossings and loops with two zones on their sides, each loop of
     ``D`` passes each region of ``B`` at most once, ``D`` crosses each class of ``B`` at least
     as often as ``B`` crosses itself, the loops of ``D`` can be oriented as
-    :func:`third_sides_consistent` asks, and no region has more than two sides of one class
-    (:func:`layered_need`): exactly the final states the second stage keeps, so a map's
-    canonical decomposition is one the search reaches.  The sets tried are the colour classes
+    :func:`third_sides_consistent` asks, no region has more than two sides of one class
+    (:func:`layered_need`), every loop of ``B`` crosses ``D`` twice at least and every loop of
+    ``D`` crosses the two classes of ``B`` in four runs at least (:func:`axis_runs`): exactly
+    the final states the second stage keeps, so a map's canonical decomposition is one the
+    search reaches.  The sets tried are the colour classes
     of the proper 3-colourings of the crossing graph (``D`` and the two classes of ``B``),
     sorted (a test compares them with every set of loops)."""
     crossings = a.loop_crossings()
@@ -1005,7 +1048,8 @@ def two_stage_decompositions(a: TorusArrangement, max_crossings: int) -> list[fr
         once = all(len({region[d] for d in range(len(a.twin)) if a.loop_of[d] == lp}) == crossings[lp]
                    for lp in chosen)
         if (once and _balanced(layered, base.crossings) and third_sides_consistent(layered)
-                and _facts(layered, True, None).target):
+                and _facts(layered, True, None).target and _deficit(layered, _classes(layered)) == 0
+                and all(axis_runs(layered, lp) >= 4 for lp in chosen)):
             out.append(chosen)
     return out
 
