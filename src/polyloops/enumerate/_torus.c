@@ -125,6 +125,34 @@ static int face_need2(const Map *m, int f)
     return layered_need(b - a, count, bad);
 }
 
+/* Per loop of B, the third-axis crossings it still lacks: its crossings, third axis against the
+ * rest, must end in four runs at least (torus.axis_runs), and a later crossing adds at most
+ * two runs; ceil((4 - runs) / 2), into lack[]; returns their sum. */
+static int lacking(const Map *h, int *lack)
+{
+    static int changes[MAXL], seen[MAXL];
+    for (int l = 0; l < h->nl; l++) { seen[l] = 0; changes[l] = 0; lack[l] = 0; }
+    int total = 0;
+    for (int d = 0; d < h->D; d++) {
+        int l = h->loop[d];
+        if (seen[l] || h->klass[l] == THIRD) continue;
+        seen[l] = 1;
+        int e = d, prev = -1, k0 = -1;
+        do {
+            int k = h->klass[h->loop[rot4(e)]] == THIRD;
+            if (prev >= 0 && k != prev) changes[l]++;
+            if (k0 < 0) k0 = k;
+            prev = k;
+            e = rot4(rot4(h->twin[e]));
+        } while (e != d);
+        if (prev != k0) changes[l]++;
+        int runs = changes[l] ? changes[l] : 1;
+        lack[l] = runs < 4 ? (5 - runs) / 2 : 0;
+        total += lack[l];
+    }
+    return total;
+}
+
 /* The search context: the parent, and the cycle being drawn. */
 typedef struct {
     Map p;
@@ -135,9 +163,9 @@ typedef struct {
     int third_with[2];        /* crossings of the third axis with each class of B */
     int with_class[2];        /* and those of the cycle being drawn */
     int fewest_third;         /* fewest crossings of an old third-axis loop */
-    int zc[MAXL];             /* per loop of B: its crossings with the third axis */
+    int lack[MAXL];           /* per loop of B: the third-axis crossings it still lacks */
     int met[MAXL];            /* per loop of B: the cycle's crossings with it */
-    int deficit;              /* third-axis crossings the loops of B still lack (two each) */
+    int deficit;              /* their sum, less the cycle's crossings that serve them */
     int path[MAXD];           /* the darts the cycle crosses (each in the face it leaves) */
     unsigned char visited[MAXD];  /* per region of B */
     int end_face, end_region, first_edge;
@@ -278,16 +306,11 @@ static void close_cycle(Ctx *c, int n)
         if (h->layer[d]) h->klass[l] = THIRD;
         else if (h->klass[l] < 0 && d < p->D) h->klass[l] = p->klass[p->loop[d]];
     }
-    int needs = 0, lacking = 0;
-    static int third[MAXL];
+    int needs = 0;
+    static int lack[MAXL];
     for (int f = 0; f < h->nf; f++) needs += face_need2(h, f);
-    for (int l = 0; l < h->nl; l++) third[l] = 0;
-    for (int d = 0; d < h->D; d += 4) {
-        int l1 = h->loop[d], l2 = h->loop[d + 1];
-        if ((h->klass[l1] == THIRD) != (h->klass[l2] == THIRD)) third[h->klass[l1] == THIRD ? l2 : l1]++;
-    }
-    for (int l = 0; l < h->nl; l++) if (h->klass[l] != THIRD && third[l] < 2) lacking += 2 - third[l];
-    int later = (needs + 1) / 2 > lacking ? (needs + 1) / 2 : lacking;
+    int lacks = lacking(h, lack);
+    int later = (needs + 1) / 2 > lacks ? (needs + 1) / 2 : lacks;
     if (h->D / 4 + later > c->limit) { c->bounded++; return; }
     if (!sides_consistent(h)) { c->inconsistent++; return; }
     int changes = 0;
@@ -359,7 +382,7 @@ static void dfs(Ctx *c, int f, int in, int n, int run2)
         int t = p->twin[y], g = p->face[t], rg = c->region[g];
         if (c->visited[rg] || (rg == c->end_region && g != c->end_face)) continue;
         int next2 = run2 + piece_need2(c, f, i, j) + piece_need2(c, f, j, i) - (g == c->end_face ? 0 : c->need2[g]);
-        int l = p->loop[y], k = p->klass[l], serves = c->zc[l] + c->met[l] < 2;
+        int l = p->loop[y], k = p->klass[l], serves = c->met[l] < c->lack[l];
         c->path[n] = y;
         c->visited[rg] = 1;
         c->with_class[k]++;
@@ -456,13 +479,8 @@ static PyObject *children(PyObject *self, PyObject *args)
         if (k2 == THIRD && k1 != THIRD) c->third_with[k1]++;
         if (k1 != THIRD && k2 != THIRD) c->base++;
     }
-    for (int l = 0; l < p->nl; l++) { c->zc[l] = 0; c->met[l] = 0; }
-    for (int d = 0; d < D; d += 4) {
-        int l1 = p->loop[d], l2 = p->loop[d + 1];
-        if ((p->klass[l1] == THIRD) != (p->klass[l2] == THIRD)) c->zc[p->klass[l1] == THIRD ? l2 : l1]++;
-    }
-    c->deficit = 0;
-    for (int l = 0; l < p->nl; l++) if (p->klass[l] != THIRD && c->zc[l] < 2) c->deficit += 2 - c->zc[l];
+    for (int l = 0; l < p->nl; l++) c->met[l] = 0;
+    c->deficit = lacking(p, c->lack);
     c->fewest_third = 1 << 30;
     for (int l = 0; l < p->nl; l++) if (p->klass[l] == THIRD && p->lcross[l] < c->fewest_third) c->fewest_third = p->lcross[l];
     regions(c);
@@ -479,7 +497,7 @@ static PyObject *children(PyObject *self, PyObject *args)
         c->first_edge = edge_of(p->twin, y0);
         c->end_face = b;
         c->end_region = c->region[b];
-        int l0 = p->loop[y0], serves = c->zc[l0] < 2;
+        int l0 = p->loop[y0], serves = c->lack[l0] > 0;
         c->path[0] = y0;
         c->with_class[0] = c->with_class[1] = 0;
         c->with_class[p->klass[l0]]++;

@@ -343,15 +343,16 @@ def _simple_quad_mesh(a: TorusArrangement) -> bool:
     return True
 
 
-def axis_runs(a: TorusArrangement, loop: int) -> int:
+def axis_runs(a: TorusArrangement, loop: int, klass: Sequence[int] | None = None) -> int:
     """The number of maximal runs of crossings with loops of one class of a second-stage state
-    (:func:`_classes`) along ``loop``, cyclically (1 when every crossing is with one class).
+    (:func:`_classes`, or ``klass``) along ``loop``, cyclically (1 when every crossing is with
+    one class).
 
     In a polycube the loop's strip of faces, cut at its level, is a closed rectilinear curve
     that goes straight through faces of one normal (consecutive faces of the same normal are
     coplanar, and a fold back would overlap edges) and turns at each change: so it has at least
     four runs, alternately of the two other axes (``docs/catalog.md``, "Two stages")."""
-    klass = _classes(a)
+    klass = klass if klass is not None else _classes(a)
     start = next(d for d in range(len(a.twin)) if a.loop_of[d] == loop)
     seq, e = [], start
     while True:
@@ -364,15 +365,12 @@ def axis_runs(a: TorusArrangement, loop: int) -> int:
 
 
 def _deficit(a: TorusArrangement, klass: Sequence[int]) -> int:
-    """The crossings with the third axis that the loops of ``B`` still lack: each ends with at
-    least two (its crossings run in four runs at least, :func:`axis_runs`), and one later
-    crossing serves one loop."""
-    third = [0] * a.num_loops
-    for v in range(a.crossings):
-        l1, l2 = a.loop_of[4 * v], a.loop_of[4 * v + 1]
-        if (klass[l1] == THIRD) != (klass[l2] == THIRD):
-            third[l2 if klass[l1] == THIRD else l1] += 1
-    return sum(max(0, 2 - third[lp]) for lp in range(a.num_loops) if klass[lp] != THIRD)
+    """The crossings with the third axis that the loops of ``B`` still lack: each ends with its
+    crossings in four runs at least (:func:`axis_runs`, with the third axis against the other
+    class of ``B``), a later crossing adds at most two runs to the loop it crosses and crosses
+    one loop of ``B``, so a loop with ``r`` runs needs ``ceil((4 - r) / 2)`` more."""
+    side = [1 if k == THIRD else 0 for k in klass]
+    return sum(max(0, 5 - axis_runs(a, lp, side)) // 2 for lp in range(a.num_loops) if klass[lp] != THIRD)
 
 
 def _facts(a: TorusArrangement, regions: bool, colours: int | None) -> _Facts:
