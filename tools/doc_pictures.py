@@ -45,7 +45,23 @@ def screenshots(site: Path, viewer: Path) -> None:
         browser.close()
 
 
+def genus1_sheet() -> None:
+    """The smallest class of each hole-orientation type in the genus-1 catalog (the
+    certificate's bases) and every irreducible genus-1 class, then the smallest known structure
+    whose invariant is zero (the bridged ring, beyond the catalog's range)."""
+    import json
+
+    catalog = ROOT / "catalogs" / "genus1"
+    lines = (catalog / "reachability-certificate.jsonl").read_text().splitlines()[1:]
+    bases = {json.loads(line)["signature"] for line in lines if '"base"' in line}
+    records = [json.loads(line) for line in (catalog / "catalog.jsonl").read_text().splitlines()]
+    chosen = [f"sig:{r['signature']}" for r in records if r["signature"] in bases or r["irreducible"]]
+    polyloops("sheet", *chosen, "example:bridged-ring", "--columns", "4",
+              "-o", str(IMAGES / "genus1-sheet.png"))
+
+
 def main() -> None:
+    genus1_sheet()
     polyloops("render", "example:ring", "-o", str(IMAGES / "ring.png"), "--views", "2")
     polyloops("render", "example:bridged-ring", "--zones", "Z", "--level-graphs",
               "-o", str(IMAGES / "bridged-ring-zones.png"))

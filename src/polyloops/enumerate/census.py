@@ -250,8 +250,8 @@ def identify(obj: Any, catalog: Path | Census | None = None) -> Identification:
         A :class:`~polyloops.core.polycube.Polycube` (dualized first) or an oriented
         :class:`~polyloops.core.structure.LoopStructure`.
     catalog:
-        A catalog directory or a :class:`Census` already read (default: the shipped
-        ``catalogs/genus0``).
+        A catalog directory or a :class:`Census` already read (default: the shipped catalog
+        of the structure's genus, ``catalogs/genus0`` or ``catalogs/genus1``).
 
     Returns
     -------
@@ -264,11 +264,13 @@ def identify(obj: Any, catalog: Path | Census | None = None) -> Identification:
         When the catalog directory cannot be read.
 
     >>> from polyloops.io.examples import load_example
-    >>> identify(load_example("l-shape")).name
-    'P16.2'
+    >>> identify(load_example("l-shape")).name, identify(load_example("ring-y")).name
+    ('P16.2', 'T32.1')
     """
     from polyloops.core.canonical import canonical_form
 
+    if catalog is None and obj.map.genus > 0 and (default_catalog(obj.map.genus) / "catalog.jsonl").is_file():
+        catalog = default_catalog(obj.map.genus)
     census = catalog if isinstance(catalog, Census) else read_catalog(catalog)
     sig = canonical_form(obj, census.symmetry).signature
     found = census.by_signature.get(sig)
