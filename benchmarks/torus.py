@@ -1,0 +1,55 @@
+"""The genus-1 search by corner budget: the first stage (two-axis arrangements B with at most a
+third of the crossings), the second (third-axis loops), the candidate maps and the polycube
+classes on them, in CPU seconds of one process.
+
+    python benchmarks/torus.py --min 20 --max 30
+    python benchmarks/torus.py --min 16 --max 22 --python     # the Python search, its twin
+
+The first stage's arrangements do not depend on the budget beyond ``N // 3`` and a catalog's
+worker lists them once for all its shares; here each row lists them afresh.  Prints a Markdown
+table.
+"""
+
+from __future__ import annotations
+
+import argparse
+import time
+
+import polyloops.enumerate.torus as torus
+from polyloops.enumerate.catalog import map_classes
+
+
+def row(n: int) -> list[object]:
+    torus._bases.cache_clear()
+    start = time.process_time()
+    bases, _ = torus._bases(n // 3, torus._compiled())
+    first = time.process_time() - start
+    stats: list[torus.TorusSearchStats] = []
+    start = time.process_time()
+    maps = list(torus.candidate_torus_arrangements(n, on_stats=stats.append))
+    second = time.process_time() - start  # the bases are cached: the second stage alone
+    start = time.process_time()
+    classes = sum(len(map_classes(a.quad_mesh())["full"]) for a in maps)
+    classify = time.process_time() - start
+    s = stats[0]
+    return [n, len(bases), f"{first:.1f}", s.states, f"{second:.1f}", len(maps), f"{classify:.1f}", classes]
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--min", type=int, default=20)
+    parser.add_argument("--max", type=int, default=28)
+    parser.add_argument("--step", type=int, default=2)
+    parser.add_argument("--python", action="store_true", help="the Python search instead of the compiled one")
+    args = parser.parse_args()
+    torus.COMPILED_SEARCH = not args.python
+    header = ["corners N", "B (<= N/3 crossings)", "first stage s", "second-stage states", "second stage s",
+              "candidate maps", "classify s", "classes (all symmetries)"]
+    print("| " + " | ".join(header) + " |")
+    print("|" + "---:|" * len(header))
+    for n in range(args.min, args.max + 1, args.step):
+        print("| " + " | ".join(map(str, row(n))) + " |", flush=True)
+
+
+if __name__ == "__main__":
+    main()
