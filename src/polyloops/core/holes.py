@@ -125,9 +125,8 @@ class HoleOrientation:
         >>> print(hole_orientation(load_example("ring").dualize()).up_to_axes())
         XY: rank 0; XZ: rank 1 (1); YZ: rank 1 (1)
         """
-        from itertools import permutations
-
-        return min((self.permuted(p) for p in permutations(range(3))), key=str)
+        perms: list[tuple[int, int, int]] = [(0, 1, 2), (0, 2, 1), (1, 0, 2), (1, 2, 0), (2, 0, 1), (2, 1, 0)]
+        return min((self.permuted(p) for p in perms), key=str)
 
     def to_json(self) -> dict[str, list[int]]:
         """A JSON-ready dict: per pair of axes, the invariant factors."""

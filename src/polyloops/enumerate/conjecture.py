@@ -466,9 +466,9 @@ def _certificate_bases(parsed: list[tuple[int, Any]], wanted: dict[str, int]) ->
         lowest[t] = min(lowest.get(t, wanted[sig]), wanted[sig])
     base: dict[str, str] = {}
     for _, data in parsed:
-        sig = data.get("signature") if isinstance(data, dict) else None
-        if isinstance(sig, str) and sig in types and data.get("base") is True:
-            base.setdefault(types[sig], sig)
+        named = data.get("signature") if isinstance(data, dict) else None
+        if isinstance(named, str) and named in types and data.get("base") is True:
+            base.setdefault(types[named], named)
     return Bases(lowest, base)
 
 
