@@ -13,7 +13,7 @@
  *
  * children(twin, layer, limit) gives every child that
  *   - has at most `limit` crossings plus half the needs of its faces (torus.layered_need),
- *   - lets its third-axis loops be oriented face by face (torus.third_sides_consistent),
+ *   - lets its loops be oriented as far as its third-axis loops decide (torus.orientable),
  *   - has a new loop whose crossings run in four runs at least, alternately with the two
  *     classes of B (torus.axis_runs), and leaves every loop of B room for two crossings with
  *     the third axis within the limit,
@@ -231,16 +231,30 @@ static int least_code(const Map *h, const unsigned char *cand, int wanted)
     return accepted;
 }
 
-/* torus.third_sides_consistent: orient each third-axis loop along its walk from its least
- * dart; a face with two third-axis sides on different loops asks for a product of their signs;
- * parity union-find over the loops. */
+/* Parity union-find over loops: s_a * s_b = want; 0 when the sets already force the other. */
+static int relate(int *up, int *par, int a, int b, int want)
+{
+    int pa = 1, pb = 1;
+    while (up[a] != a) { pa *= par[a]; a = up[a]; }
+    while (up[b] != b) { pb *= par[b]; b = up[b]; }
+    if (a == b) return pa * pb == want;
+    up[a] = b;
+    par[a] = pa * pb * want;
+    return 1;
+}
+
+/* torus.orientable: a parity system over the loops (s_l = +1 when the + side of loop l is on
+ * the right of its reference walk, from its least dart): a face between two third-axis loops
+ * lies on the + side of one and the - side of the other; along a third-axis loop, consecutive
+ * crossings with one class of B cross in the same sense; along a loop of B, consecutive
+ * crossings with the third axis likewise. */
 static int sides_consistent(const Map *h)
 {
-    static int fwd[MAXD], up[MAXL], par[MAXL];
+    static int fwd[MAXD], up[MAXL], par[MAXL], seen[MAXL], other[MAXD], sense[MAXD];
     for (int d = 0; d < h->D; d++) fwd[d] = 0;
-    for (int l = 0; l < h->nl; l++) { up[l] = l; par[l] = 1; }
+    for (int l = 0; l < h->nl; l++) { up[l] = l; par[l] = 1; seen[l] = 0; }
     for (int d = 0; d < h->D; d++) {
-        if (fwd[d] || !h->layer[d]) continue;
+        if (fwd[d]) continue;
         int e = d;
         while (!fwd[e]) { fwd[e] = 1; fwd[h->twin[e]] = -1; e = rot4(rot4(h->twin[e])); }
     }
@@ -249,12 +263,24 @@ static int sides_consistent(const Map *h)
         for (int i = h->fstart[f]; i < h->fstart[f + 1] && k < 3; i++)
             if (h->layer[h->fdart[i]]) third[k++] = h->fdart[i];
         if (k != 2 || h->loop[third[0]] == h->loop[third[1]]) continue;
-        int want = -fwd[third[0]] * fwd[third[1]];
-        int a = h->loop[third[0]], b = h->loop[third[1]], pa = 1, pb = 1;
-        while (up[a] != a) { pa *= par[a]; a = up[a]; }
-        while (up[b] != b) { pb *= par[b]; b = up[b]; }
-        if (a == b) { if (pa * pb != want) return 0; }
-        else { up[a] = b; par[a] = pa * pb * want; }
+        if (!relate(up, par, h->loop[third[0]], h->loop[third[1]], -fwd[third[0]] * fwd[third[1]])) return 0;
+    }
+    for (int d = 0; d < h->D; d++) {
+        int l = h->loop[d];
+        if (seen[l] || fwd[d] != 1) continue;
+        seen[l] = 1;
+        int n = 0, e = d, mine = h->klass[l] == THIRD;
+        do {
+            int o = rot4(e);
+            other[n] = h->loop[o];
+            sense[n++] = fwd[o] == 1 ? 1 : -1;
+            e = rot4(rot4(h->twin[e]));
+        } while (e != d);
+        for (int i = 0; i < n; i++) {
+            int j = i + 1 == n ? 0 : i + 1, k1 = h->klass[other[i]], k2 = h->klass[other[j]];
+            if (k1 != k2 || (k1 == THIRD) == mine) continue;
+            if (!relate(up, par, other[i], other[j], sense[i] * sense[j])) return 0;
+        }
     }
     return 1;
 }

@@ -55,7 +55,7 @@ from polyloops.core.labellings import proper_colourings
 
 __all__ = ["ANNULUS", "COMPILED_SEARCH", "HANDLE", "THIRD", "TorusArrangement", "TorusSearchStats",
            "axis_runs", "candidate_torus_arrangements", "compiled_search_available", "face_need",
-           "layered_need", "third_sides_consistent", "torus_arrangements", "torus_children",
+           "layered_need", "orientable", "third_sides_consistent", "torus_arrangements", "torus_children",
            "two_axis_bases", "two_stage_decompositions"]
 
 ANNULUS, HANDLE = "A", "H"  # an end of the annulus face; the face with the handle
@@ -674,7 +674,7 @@ def torus_children(parent: TorusArrangement | int, max_crossings: int, colours: 
         if not facts.colourable:
             stats.not_colourable += 1
             return
-        if layered and not third_sides_consistent(child):
+        if layered and not orientable(child):
             stats.inconsistent_sides += 1
             return
         if layered and axis_runs(child, child.loop_of[curve]) < 4:
@@ -1003,6 +1003,68 @@ def third_sides_consistent(a: TorusArrangement) -> bool:
     return True
 
 
+def _walk_forward(a: TorusArrangement) -> list[int]:
+    """Per dart, +1 when it leaves its crossing along its loop's reference walk (from the
+    loop's least dart), -1 when against it."""
+    forward = [0] * len(a.twin)
+    for d in range(len(a.twin)):
+        if forward[d] == 0:
+            e = d
+            while forward[e] == 0:
+                forward[e], forward[a.twin[e]] = 1, -1
+                e = _rot4(_rot4(a.twin[e]))
+    return forward
+
+
+def orientable(a: TorusArrangement) -> bool:
+    """Whether a second-stage state's loops can be oriented as every polycube that grows from
+    it orients them, as far as its third-axis loops already decide: a parity system over all
+    loops (``s_l = +1`` when the ``+`` side of loop ``l`` is on the right of its reference walk)
+    with
+
+    - the constraints of :func:`third_sides_consistent` (a face between two third-axis loops);
+    - along each third-axis loop, two consecutive crossings with loops of one class of ``B``
+      cross them in the same sense (``-`` to ``+`` both, or ``+`` to ``-`` both): they lie on
+      one straight run of its cross-section (:func:`axis_runs`), which moves one way along
+      the axis;
+    - along each loop of ``B``, two consecutive crossings with the third axis likewise (later
+      third-axis crossings between them only lengthen that run).
+
+    Each constraint is Condition 3 at a corner every polycube from the state keeps, and later
+    loops only add constraints, so an inconsistent state grows no polycube."""
+    klass = _classes(a)
+    forward = _walk_forward(a)
+    sides: ParitySets[int] = ParitySets()
+    for face in a.faces:
+        third = [d for d in face if a.layer[d]]
+        if len(third) == 2 and a.loop_of[third[0]] != a.loop_of[third[1]]:
+            d1, d2 = third
+            if not sides.relate(a.loop_of[d1], a.loop_of[d2], -forward[d1] * forward[d2]):
+                return False
+    seen: set[int] = set()
+    for d in range(len(a.twin)):
+        lp = a.loop_of[d]
+        if lp in seen or forward[d] != 1:
+            continue
+        seen.add(lp)
+        crossed = []  # (the loop crossed, +1 when this walk crosses it from its left to its right)
+        e = d
+        while True:
+            other = _rot4(e)
+            crossed.append((a.loop_of[other], 1 if forward[other] == 1 else -1))
+            e = _rot4(_rot4(a.twin[e]))
+            if e == d:
+                break
+        mine = klass[lp] == THIRD
+        for (m1, r1), (m2, r2) in zip(crossed, crossed[1:] + crossed[:1], strict=True):
+            k1, k2 = klass[m1], klass[m2]
+            if k1 != k2 or (k1 == THIRD) == mine:
+                continue  # a turn, or (along B) two crossings with B, which a later loop may part
+            if not sides.relate(m1, m2, r1 * r2):
+                return False
+    return True
+
+
 def _balanced(a: TorusArrangement, base_crossings: int) -> bool:
     """Whether ``B`` has the fewest crossings of the three two-axis arrangements: the third
     axis crosses each class of ``B``'s bipartition at least as often as ``B`` crosses itself."""
@@ -1023,8 +1085,8 @@ def two_stage_decompositions(a: TorusArrangement, max_crossings: int) -> list[fr
     of ``D`` cross, what is left (``B``) is cellular with a bipartite crossing graph, at most a
     third of ``max_crossings`` crossings and loops with two zones on their sides, each loop of
     ``D`` passes each region of ``B`` at most once, ``D`` crosses each class of ``B`` at least
-    as often as ``B`` crosses itself, the loops of ``D`` can be oriented as
-    :func:`third_sides_consistent` asks, no region has more than two sides of one class
+    as often as ``B`` crosses itself, the loops can be oriented as :func:`orientable`
+    asks, no region has more than two sides of one class
     (:func:`layered_need`), every loop of ``B`` crosses ``D`` twice at least and every loop of
     ``D`` crosses the two classes of ``B`` in four runs at least (:func:`axis_runs`): exactly
     the final states the second stage keeps, so a map's canonical decomposition is one the
@@ -1045,7 +1107,7 @@ def two_stage_decompositions(a: TorusArrangement, max_crossings: int) -> list[fr
         region = _regions_of_base(layered)
         once = all(len({region[d] for d in range(len(a.twin)) if a.loop_of[d] == lp}) == crossings[lp]
                    for lp in chosen)
-        if (once and _balanced(layered, base.crossings) and third_sides_consistent(layered)
+        if (once and _balanced(layered, base.crossings) and orientable(layered)
                 and _facts(layered, True, None).target and _deficit(layered, _classes(layered)) == 0
                 and all(axis_runs(layered, lp) >= 4 for lp in chosen)):
             out.append(chosen)
