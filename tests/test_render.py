@@ -136,13 +136,13 @@ def test_sheet_captions_are_catalog_names(tmp_path, monkeypatch):
     assert main(["sheet", str(catalog), "--limit", "5", "-o", str(tmp_path / "s.png")]) == 0
     assert [c for c, _ in seen] == [r["name"] for r in records]
     seen.clear()
-    sources = ["example:l-shape", f"sig:{sig}", "example:ring"]
+    sources = ["example:l-shape", f"sig:{sig}", "example:ring", "example:bridged-ring"]
     assert main(["sheet", *sources, "-o", str(tmp_path / "s.png")]) == 0
     full = canonical_form(l_shape, "full").signature
     name = next(r["name"] for r in map(json.loads, (catalog / "catalog.jsonl").read_text().splitlines())
                 if r["signature"] == full)
-    ring = load_example("ring").map.num_corners  # genus 1: not in the catalog
-    assert [c for c, _ in seen] == [name, name, f"example:ring ({ring} corners)"]
+    bridged = load_example("bridged-ring").map.num_corners  # genus 1, beyond the genus-1 catalog
+    assert [c for c, _ in seen] == [name, name, "T32.1", f"example:bridged-ring ({bridged} corners)"]
 
 
 def test_bad_picture_arguments(capsys, tmp_path):

@@ -398,7 +398,16 @@ static void dfs(Ctx *c, int f, int in, int n, int run2)
     if (f == c->end_face) {
         int y0 = c->path[0], last = c->path[n - 1];
         int once = n <= 2 ? y0 < p->twin[y0] : edge_of(p->twin, c->path[1]) < edge_of(p->twin, last);
-        if (once) close_cycle(c, n);
+        if (once) {
+            /* the closing chord cuts the end face in two: a lower bound on the child's bound
+             * (pieces without the other-side test, the loops of B by the crossings drawn),
+             * before building it */
+            int a0 = p->fstart[f], i = p->fpos[in] - a0, j = p->fpos[p->twin[y0]] - a0;
+            int child2 = run2 + piece_need2(c, f, i, j) + piece_need2(c, f, j, i);
+            int least = (child2 + 1) / 2 > c->deficit ? (child2 + 1) / 2 : c->deficit;
+            if (c->pc + n + least > c->limit) { c->closed++; c->bounded++; }
+            else close_cycle(c, n);
+        }
     }
     if (n >= c->budget || c->region[f] == c->end_region) return;
     int a = p->fstart[f], s = p->fstart[f + 1] - a, i = p->fpos[in] - a;
