@@ -20,9 +20,9 @@
  *   - has the new loop as its canonical loop to delete: among the third axis's loops with
  *     fewest crossings, the one met first in the canonical numbering (McKay's test),
  * each as (canonical twin array as uint16, layer bytes, flags), flags bit 0 when it is a target
- * (a candidate map) and bit 1 when the third axis crosses each class of B at least as often as
- * B crosses itself (B has the fewest crossings of the three two-axis arrangements), possibly
- * more than once
+ * (a candidate map), bit 1 when the third axis crosses each class of B at least as often as
+ * B crosses itself (B has the fewest crossings of the three two-axis arrangements) and bit 2
+ * when no loop of B lacks third-axis crossings (torus._deficit is 0), possibly more than once
  * (isomorphic cycles give the same child: the caller keeps one), with the counts of what it
  * did.  While drawing, a path is abandoned when the faces it has cut already need more
  * crossings than the limit leaves, when B could no longer have the fewest crossings of the
@@ -350,6 +350,7 @@ static void close_cycle(Ctx *c, int n)
     if (!cand[wanted] || !least_code(h, cand, wanted)) { c->rejected++; return; }
     int target = needs == 0 && simple_quad_mesh(h), balanced = 1;
     for (int k = 0; k < 2; k++) balanced &= c->third_with[k] + c->with_class[k] >= c->base;
+    balanced |= (lacks == 0) << 1;  /* flag 4: no loop of B lacks a third-axis crossing */
     uint16_t tw[MAXD];
     unsigned char ly[MAXD];
     for (int i = 0; i < h->D; i++) { tw[i] = (uint16_t)(best[i] >> 1); ly[i] = (unsigned char)(best[i] & 1); }
@@ -1058,7 +1059,7 @@ static PyMethodDef methods[] = {
      "children(twin, layer, limit) -> (children, (paths drawn, cycles closed, over the bound,\n"
      "third axis not orientable, not canonical, fewer than four runs)): the second-stage children of a layered torus\n"
      "arrangement (twin as uint16, layer as bytes, four darts a crossing), each as (canonical\n"
-     "twin array, layer bytes, flags: 1 a target, 2 balanced), possibly repeated"},
+     "twin array, layer bytes, flags: 1 a target, 2 balanced, 4 no loop of B lacking), possibly repeated"},
     {"layered_code", layered_code, METH_VARARGS,
      "layered_code(twin, layer) -> the canonical code of a layered arrangement, as bytes"},
     {"first_children", first_children, METH_VARARGS,

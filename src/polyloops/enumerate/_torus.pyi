@@ -1,6 +1,7 @@
 """Types of the compiled torus search (_torus.c)."""
 
-# (canonical twin array as uint16 bytes, layer bytes, flags: 1 a target, 2 balanced)
+# (canonical twin array as uint16 bytes, layer bytes, flags: 1 a target, 2 balanced, 4 no loop of B
+# lacking third-axis crossings)
 LayeredChild = tuple[bytes, bytes, int]
 # paths drawn, cycles closed, closed over the bound, third axis not orientable, not canonical,
 # new loop in fewer than four runs

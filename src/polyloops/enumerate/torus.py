@@ -920,12 +920,13 @@ def _bases(max_crossings: int, compiled: bool) -> tuple[tuple[TorusArrangement, 
 def _second_stage(base: TorusArrangement, max_crossings: int, stats: TorusSearchStats
                   ) -> Iterator[TorusArrangement]:
     """The second stage from ``base``: every target state in which ``B`` has the fewest
-    crossings of the three two-axis arrangements."""
+    crossings of the three two-axis arrangements and no loop of ``B`` lacks third-axis
+    crossings (the others are no decomposition of their map)."""
     stack = [TorusArrangement(base.twin, (), (0,) * len(base.twin))]
     while stack:
         kids = torus_children(stack.pop(), max_crossings, None, True, stats)
         for kid, facts in kids:
-            if facts.target and _balanced(kid, base.crossings):
+            if facts.target and _balanced(kid, base.crossings) and _deficit(kid, _classes(kid)) == 0:
                 yield kid
         stack.extend(kid for kid, _ in reversed(kids))
 
@@ -951,7 +952,7 @@ def _second_stage_compiled(base: TorusArrangement, max_crossings: int, stats: To
         stats.states += len(kids)
         for (twin, layer), flags in kids:
             stats.targets += flags & 1
-            if flags == 3:  # a target, balanced
+            if flags == 7:  # a target, balanced, no loop of B lacking (else not a decomposition)
                 yield TorusArrangement(tuple(array.array("H", twin)), (), tuple(layer))
         stack.extend(key for key, _ in reversed(kids))
 
