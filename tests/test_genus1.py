@@ -84,7 +84,8 @@ def _extended_catalog(tmp: Path, extra: list[str], top: int) -> Path:
     out = tmp / "g1"
     out.mkdir()
     records = [json.loads(line) for line in (G1 / "catalog.jsonl").read_text().splitlines()]
-    for i, sig in enumerate(extra):
+    shipped = {r["signature"] for r in records}
+    for i, sig in enumerate(s for s in extra if s not in shipped):
         ls = from_signature(sig)
         record = next(r for r in map_classes(ls.map)["full"] if r.signature == sig).to_json()
         records.append({**record, "name": f"T{ls.map.num_corners}.{90 + i}"})

@@ -287,7 +287,7 @@ def _second_stage_states(n: int, compiled: bool, monkeypatch) -> tuple[dict, set
 
 
 @pytest.mark.skipif(not compiled_search_available(), reason="the compiled second stage was not built")
-@pytest.mark.parametrize("n", [18, 20, pytest.param(24, marks=pytest.mark.slow)])
+@pytest.mark.parametrize("n", [18, *(pytest.param(n, marks=pytest.mark.slow) for n in (20, 24))])
 def test_the_compiled_second_stage_keeps_the_python_states(n, monkeypatch):
     """The compiled second stage keeps exactly the states of the Python search (by canonical
     code, every state once), with the same targets and the same candidate maps."""
