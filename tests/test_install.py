@@ -69,3 +69,10 @@ def test_plain_install_has_the_census(installed, tmp_path):
     done = run_installed(installed, tmp_path, "-m", "polyloops", "conjecture", "check",
                          str(shipped / "reachability-certificate.jsonl"), "--catalog", str(shipped))
     assert done.returncode == 0, done.stdout + done.stderr
+    # the genus-1 catalog ships beside it: identify finds the ring, its certificate checks
+    done = run_installed(installed, tmp_path, "-m", "polyloops", "identify", "example:ring-x")
+    assert done.returncode == 0 and "T32.1" in done.stdout, done.stderr
+    genus1 = installed / "polyloops" / "catalogs" / "genus1"
+    done = run_installed(installed, tmp_path, "-m", "polyloops", "conjecture", "check",
+                         str(genus1 / "reachability-certificate.jsonl"), "--catalog", str(genus1))
+    assert done.returncode == 0 and "genus-1" in done.stdout, done.stdout + done.stderr
