@@ -987,21 +987,19 @@ def third_sides_consistent(a: TorusArrangement) -> bool:
     between two edges of that axis has one ``+`` and one ``-`` edge.  A later third-axis loop
     through such a face cuts it into two faces whose two constraints imply the old one, so an
     inconsistency is never repaired: no polycube grows from the state."""
-    forward = [0] * len(a.twin)  # +1 along the loop's own walk (from its least dart), -1 back
-    for d in range(len(a.twin)):
-        if forward[d] == 0 and a.layer[d]:
-            e = d
-            while forward[e] == 0:
-                forward[e], forward[a.twin[e]] = 1, -1
-                e = _rot4(_rot4(a.twin[e]))
+    return _third_faces(a, _walk_forward(a)) is not None
+
+
+def _third_faces(a: TorusArrangement, forward: list[int]) -> ParitySets[int] | None:
+    """The parity system of :func:`third_sides_consistent` (``None`` when inconsistent)."""
     sides: ParitySets[int] = ParitySets()
     for face in a.faces:
         third = [d for d in face if a.layer[d]]
         if len(third) == 2 and a.loop_of[third[0]] != a.loop_of[third[1]]:
             d1, d2 = third
             if not sides.relate(a.loop_of[d1], a.loop_of[d2], -forward[d1] * forward[d2]):
-                return False
-    return True
+                return None
+    return sides
 
 
 def _walk_forward(a: TorusArrangement) -> list[int]:
@@ -1035,13 +1033,9 @@ def orientable(a: TorusArrangement) -> bool:
     loops only add constraints, so an inconsistent state grows no polycube."""
     klass = _classes(a)
     forward = _walk_forward(a)
-    sides: ParitySets[int] = ParitySets()
-    for face in a.faces:
-        third = [d for d in face if a.layer[d]]
-        if len(third) == 2 and a.loop_of[third[0]] != a.loop_of[third[1]]:
-            d1, d2 = third
-            if not sides.relate(a.loop_of[d1], a.loop_of[d2], -forward[d1] * forward[d2]):
-                return False
+    sides = _third_faces(a, forward)
+    if sides is None:
+        return False
     seen: set[int] = set()
     for d in range(len(a.twin)):
         lp = a.loop_of[d]
