@@ -290,12 +290,20 @@ def _second_stage_states(n: int, compiled: bool, monkeypatch) -> tuple[dict, set
 @pytest.mark.parametrize("n", [18, *(pytest.param(n, marks=pytest.mark.slow) for n in (20, 24))])
 def test_the_compiled_second_stage_keeps_the_python_states(n, monkeypatch):
     """The compiled second stage keeps exactly the states of the Python search (by canonical
-    code, every state once), with the same targets and the same candidate maps."""
-    from polyloops.enumerate import torus
-
+    code, every state once), with the same targets."""
     slow, slow_targets = _second_stage_states(n, False, monkeypatch)
     fast, fast_targets = _second_stage_states(n, True, monkeypatch)
     assert set(fast) == set(slow) and fast_targets == slow_targets and len(slow) > 100
+
+
+@pytest.mark.slow  # 15 s: the Python search twice
+@pytest.mark.skipif(not compiled_search_available(), reason="the compiled second stage was not built")
+@pytest.mark.parametrize("n", [18, 20])
+def test_the_compiled_search_lists_the_python_candidate_maps(n, monkeypatch):
+    """Both stages and the decomposition test, compiled and in Python: the same candidate
+    maps, each once."""
+    from polyloops.enumerate import torus
+
     monkeypatch.setattr(torus, "COMPILED_SEARCH", True)
     with_c = [canonical(a)[0] for a in torus.candidate_torus_arrangements(n)]
     monkeypatch.setattr(torus, "COMPILED_SEARCH", False)
