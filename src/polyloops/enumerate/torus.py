@@ -787,26 +787,31 @@ def _compiled_children(parent: TorusArrangement, max_crossings: int, stats: Toru
     child, ordered by its code)."""
     import array
 
+    out = []
+    start = array.array("H", parent.twin).tobytes()
+    for (twin, layer), flags in _layered_children(start, bytes(parent.layer), max_crossings, stats):
+        child = TorusArrangement(tuple(array.array("H", twin)), (), tuple(layer), (twin + layer,))
+        out.append((child, _Facts(0, bool(flags & 1), True)))
+    return out
+
+
+def _layered_children(twin: bytes, layer: bytes, max_crossings: int, stats: TorusSearchStats
+                      ) -> list[tuple[tuple[bytes, bytes], int]]:
+    """The compiled second stage's children of one state, one of each, ordered by code, as
+    ``((twin, layer), flags)``; its counts added to ``stats``."""
     from polyloops.enumerate import _torus
 
-    twin = array.array("H", parent.twin).tobytes()
-    found, counts = _torus.children(twin, bytes(parent.layer), max_crossings)
+    found, counts = _torus.children(twin, layer, max_crossings)
     _, closed, over, inconsistent, rejected, straight = counts
     stats.closed += closed
     stats.over_bound += over
     stats.inconsistent_sides += inconsistent
     stats.not_canonical += rejected
     stats.not_rectilinear += straight
-    kids: dict[bytes, tuple[TorusArrangement, _Facts]] = {}
-    for twin, layer, target in found:
-        key = twin + layer
-        if key not in kids:
-            child = TorusArrangement(tuple(array.array("H", twin)), (), tuple(layer), (key,))
-            kids[key] = (child, _Facts(0, bool(target & 1), True))
-    out = [kids[k] for k in sorted(kids)]
-    stats.states += len(out)
-    stats.targets += sum(f.target for _, f in out)
-    return out
+    kids = sorted({(t, y): flags for t, y, flags in found}.items())
+    stats.states += len(kids)
+    stats.targets += sum(flags & 1 for _, flags in kids)
+    return kids
 
 
 def _compiled_first_children(parent: TorusArrangement | int, max_crossings: int, colours: int,
@@ -937,21 +942,10 @@ def _second_stage_compiled(base: TorusArrangement, max_crossings: int, stats: To
     (the same targets, in another order)."""
     import array
 
-    from polyloops.enumerate import _torus
-
     stack = [(array.array("H", base.twin).tobytes(), bytes(len(base.twin)))]
     while stack:
-        found, counts = _torus.children(*stack.pop(), max_crossings)
-        _, closed, over, inconsistent, rejected, straight = counts
-        stats.closed += closed
-        stats.over_bound += over
-        stats.inconsistent_sides += inconsistent
-        stats.not_canonical += rejected
-        stats.not_rectilinear += straight
-        kids = sorted({(twin, layer): flags for twin, layer, flags in found}.items())
-        stats.states += len(kids)
+        kids = _layered_children(*stack.pop(), max_crossings, stats)
         for (twin, layer), flags in kids:
-            stats.targets += flags & 1
             if flags == 7:  # a target, balanced, no loop of B lacking (else not a decomposition)
                 yield TorusArrangement(tuple(array.array("H", twin)), (), tuple(layer))
         stack.extend(key for key, _ in reversed(kids))
