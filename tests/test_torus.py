@@ -174,9 +174,11 @@ def test_the_two_stages_list_what_the_direct_search_lists():
     n = 12
     direct = list(torus_arrangements(n, colours=3, regions=True))
     want = {canonical(TorusArrangement(a.twin))[0] for a in direct if two_stage_decompositions(a, n)}
-    from polyloops.enumerate.torus import candidate_torus_arrangements
+    from polyloops.enumerate import torus
 
-    got = [canonical(a)[0] for a in candidate_torus_arrangements(n)]
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(torus, "SECOND_STAGE", "loops")
+        got = [canonical(a)[0] for a in torus.candidate_torus_arrangements(n, polycubes=False)]
     assert len(got) == len(set(got)) and set(got) == want and want
 
 
@@ -229,11 +231,14 @@ def test_catalog_command_builds_genus_one(tmp_path, capsys):
 
 
 @pytest.mark.slow  # about two minutes
-def test_each_map_comes_from_its_canonical_decomposition_and_none_is_lost():
+def test_each_map_comes_from_its_canonical_decomposition_and_none_is_lost(monkeypatch):
     """Listing each map from its canonical decomposition only (so that shares never repeat a
     map) keeps every map the second stage reaches: the same maps as the whole search with
     duplicates removed by code, at 20 crossings."""
-    from polyloops.enumerate.torus import candidate_torus_arrangements, torus_children, two_axis_bases
+    from polyloops.enumerate import torus
+    from polyloops.enumerate.torus import torus_children, two_axis_bases
+
+    monkeypatch.setattr(torus, "SECOND_STAGE", "loops")
 
     n = 20
     reached = set()
@@ -245,17 +250,19 @@ def test_each_map_comes_from_its_canonical_decomposition_and_none_is_lost():
                 if facts.target and two_stage_decompositions(TorusArrangement(kid.twin), kid.crossings):
                     reached.add(canonical(TorusArrangement(kid.twin))[0])
             stack.extend(kid for kid, _ in kids)
-    listed = [canonical(a)[0] for a in candidate_torus_arrangements(n)]
+    listed = [canonical(a)[0] for a in torus.candidate_torus_arrangements(n, polycubes=False)]
     assert len(listed) == len(set(listed)) and set(listed) == reached
 
 
-def test_the_second_stage_orients_the_third_axis():
+def test_the_second_stage_orients_the_third_axis(monkeypatch):
     """The orientation cut drops states (so it can fail), and every map listed has a
     decomposition whose third-axis loops it can orient."""
-    from polyloops.enumerate.torus import candidate_torus_arrangements, third_sides_consistent
+    from polyloops.enumerate import torus
+    from polyloops.enumerate.torus import third_sides_consistent
 
+    monkeypatch.setattr(torus, "SECOND_STAGE", "loops")
     stats = []
-    listed = list(candidate_torus_arrangements(14, on_stats=stats.append))
+    listed = list(torus.candidate_torus_arrangements(14, on_stats=stats.append, polycubes=False))
     assert stats[0].inconsistent_sides > 0 and listed
     for a in listed:
         decompositions = two_stage_decompositions(a, a.crossings)
@@ -304,10 +311,11 @@ def test_the_compiled_search_lists_the_python_candidate_maps(n, monkeypatch):
     maps, each once."""
     from polyloops.enumerate import torus
 
+    monkeypatch.setattr(torus, "SECOND_STAGE", "loops")
     monkeypatch.setattr(torus, "COMPILED_SEARCH", True)
-    with_c = [canonical(a)[0] for a in torus.candidate_torus_arrangements(n)]
+    with_c = [canonical(a)[0] for a in torus.candidate_torus_arrangements(n, polycubes=False)]
     monkeypatch.setattr(torus, "COMPILED_SEARCH", False)
-    in_python = [canonical(a)[0] for a in torus.candidate_torus_arrangements(n)]
+    in_python = [canonical(a)[0] for a in torus.candidate_torus_arrangements(n, polycubes=False)]
     assert len(with_c) == len(set(with_c)) and set(with_c) == set(in_python) and with_c
 
 
@@ -369,10 +377,13 @@ def test_new_third_axis_loops_turn_at_least_four_times():
     of the third axis crosses the two classes of B in four runs at least; the polycube
     structures of the examples have that property on every loop and axis pair."""
     from polyloops.core.directions import Axis as A
-    from polyloops.enumerate.torus import axis_runs, candidate_torus_arrangements
+    from polyloops.enumerate import torus
+    from polyloops.enumerate.torus import axis_runs
 
     stats = []
-    list(candidate_torus_arrangements(16, on_stats=stats.append))
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(torus, "SECOND_STAGE", "loops")
+        list(torus.candidate_torus_arrangements(16, on_stats=stats.append, polycubes=False))
     assert stats[0].not_rectilinear > 0
     states, _ = _second_stage_states(16, True, pytest.MonkeyPatch())
     assert all(axis_runs(kid, lp) >= 4 for kid in states.values() for lp in kid.third_loops())

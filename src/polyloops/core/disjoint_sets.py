@@ -75,6 +75,7 @@ class ParitySets(Generic[T]):
     def __init__(self, items: Iterable[T] = ()) -> None:
         self.parent: dict[T, T] = {x: x for x in items}
         self.parity: dict[T, int] = dict.fromkeys(self.parent, 1)  # sign relative to the parent
+        self._joined: list[T] = []  # the representatives joined under another, in order
 
     def find(self, x: T) -> tuple[T, int]:
         """The representative of ``x``'s set and the sign of ``x`` relative to it."""
@@ -94,7 +95,25 @@ class ParitySets(Generic[T]):
         if ra == rb:
             return pa * pb == product
         self.parent[ra], self.parity[ra] = rb, pa * pb * product
+        self._joined.append(ra)
         return True
+
+    def checkpoint(self) -> int:
+        """A mark that :meth:`rollback` returns to (a backtracking search's undo).
+
+        >>> s = ParitySets(range(3))
+        >>> mark = s.checkpoint(); s.relate(0, 1, -1)
+        True
+        >>> s.rollback(mark); s.relate(0, 1, 1)
+        True
+        """
+        return len(self._joined)
+
+    def rollback(self, mark: int) -> None:
+        """Undo every join made since ``mark`` (the items stay registered)."""
+        while len(self._joined) > mark:
+            x = self._joined.pop()
+            self.parent[x], self.parity[x] = x, 1
 
     def components(self) -> list[list[tuple[T, int]]]:
         """The sets, each a list of ``(item, sign relative to the representative)`` in the

@@ -28,7 +28,7 @@ from polyloops.core.loops import same_axis_meetings
 from polyloops.core.structure import LoopStructure
 from polyloops.core.symmetry import Symmetry
 
-__all__ = ["MapStructureError", "SignSystem", "only_structure_on", "polycube_classes_on",
+__all__ = ["MapStructureError", "SignSystem", "admits_polycube", "only_structure_on", "polycube_classes_on",
            "polycube_structures", "proper_colourings", "sign_components", "sign_system"]
 
 
@@ -137,6 +137,37 @@ def polycube_structures(m: HalfEdgeMap) -> Iterator[LoopStructure]:
             if positive_genus and not all(_acyclic(by_loop, signs) for by_loop in sides):
                 continue
             yield LoopStructure(m, axes, tuple(signs))
+
+
+def admits_polycube(m: HalfEdgeMap, axes: Sequence[int]) -> bool:
+    """Whether some choice of sides makes the loops labelled ``axes`` a polycube loop structure
+    on ``m`` (Condition 3, and at positive genus acyclic level graphs: each axis's level graph
+    depends only on its own loops' signs, so the axes are decided one at a time).
+
+    >>> from polyloops.io.examples import load_example
+    >>> ring = load_example("ring")
+    >>> admits_polycube(ring.map, [int(a) for a in ring.axes])
+    True
+    """
+    comps = sign_components(m, axes)
+    if comps is None:
+        return False
+    if m.genus == 0:
+        return True
+    ls = LoopStructure(m, tuple(Axis(c) for c in axes))
+    for axis in Axis:
+        sides = ls.zones(axis).sides
+        mine = [comp for comp in comps if axes[comp[0][0]] == int(axis)]
+        signs = [0] * len(axes)
+        for choice in product((1, -1), repeat=len(mine)):
+            for comp, c in zip(mine, choice, strict=True):
+                for loop, rel in comp:
+                    signs[loop] = c * rel
+            if _acyclic(sides, signs):
+                break
+        else:
+            return False
+    return True
 
 
 def _acyclic(sides: dict[int, tuple[int, int]], signs: Sequence[int]) -> bool:

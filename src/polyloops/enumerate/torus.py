@@ -53,9 +53,10 @@ from polyloops.core.disjoint_sets import DisjointSets, ParitySets
 from polyloops.core.halfedge import HalfEdgeMap, permutation_orbits
 from polyloops.core.labellings import proper_colourings
 
-__all__ = ["ANNULUS", "COMPILED_SEARCH", "HANDLE", "THIRD", "TorusArrangement", "TorusSearchStats",
-           "axis_runs", "candidate_torus_arrangements", "compiled_search_available", "face_need",
-           "layered_need", "orientable", "third_sides_consistent", "torus_arrangements", "torus_children",
+__all__ = ["ANNULUS", "COMPILED_SEARCH", "HANDLE", "SECOND_STAGE", "THIRD", "TorusArrangement",
+           "TorusSearchStats", "axis_runs", "candidate_torus_arrangements", "carries_polycube",
+           "compiled_search_available", "decomposes", "face_need", "layered_need", "orientable",
+           "polycube_decompositions", "third_sides_consistent", "torus_arrangements", "torus_children",
            "two_axis_bases", "two_stage_decompositions"]
 
 ANNULUS, HANDLE = "A", "H"  # an end of the annulus face; the face with the handle
@@ -537,6 +538,9 @@ class TorusSearchStats:
     not_rectilinear: int = 0  # second stage: a new loop whose crossings run in fewer than 4 runs
     states: int = 0
     targets: int = 0
+    region_choices: int = 0  # region search: regions cut (a region's chords chosen)
+    one_way: int = 0  # region search: pieces that force a level graph's cycle one way round
+    third_axes: int = 0  # region search: third axes built (each region crossed once a loop)
 
     def add(self, other: TorusSearchStats) -> None:
         """Add another search's counts to these."""
@@ -890,28 +894,57 @@ def two_axis_bases(max_crossings: int, on_stats: Callable[[TorusSearchStats], No
             yield a
 
 
+SECOND_STAGE = "regions"  # or "loops": third-axis loops one at a time (the twin, kept for the tests)
+
+
 def candidate_torus_arrangements(max_crossings: int, res: int = 0, mod: int = 1,
-                                 on_stats: Callable[[TorusSearchStats], None] | None = None
-                                 ) -> Iterator[TorusArrangement]:
-    """Every candidate map of genus 1 with at most ``max_crossings`` crossings through which the
-    two stages can pass (every map that carries a polycube loop structure among them), once up
-    to homeomorphism: each ``B`` with at most a third of the crossings, then its third axis's
-    loops.  ``res``/``mod`` keeps the ``B`` whose rank is ``res`` modulo ``mod`` (independent
-    shares: a map is listed from its canonical decomposition only).  The maps come without a
+                                 on_stats: Callable[[TorusSearchStats], None] | None = None,
+                                 polycubes: bool = True) -> Iterator[TorusArrangement]:
+    """Every map of genus 1 with at most ``max_crossings`` crossings that carries a polycube
+    loop structure, once up to homeomorphism, through the two stages: each ``B`` with at most
+    a third of the crossings, then its third axis (:data:`SECOND_STAGE`: region by region,
+    :func:`polyloops.enumerate.torus_regions.third_axis_systems`, or loop by loop); a map is
+    listed from its canonical decomposition (:func:`polycube_decompositions`).  ``res``/``mod``
+    keeps the ``B`` whose rank is ``res`` modulo ``mod`` (independent shares).  With
+    ``polycubes`` false (the loop-by-loop stage only) every map with a decomposition is listed,
+    from its canonical one among :func:`two_stage_decompositions`.  The maps come without a
     ``code`` (:func:`canonical` gives it)."""
+    if not polycubes and SECOND_STAGE != "loops":
+        raise ValueError("only the loop-by-loop second stage lists maps that carry no polycube")
     stats = TorusSearchStats()
-    second_stage = _second_stage_compiled if _compiled() else _second_stage
     bases, first_stage = _bases(max_crossings // 3, _compiled())
     if res == 0:
         stats.add(first_stage)
     for rank, base in enumerate(bases):
         if rank % mod != res:
             continue
-        for kid in second_stage(base, max_crossings, stats):
-            if _canonical_decomposition(kid):
+        for kid in _third_axes(base, max_crossings, stats):
+            if (not polycubes or carries_polycube(kid)) and _canonical_decomposition(kid, polycubes):
                 yield TorusArrangement(kid.twin)
     if on_stats:
         on_stats(stats)
+
+
+def _third_axes(base: TorusArrangement, max_crossings: int, stats: TorusSearchStats
+                ) -> Iterator[TorusArrangement]:
+    """The decompositions with ``B = base`` (:func:`decomposes`), each once up to homeomorphism,
+    that the chosen second stage reaches (the region search leaves out those whose loops of
+    ``B`` no orientation fits)."""
+    if SECOND_STAGE == "loops":
+        yield from (_second_stage_compiled if _compiled() else _second_stage)(base, max_crossings, stats)
+        return
+    from polyloops.enumerate.torus_regions import third_axis_systems
+
+    seen: set[bytes | tuple] = set()
+    code = _layered_code if _compiled() else (lambda a: canonical(a)[0])
+    for twin, layer in third_axis_systems(base, max_crossings, stats):
+        kid = TorusArrangement(twin, (), layer)
+        key = code(kid)
+        if key in seen:
+            continue
+        seen.add(key)
+        if decomposes(TorusArrangement(twin), frozenset(kid.third_loops()), max_crossings):
+            yield kid
 
 
 @lru_cache(maxsize=4)
@@ -951,17 +984,50 @@ def _second_stage_compiled(base: TorusArrangement, max_crossings: int, stats: To
         stack.extend(key for key, _ in reversed(kids))
 
 
-def _canonical_decomposition(kid: TorusArrangement) -> bool:
+def _canonical_decomposition(kid: TorusArrangement, polycubes: bool = True) -> bool:
     """Whether a second-stage state is its map's canonical decomposition: the least code of
-    the map with the loops of a decomposition marked, over all its decompositions."""
+    the map with the loops of a decomposition marked, over all its decompositions that carry a
+    polycube (:func:`polycube_decompositions`; all of them with ``polycubes`` false)."""
     plain = TorusArrangement(kid.twin)
     code = _layered_code if _compiled() else (lambda a: canonical(a)[0])
     own = code(TorusArrangement(kid.twin, (), kid.layer))
-    codes = []
-    for chosen in two_stage_decompositions(plain, plain.crossings):
-        layer = tuple(int(plain.loop_of[d] in chosen) for d in range(len(plain.twin)))
-        codes.append(code(TorusArrangement(plain.twin, (), layer)))
+    listed = polycube_decompositions if polycubes else two_stage_decompositions
+    codes = [code(_with_layer(plain, chosen)) for chosen in listed(plain, plain.crossings)]
     return own == min(codes, default=None)
+
+
+def _with_layer(a: TorusArrangement, chosen: frozenset[int]) -> TorusArrangement:
+    return TorusArrangement(a.twin, (), tuple(int(a.loop_of[d] in chosen) for d in range(len(a.twin))))
+
+
+def polycube_decompositions(a: TorusArrangement, max_crossings: int) -> list[frozenset[int]]:
+    """The decompositions (:func:`two_stage_decompositions`) whose labelling, the loops ``D``
+    one axis and the two classes of ``B`` the others, carries a polycube loop structure: the
+    ones a polycube on the map has, by the two-stage theorem, when ``D`` is its axis whose
+    deletion leaves fewest crossings."""
+    return [chosen for chosen in two_stage_decompositions(a, max_crossings)
+            if carries_polycube(_with_layer(a, chosen))]
+
+
+def carries_polycube(a: TorusArrangement) -> bool:
+    """Whether a second-stage arrangement (with its ``layer``) carries a polycube loop
+    structure labelled by its decomposition: the third axis one axis, the two classes of ``B``
+    the others."""
+    from polyloops.core.labellings import admits_polycube
+
+    m = a.quad_mesh()  # quad v is crossing v
+    system = m.loop_system
+    klass = _classes(a)
+    crossings: dict[int, set[int]] = {}
+    for v in range(a.crossings):
+        for d in (4 * v, 4 * v + 1):
+            crossings.setdefault(a.loop_of[d], set()).add(v)
+    mine = {frozenset(vs): lp for lp, vs in crossings.items()}
+    faces: dict[int, set[int]] = {}
+    for v in range(m.num_faces):
+        for lp in system.loops_of_face(m, v):
+            faces.setdefault(lp, set()).add(v)
+    return admits_polycube(m, [klass[mine[frozenset(faces[lp])]] for lp in range(len(system.loops))])
 
 
 def _layered_code(a: TorusArrangement) -> bytes:
@@ -1082,25 +1148,28 @@ def two_stage_decompositions(a: TorusArrangement, max_crossings: int) -> list[fr
     search reaches.  The sets tried are the colour classes
     of the proper 3-colourings of the crossing graph (``D`` and the two classes of ``B``),
     sorted (a test compares them with every set of loops)."""
+    return [chosen for chosen in _independent_with_bipartite_rest(a.crossing_graph())
+            if decomposes(a, chosen, max_crossings)]
+
+
+def decomposes(a: TorusArrangement, chosen: frozenset[int], max_crossings: int) -> bool:
+    """Whether the loops ``chosen`` of a cellular arrangement are a decomposition in the sense
+    of :func:`two_stage_decompositions` (the final test of the second stage)."""
+    try:
+        base = a.without_loops(set(chosen))
+    except ValueError:
+        return False
+    if base.crossings > max_crossings // 3 or not _zones_split_every_loop(base):
+        return False
     crossings = a.loop_crossings()
-    out = []
-    for chosen in _independent_with_bipartite_rest(a.crossing_graph()):
-        try:
-            base = a.without_loops(set(chosen))
-        except ValueError:
-            continue
-        if base.crossings > max_crossings // 3 or not _zones_split_every_loop(base):
-            continue
-        layer = tuple(int(a.loop_of[d] in chosen) for d in range(len(a.twin)))
-        layered = TorusArrangement(a.twin, (), layer)
-        region = _regions_of_base(layered)
-        once = all(len({region[d] for d in range(len(a.twin)) if a.loop_of[d] == lp}) == crossings[lp]
-                   for lp in chosen)
-        if (once and _balanced(layered, base.crossings) and orientable(layered)
-                and _facts(layered, True, None).target and _deficit(layered, _classes(layered)) == 0
-                and all(axis_runs(layered, lp) >= 4 for lp in chosen)):
-            out.append(chosen)
-    return out
+    layer = tuple(int(a.loop_of[d] in chosen) for d in range(len(a.twin)))
+    layered = TorusArrangement(a.twin, (), layer)
+    region = _regions_of_base(layered)
+    once = all(len({region[d] for d in range(len(a.twin)) if a.loop_of[d] == lp}) == crossings[lp]
+               for lp in chosen)
+    return (once and _balanced(layered, base.crossings) and orientable(layered)
+            and _facts(layered, True, None).target and _deficit(layered, _classes(layered)) == 0
+            and all(axis_runs(layered, lp) >= 4 for lp in chosen))
 
 
 def _independent_with_bipartite_rest(adj: list[set[int]]) -> list[frozenset[int]]:
