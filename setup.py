@@ -17,8 +17,8 @@ INSTEAD = {
                       "the catalog will use plantri's generator" + CATALOG_NOTE),
     "_torus": ("the compiled second stage of the torus search",
                "the genus-1 search runs in Python (the same records, much slower)"),
-    "_regions": ("the compiled region search of the torus", "the genus-1 second stage runs in Python (the same "
-                 "records, much slower)"),
+    "_regions": ("the compiled region search of the torus",
+                 "the genus-1 second stage runs in Python (the same records, much slower)"),
     "_canonical": ("the compiled canonical form",
                    "canonical forms of small structures are computed in Python (the same forms, slower)"),
     "_cycles": ("the compiled count of additions",
@@ -51,8 +51,8 @@ class OptionalBuildExt(build_ext):
 setup(
     ext_modules=[Extension(f"polyloops.{name.replace('/', '.')}", [f"src/polyloops/{name}.c"],
                            extra_compile_args=["-O2"], optional=True)
-                 for name in ("enumerate/_strips", "enumerate/_arrangements", "enumerate/_torus", "enumerate/_regions",
-                              "core/_canonical",
+                 for name in ("enumerate/_strips", "enumerate/_arrangements", "enumerate/_torus",
+                              "enumerate/_regions", "core/_canonical",
                               "core/_cycles", "render/_raster")],
     cmdclass={"build_ext": OptionalBuildExt},
 )

@@ -1,9 +1,10 @@
 """The genus-1 search by corner budget: the first stage (two-axis arrangements B with at most a
-third of the crossings), the second (third-axis loops), the candidate maps and the polycube
-classes on them, in CPU seconds of one process.
+third of the crossings), the second (the third axis, region by region or loop by loop), the
+maps that carry a polycube and the polycube classes on them, in CPU seconds of one process.
 
     python benchmarks/torus.py --min 20 --max 30
-    python benchmarks/torus.py --min 16 --max 22 --python     # the Python search, its twin
+    python benchmarks/torus.py --min 24 --max 30 --stage loops   # the loop-by-loop second stage
+    python benchmarks/torus.py --min 16 --max 22 --python        # the Python searches, the twins
 
 The first stage's arrangements do not depend on the budget beyond ``N // 3`` and a catalog's
 worker lists them once for all its shares; here each row lists them afresh.  Prints a Markdown
@@ -16,6 +17,7 @@ import argparse
 import time
 
 import polyloops.enumerate.torus as torus
+import polyloops.enumerate.torus_regions as regions
 from polyloops.enumerate.catalog import map_classes
 
 
@@ -32,7 +34,13 @@ def row(n: int) -> list[object]:
     classes = sum(len(map_classes(a.quad_mesh())["full"]) for a in maps)
     classify = time.process_time() - start
     s = stats[0]
-    return [n, len(bases), f"{first:.1f}", s.states, f"{second:.1f}", len(maps), f"{classify:.1f}", classes]
+    work = s.region_choices if torus.SECOND_STAGE == "regions" else s.states - stats_first(n)
+    return [n, len(bases), f"{first:.1f}", work, f"{second:.1f}", len(maps), f"{classify:.1f}", classes]
+
+
+def stats_first(n: int) -> int:
+    """The states of the first stage (the second stage's statistics include them)."""
+    return torus._bases(n // 3, torus._compiled())[1].states
 
 
 def main() -> None:
@@ -40,11 +48,16 @@ def main() -> None:
     parser.add_argument("--min", type=int, default=20)
     parser.add_argument("--max", type=int, default=28)
     parser.add_argument("--step", type=int, default=2)
-    parser.add_argument("--python", action="store_true", help="the Python search instead of the compiled one")
+    parser.add_argument("--stage", choices=["regions", "loops"], default="regions",
+                        help="the second stage: region by region (the generator's) or loop by loop")
+    parser.add_argument("--python", action="store_true", help="the Python searches instead of the compiled ones")
     args = parser.parse_args()
     torus.COMPILED_SEARCH = not args.python
-    header = ["corners N", "B (<= N/3 crossings)", "first stage s", "second-stage states", "second stage s",
-              "candidate maps", "classify s", "classes (all symmetries)"]
+    regions.COMPILED = not args.python
+    torus.SECOND_STAGE = args.stage
+    work = "regions cut" if args.stage == "regions" else "second-stage states"
+    header = ["corners N", "B (<= N/3 crossings)", "first stage s", work, "second stage s",
+              "maps with a polycube", "classify s", "classes (all symmetries)"]
     print("| " + " | ".join(header) + " |")
     print("|" + "---:|" * len(header))
     for n in range(args.min, args.max + 1, args.step):

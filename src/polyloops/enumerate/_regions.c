@@ -11,7 +11,7 @@
  *
  * The caller passes one int32 array:
  *   R E NL least budget
- *   E x (axis of the edge)
+ *   E x (axis loop)                                                 of each edge
  *   R x (f ns need a0 a1  ns x (edge reverse loop axis forward))   regions in search order
  *   ncycles  ncycles x (len  len x (loop rho))
  * and gets back the complete third axes whose loops cross each region once: bytes with the
@@ -42,7 +42,7 @@ typedef struct {  /* a region's walk in progress */
 
 typedef struct {
     int R, E, NL, least, budget, ncyc;
-    int edge_axis[MAXE];
+    int edge_axis[MAXE], edge_loop[MAXE];
     Region reg[MAXR];
     int cyclen[2], cycloop[2][MAXL], cycrho[2][MAXL];
     int points[MAXE];
@@ -154,6 +154,23 @@ static int fits(Search *S, int from, const int *placed) {
         }
     }
     int bound = (total + 1) / 2, on0 = (on[0] + 1) / 2, on1 = (on[1] + 1) / 2;
+    /* four runs: each loop of B ends with points on two of its edges at least */
+    int crossed[MAXL], open[MAXL], lack[2] = {0, 0};
+    for (int l = 0; l < S->NL; l++) crossed[l] = open[l] = 0;
+    for (int e = 0; e < S->E; e++) {
+        if (S->points[e] < 0) open[S->edge_loop[e]]++;
+        else if (S->points[e] > 0) crossed[S->edge_loop[e]]++;
+    }
+    for (int e = 0; e < S->E; e++) {
+        int l = S->edge_loop[e];
+        if (open[l] < 0) continue;  /* counted */
+        if (crossed[l] + open[l] < 2) return 0;
+        if (crossed[l] < 2) lack[S->edge_axis[e]] += 2 - crossed[l];
+        open[l] = -1;
+    }
+    if (lack[0] > on0) on0 = lack[0];
+    if (lack[1] > on1) on1 = lack[1];
+    if (lack[0] + lack[1] > bound) bound = lack[0] + lack[1];
     int e0 = placed[0] + on0, e1 = placed[1] + on1;
     if (e0 < S->least) e0 = S->least;
     if (e1 < S->least) e1 = S->least;
@@ -381,7 +398,12 @@ static PyObject *systems(PyObject *self, PyObject *args) {
     int bad = 0;
     S->R = NEXT(); S->E = NEXT(); S->NL = NEXT(); S->least = NEXT(); S->budget = NEXT();
     if (S->R > MAXR || S->E > MAXE || S->NL > MAXL || S->R <= 0) bad = 1;
-    for (int e = 0; e < S->E && !bad; e++) { S->edge_axis[e] = NEXT(); S->points[e] = -1; }
+    for (int e = 0; e < S->E && !bad; e++) {
+        S->edge_axis[e] = NEXT();
+        S->edge_loop[e] = NEXT();
+        S->points[e] = -1;
+        if (S->edge_loop[e] < 0 || S->edge_loop[e] >= S->NL) bad = 1;
+    }
     for (int i = 0; i < S->R && !bad; i++) {
         Region *g = &S->reg[i];
         g->f = NEXT(); g->ns = NEXT(); g->need = NEXT(); g->as[0] = NEXT(); g->as[1] = NEXT();

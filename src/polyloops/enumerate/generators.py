@@ -496,7 +496,8 @@ def share_of(top: Any, res: int, mod: int) -> Any:
 class TorusGenerator(Generator):
     """The candidate maps of genus 1 (:func:`polyloops.enumerate.torus.candidate_torus_arrangements`):
     a job is share ``res/mod`` of the two-axis arrangements of the second stage, covering
-    every corner count at once; it counts the states it builds."""
+    every corner count at once; it counts the states it builds (the first stage's, and the
+    regions the second cuts)."""
 
     name = "torus"
     genus = 1
@@ -523,7 +524,7 @@ class TorusGenerator(Generator):
                 yield a.quad_mesh()
         total = vars(stats[0]) if stats else {}
         tally.statistics.update(total)
-        tally.visited += total.get("states", 0)
+        tally.visited += total.get("states", 0) + total.get("region_choices", 0)
 
 
 register(PlantriGenerator())
