@@ -50,7 +50,8 @@ def main() -> None:
     parser.add_argument("--step", type=int, default=2)
     parser.add_argument("--stage", choices=["regions", "loops"], default="regions",
                         help="the second stage: region by region (the generator's) or loop by loop")
-    parser.add_argument("--python", action="store_true", help="the Python searches instead of the compiled ones")
+    parser.add_argument("--python", action="store_true",
+                        help="the Python searches instead of the compiled ones")
     args = parser.parse_args()
     torus.COMPILED_SEARCH = not args.python
     regions.COMPILED = not args.python

@@ -33,6 +33,7 @@ from abc import ABC, abstractmethod
 from collections import Counter
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
+from functools import lru_cache
 from pathlib import Path
 from typing import Any
 
@@ -514,17 +515,87 @@ class TorusGenerator(Generator):
         mod = 16 * -(-max(workers, 1) // 16)
         return [Job(self.name, high, low, r, mod) for r in range(mod)]
 
+    def prepare(self, jobs: Sequence[Job], workers: int = 1, dask: str | None = None,
+                where: Path | None = None) -> list[Any]:
+        """The first stage, listed once for the run and spilled to ``where`` (a run's
+        ``parts/``), so that the workers read it instead of each listing it again (through
+        13 crossings that takes minutes and gigabytes at its peak); a rerun reads the file."""
+        if where is None:
+            return [None] * len(jobs)
+        files = {job.n // 3: str(spill_bases(job.n // 3, where)) for job in jobs}
+        return [files[job.n // 3] for job in jobs]
+
     def candidates(self, job: Job, context: Any, tally: Tally) -> Iterator[HalfEdgeMap]:
         """The share's candidate maps; the search's statistics go to ``tally``."""
         from polyloops.enumerate.torus import TorusSearchStats, candidate_torus_arrangements
 
         stats: list[TorusSearchStats] = []
-        for a in candidate_torus_arrangements(job.n, job.res, job.mod, on_stats=stats.append):
+        bases = read_bases(context) if context is not None else None
+        for a in candidate_torus_arrangements(job.n, job.res, job.mod, on_stats=stats.append, bases=bases):
             if a.crossings >= job.low:
                 yield a.quad_mesh()
         total = vars(stats[0]) if stats else {}
         tally.statistics.update(total)
         tally.visited += total.get("states", 0) + total.get("region_choices", 0)
+
+
+BASES_MAGIC = b"polyloops torus bases\n"
+
+
+def spill_bases(max_crossings: int, where: Path) -> Path:
+    """The first stage of the torus search (:func:`polyloops.enumerate.torus.first_stage`) in
+    a file of ``where``, computed and written atomically unless a complete one is there: a
+    header line with the statistics, then each arrangement as a 2-byte length and its
+    ``twin`` array."""
+    import struct
+
+    from polyloops.enumerate import torus
+    from polyloops.io.files import writing
+
+    path = where / f"torus-bases-{max_crossings}.bin"
+    if path.is_file():
+        try:
+            read_bases(str(path))
+            return path
+        except ValueError:
+            pass  # damaged: listed again
+    bases, stats = torus.first_stage(max_crossings)
+    with writing(path) as pending, open(pending.path, "wb") as fh:
+        fh.write(BASES_MAGIC)
+        header = json.dumps({"version": SCHEMA_VERSION, "count": len(bases), "search": vars(stats)}).encode()
+        fh.write(struct.pack("<I", len(header)) + header)
+        for raw in bases:
+            fh.write(struct.pack("<H", len(raw)) + raw)
+    torus._bases.cache_clear()  # the workers read the file
+    return path
+
+
+@lru_cache(maxsize=2)
+def read_bases(path: str) -> tuple[tuple[bytes, ...], Any]:
+    """The arrangements and statistics :func:`spill_bases` wrote (kept for the process's
+    later shares); ``ValueError`` when the file is not a complete one."""
+    import struct
+
+    from polyloops.enumerate.torus import TorusSearchStats
+
+    data = Path(path).read_bytes()
+    if not data.startswith(BASES_MAGIC):
+        raise ValueError(f"{path}: not a list of torus arrangements")
+    at = len(BASES_MAGIC)
+    try:
+        (size,) = struct.unpack_from("<I", data, at)
+        header = json.loads(data[at + 4:at + 4 + size])
+        at += 4 + size
+        bases = []
+        while at < len(data):
+            (length,) = struct.unpack_from("<H", data, at)
+            bases.append(data[at + 2:at + 2 + length])
+            at += 2 + length
+    except (struct.error, ValueError) as exc:
+        raise ValueError(f"{path}: damaged ({exc})") from exc
+    if header.get("version") != SCHEMA_VERSION or len(bases) != header.get("count") or at != len(data):
+        raise ValueError(f"{path}: incomplete or from another version")
+    return tuple(bases), TorusSearchStats(**header["search"])
 
 
 register(PlantriGenerator())

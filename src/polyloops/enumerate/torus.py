@@ -55,9 +55,9 @@ from polyloops.core.labellings import proper_colourings
 
 __all__ = ["ANNULUS", "COMPILED_SEARCH", "HANDLE", "SECOND_STAGE", "THIRD", "TorusArrangement",
            "TorusSearchStats", "axis_runs", "candidate_torus_arrangements", "carries_polycube",
-           "compiled_search_available", "decomposes", "face_need", "layered_need", "orientable",
-           "polycube_decompositions", "third_sides_consistent", "torus_arrangements", "torus_children",
-           "two_axis_bases", "two_stage_decompositions"]
+           "compiled_search_available", "decomposes", "face_need", "first_stage", "layered_need",
+           "orientable", "polycube_decompositions", "third_sides_consistent", "torus_arrangements",
+           "torus_children", "two_axis_bases", "two_stage_decompositions"]
 
 ANNULUS, HANDLE = "A", "H"  # an end of the annulus face; the face with the handle
 MARK_NEED = {HANDLE: 2, ANNULUS: 1}  # a holed torus is crossed twice at least, an annulus end once
@@ -899,7 +899,9 @@ SECOND_STAGE = "regions"  # or "loops": third-axis loops one at a time (the twin
 
 def candidate_torus_arrangements(max_crossings: int, res: int = 0, mod: int = 1,
                                  on_stats: Callable[[TorusSearchStats], None] | None = None,
-                                 polycubes: bool = True) -> Iterator[TorusArrangement]:
+                                 polycubes: bool = True,
+                                 bases: tuple[Sequence[bytes], TorusSearchStats] | None = None
+                                 ) -> Iterator[TorusArrangement]:
     """Every map of genus 1 with at most ``max_crossings`` crossings that carries a polycube
     loop structure, once up to homeomorphism, through the two stages: each ``B`` with at most
     a third of the crossings, then its third axis (:data:`SECOND_STAGE`: region by region,
@@ -907,18 +909,19 @@ def candidate_torus_arrangements(max_crossings: int, res: int = 0, mod: int = 1,
     listed from its canonical decomposition (:func:`polycube_decompositions`).  ``res``/``mod``
     keeps the ``B`` whose rank is ``res`` modulo ``mod`` (independent shares).  With
     ``polycubes`` false (the loop-by-loop stage only) every map with a decomposition is listed,
-    from its canonical one among :func:`two_stage_decompositions`.  The maps come without a
-    ``code`` (:func:`canonical` gives it)."""
+    from its canonical one among :func:`two_stage_decompositions`.  ``bases`` gives the first
+    stage's arrangements (:func:`first_stage`) when they were listed already.  The maps come
+    without a ``code`` (:func:`canonical` gives it)."""
     if not polycubes and SECOND_STAGE != "loops":
         raise ValueError("only the loop-by-loop second stage lists maps that carry no polycube")
     stats = TorusSearchStats()
-    bases, first_stage = _bases(max_crossings // 3, _compiled())
+    listed, first_stats = bases if bases is not None else first_stage(max_crossings // 3)
     if res == 0:
-        stats.add(first_stage)
-    for rank, base in enumerate(bases):
+        stats.add(first_stats)
+    for rank, raw in enumerate(listed):
         if rank % mod != res:
             continue
-        for kid in _third_axes(base, max_crossings, stats):
+        for kid in _third_axes(_base(raw), max_crossings, stats):
             if (not polycubes or carries_polycube(kid)) and _canonical_decomposition(kid, polycubes):
                 yield TorusArrangement(kid.twin)
     if on_stats:
@@ -948,11 +951,28 @@ def _third_axes(base: TorusArrangement, max_crossings: int, stats: TorusSearchSt
 
 
 @lru_cache(maxsize=4)
-def _bases(max_crossings: int, compiled: bool) -> tuple[tuple[TorusArrangement, ...], TorusSearchStats]:
-    """:func:`two_axis_bases` and the first stage's statistics, kept for the process's later
-    shares (a catalog's worker runs several)."""
+def _bases(max_crossings: int, compiled: bool) -> tuple[tuple[bytes, ...], TorusSearchStats]:
+    """:func:`two_axis_bases` (each as its ``twin`` array of uint16, compactly: there are about
+    a million through 13 crossings) and the first stage's statistics, kept for the process's
+    later shares (a catalog's worker runs several)."""
+    import array
+
     stats = TorusSearchStats()
-    return tuple(two_axis_bases(max_crossings, on_stats=stats.add)), stats
+    listed = two_axis_bases(max_crossings, on_stats=stats.add)
+    return tuple(array.array("H", a.twin).tobytes() for a in listed), stats
+
+
+def first_stage(max_crossings: int) -> tuple[tuple[bytes, ...], TorusSearchStats]:
+    """The arrangements ``B`` of :func:`two_axis_bases` with at most ``max_crossings``
+    crossings, each as its ``twin`` array of uint16 (bytes), and the search's statistics; kept
+    for the process's later calls."""
+    return _bases(max_crossings, _compiled())
+
+
+def _base(raw: bytes) -> TorusArrangement:
+    import array
+
+    return TorusArrangement(tuple(array.array("H", raw)))
 
 
 def _second_stage(base: TorusArrangement, max_crossings: int, stats: TorusSearchStats
