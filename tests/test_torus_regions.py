@@ -175,3 +175,24 @@ def test_admits_polycube_agrees_with_the_structures_a_map_carries(monkeypatch):
             assert admitted == (tuple(Axis(c) for c in colouring) in carried)
             seen.add(admitted)
     assert seen == {True, False}
+
+
+def test_the_first_stage_is_spilled_once_and_read_back(tmp_path):
+    """A catalog run lists the first stage once, in its ``parts/``: the file holds the same
+    arrangements and statistics, a rerun reads it instead of listing them again, and a damaged
+    file is refused and written again."""
+    from polyloops.enumerate.generators import read_bases, spill_bases
+
+    path = spill_bases(8, tmp_path)
+    bases, stats = read_bases(str(path))
+    listed, listed_stats = torus.first_stage(8)
+    assert bases == listed and len(bases) > 10 and stats == listed_stats
+    stamp = path.stat().st_mtime_ns
+    assert spill_bases(8, tmp_path) == path and path.stat().st_mtime_ns == stamp
+    path.write_bytes(path.read_bytes()[:-3])
+    read_bases.cache_clear()
+    with pytest.raises(ValueError, match="damaged|incomplete"):
+        read_bases(str(path))
+    spill_bases(8, tmp_path)
+    read_bases.cache_clear()
+    assert read_bases(str(path))[0] == bases
