@@ -13,11 +13,9 @@ from polyloops.enumerate.census import default_catalog, read_catalog
 from polyloops.enumerate.conjecture import (
     CERTIFICATE_KINDS,
     ConjectureError,
-    certificate_lines,
     check_certificate,
     complete_range,
     orientation_type,
-    settle_catalog,
 )
 from polyloops.enumerate.reach import explore, stored_signatures
 from polyloops.io.examples import load_example
@@ -65,8 +63,10 @@ def test_identify_names_the_ring(capsys):
 
 def test_conjecture_genus1_writes_the_shipped_certificate(tmp_path, capsys):
     top = complete_range(read_catalog(G1), 1)
+    slack = json.loads(CERT.read_text().splitlines()[0])["slack"]  # the detours the shipped one allowed
     out = tmp_path / "cert.jsonl"
-    argv = ["conjecture", "genus1", "--catalog", str(G1), "--max-corners", str(top), "-o", str(out)]
+    argv = ["conjecture", "genus1", "--catalog", str(G1), "--max-corners", str(top), "--slack", str(slack),
+            "-o", str(out)]
     assert main(argv) == 0
     assert out.read_text() == CERT.read_text()
     assert main(["conjecture", "check", str(out), "--catalog", str(G1)]) == 0
@@ -96,17 +96,21 @@ def _extended_catalog(tmp: Path, extra: list[str], top: int) -> Path:
     return out
 
 
+ZERO = "XY: rank 0; XZ: rank 0; YZ: rank 0"
+
+
 @pytest.fixture(scope="module")
-def extended(tmp_path_factory):
-    """A catalog with the ring, two classes one addition above it, and the bridged ring (its
-    own orientation type, every invariant zero), with a certificate that checks."""
-    tmp = tmp_path_factory.mktemp("genus1")
-    above = [sig for sig in reached("ring", 36, tmp) if from_signature(sig).map.num_corners == 36][:2]
-    bridged = canonical_form(load_example("bridged-ring").dualize(), "full").signature
-    catalog = _extended_catalog(tmp, [*above, bridged], 40)
-    result = settle_catalog(catalog, 40, 2)
-    lines = list(certificate_lines(result))
-    return catalog, lines, above, bridged
+def extended():
+    """The shipped catalog and certificate, two classes one addition above the ring, and the
+    base of the type whose invariants are all zero (no loop runs round the hole, as in the
+    bridged ring) with another class of that type, settled by a detour."""
+    lines = CERT.read_text().splitlines()
+    records = [json.loads(line) for line in lines[1:]]
+    above = [r["signature"] for r in records if r["corners"] == 36][:2]
+    zero = [r for r in records if r["orientation"] == ZERO]
+    base = next(r["signature"] for r in zero if r.get("base"))
+    other = next(r["signature"] for r in zero if "detour" in r)
+    return G1, lines, above, base, other
 
 
 def _edit(lines: list[str], signature: str, **changes) -> list[str]:
@@ -120,14 +124,19 @@ def _edit(lines: list[str], signature: str, **changes) -> list[str]:
 
 
 def test_the_bases_are_the_smallest_class_of_each_type(extended):
-    """Two orientation types, two bases: the ring, and the bridged ring (the only class of its
-    type); the classes above the ring have removable loops."""
-    catalog, lines, above, bridged = extended
+    """Two orientation types, two bases: the ring, and a class of the type whose invariants
+    are all zero, whose smallest members (the bridged ring among them) have 40 corners; the
+    classes above the ring have removable loops."""
+    catalog, lines, above, base, _ = extended
     check = check_certificate(lines, catalog)
     assert check.valid, check.problems
     records = {json.loads(line)["signature"]: json.loads(line) for line in lines[1:]}
-    assert records[bridged].get("base") is True
-    assert records[bridged]["orientation"] != records[above[0]]["orientation"]
+    assert records[base].get("base") is True and records[base]["corners"] == 40
+    assert min(r["corners"] for r in records.values() if r["orientation"] == ZERO) == 40
+    assert sum(bool(r.get("base")) for r in records.values()) == 2
+    bridged = canonical_form(load_example("bridged-ring").dualize(), "full").signature
+    assert records[bridged]["orientation"] == ZERO
+    assert records[base]["orientation"] != records[above[0]]["orientation"]
     assert all("removable" in records[sig] for sig in above)
     assert json.loads(lines[0])["kind"] == CERTIFICATE_KINDS[1]
 
@@ -135,12 +144,14 @@ def test_the_bases_are_the_smallest_class_of_each_type(extended):
 def test_a_genus_one_certificate_claims_only_what_it_checked(extended):
     """A wrong orientation, a base that is not the smallest of its type, a second base, or a
     class left unsettled is a problem; a genus-0 header on a genus-1 catalog is refused."""
-    catalog, lines, above, bridged = extended
-    wrong = _edit(lines, above[0], orientation="XY: rank 0; XZ: rank 0; YZ: rank 0")
+    catalog, lines, above, _, other = extended
+    wrong = _edit(lines, above[0], orientation=ZERO)
     assert "states orientation" in str(check_certificate(wrong, catalog).problems[0])
     not_smallest = _edit(lines, above[0], base=True, removable=None)
     assert "is a base" in str(check_certificate(not_smallest, catalog).problems[0])
-    unsettled = _edit(lines, bridged, base=None, unsettled=True)
+    second = _edit(lines, other, base=True, detour=None)
+    assert not check_certificate(second, catalog).valid
+    unsettled = _edit(lines, other, detour=None, unsettled=True)
     assert "unsettled" in str(check_certificate(unsettled, catalog).problems[0])
     header = {**json.loads(lines[0]), "kind": CERTIFICATE_KINDS[0]}
     with pytest.raises(ConjectureError, match="genus 1, not 0"):
@@ -153,7 +164,7 @@ def test_the_gallery_walks_to_the_base_of_each_orientation(tmp_path):
     from polyloops.enumerate.move_graph import move_graph
 
     graph = move_graph(read_catalog(G1))
-    assert graph.bases == ("T32.1",) and graph.genus == 1
+    assert graph.bases[0] == "T32.1" and len(graph.bases) == 2 and graph.genus == 1
     assert graph.path_from_cube("T32.1") == ("T32.1",)
     assert main(["gallery", str(G1), "-o", str(tmp_path / "site")]) == 0
     page = (tmp_path / "site" / "class" / "T32.1.html").read_text()
