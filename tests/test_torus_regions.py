@@ -191,7 +191,7 @@ def test_the_first_stage_is_spilled_once_and_read_back(tmp_path):
     assert spill_bases(8, tmp_path) == path and path.stat().st_mtime_ns == stamp
     path.write_bytes(path.read_bytes()[:-3])
     read_bases.cache_clear()
-    with pytest.raises(ValueError, match="damaged|incomplete"):
+    with pytest.raises(ValueError, match=r"damaged|incomplete"):
         read_bases(str(path))
     spill_bases(8, tmp_path)
     read_bases.cache_clear()
