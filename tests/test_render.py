@@ -136,13 +136,15 @@ def test_sheet_captions_are_catalog_names(tmp_path, monkeypatch):
     assert main(["sheet", str(catalog), "--limit", "5", "-o", str(tmp_path / "s.png")]) == 0
     assert [c for c, _ in seen] == [r["name"] for r in records]
     seen.clear()
-    sources = ["example:l-shape", f"sig:{sig}", "example:ring", "example:bridged-ring"]
+    sources = ["example:l-shape", f"sig:{sig}", "example:ring", "example:bridged-ring",
+               "example:two-axis-holes"]
     assert main(["sheet", *sources, "-o", str(tmp_path / "s.png")]) == 0
     full = canonical_form(l_shape, "full").signature
     name = next(r["name"] for r in map(json.loads, (catalog / "catalog.jsonl").read_text().splitlines())
                 if r["signature"] == full)
-    bridged = load_example("bridged-ring").map.num_corners  # genus 1, beyond the genus-1 catalog
-    assert [c for c, _ in seen] == [name, name, "T32.1", f"example:bridged-ring ({bridged} corners)"]
+    holes = load_example("two-axis-holes").map.num_corners  # genus 2: no catalog names it
+    assert [c for c, _ in seen] == [name, name, "T32.1", "T40.58",
+                                    f"example:two-axis-holes ({holes} corners)"]
 
 
 def test_bad_picture_arguments(capsys, tmp_path):

@@ -145,7 +145,7 @@ def admits_polycube(m: HalfEdgeMap, axes: Sequence[int]) -> bool:
     depends only on its own loops' signs, so the axes are decided one at a time).
 
     >>> from polyloops.io.examples import load_example
-    >>> ring = load_example("ring")
+    >>> ring = load_example("ring").dualize()
     >>> admits_polycube(ring.map, [int(a) for a in ring.axes])
     True
     """
