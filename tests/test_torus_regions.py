@@ -45,25 +45,8 @@ def test_the_compiled_region_search_lists_what_the_python_one_lists(n, cut, monk
         assert fast_stats.one_way > 0  # the cut acts
 
 
-def _axes(a: TorusArrangement) -> tuple:
-    """The quad mesh of a second-stage arrangement and its loops' labels (the third axis
-    :data:`torus.THIRD`, the classes of B the others), in the mesh's numbering of loops."""
-    m = a.quad_mesh()
-    klass = torus._classes(a)
-    crossings: dict[int, set[int]] = {}
-    for v in range(a.crossings):
-        for d in (4 * v, 4 * v + 1):
-            crossings.setdefault(a.loop_of[d], set()).add(v)
-    mine = {frozenset(vs): lp for lp, vs in crossings.items()}
-    faces: dict[int, set[int]] = {}
-    for v in range(m.num_faces):
-        for lp in m.loop_system.loops_of_face(m, v):
-            faces.setdefault(lp, set()).add(v)
-    return m, [klass[mine[frozenset(faces[lp])]] for lp in range(len(m.loop_system.loops))]
-
-
 def _condition_three(a: TorusArrangement) -> bool:
-    m, axes = _axes(a)
+    m, axes = torus.labelled_mesh(a)
     return sign_components(m, axes) is not None
 
 

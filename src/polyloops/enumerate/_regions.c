@@ -239,6 +239,38 @@ static void record_chords(Search *S, int i) {
     }
 }
 
+static void walk(Search *S, int i, int used);
+
+/* Put the next chord's ends on sides jL and jR, the piece it closes having the sides `sub` of
+ * B (n of them) and `chords` chords: walk on from there when the points fit the numbered edges
+ * and the caps, and the piece is a corner. */
+static void next_chord(Search *S, int i, int jL, int jR, const int *sub, int n, int chords, int used) {
+    const Region *g = &S->reg[i];
+    Walk *W = &S->w[i];
+    W->count[jL]++;
+    W->count[jR]++;
+    int ok = (W->fixed[jL] < 0 || W->count[jL] <= W->fixed[jL]) &&
+             (W->fixed[jR] < 0 || W->count[jR] <= W->fixed[jR]);
+    if (ok) {
+        int got[2];
+        free_points(g, W, got);
+        ok = got[0] <= W->cap[0] && got[1] <= W->cap[1];
+    }
+    if (ok) {
+        int mark = admit(S, g, sub, n, chords);
+        if (mark >= 0) {
+            W->L[W->kk] = jL;
+            W->Rr[W->kk] = jR;
+            W->kk++;
+            walk(S, i, used);
+            W->kk--;
+            rollback(S, mark);
+        }
+    }
+    W->count[jL]--;
+    W->count[jR]--;
+}
+
 static void walk(Search *S, int i, int used) {
     if (S->failed) return;
     const Region *g = &S->reg[i];
@@ -260,30 +292,9 @@ static void walk(Search *S, int i, int used) {
         int dL = moves[m][0], dR = moves[m][1];
         if (used + dL + dR > g->ns - 1) continue;
         int jL = (iL + dL) % g->ns, jR = ((iR - dR) % g->ns + g->ns) % g->ns;
-        W->count[jL]++;
-        W->count[jR]++;
-        int ok = (W->fixed[jL] < 0 || W->count[jL] <= W->fixed[jL]) &&
-                 (W->fixed[jR] < 0 || W->count[jR] <= W->fixed[jR]);
-        if (ok) {
-            int got[2];
-            free_points(g, W, got);
-            ok = got[0] <= W->cap[0] && got[1] <= W->cap[1];
-        }
-        if (ok) {
-            int n = span(g, iL, jL, sub);
-            n += span(g, jR, iR, sub + n);
-            int mark = admit(S, g, sub, n, 2);
-            if (mark >= 0) {
-                W->L[W->kk] = jL;
-                W->Rr[W->kk] = jR;
-                W->kk++;
-                walk(S, i, used + dL + dR);
-                W->kk--;
-                rollback(S, mark);
-            }
-        }
-        W->count[jL]--;
-        W->count[jR]--;
+        int n = span(g, iL, jL, sub);
+        n += span(g, jR, iR, sub + n);
+        next_chord(S, i, jL, jR, sub, n, 2, used + dL + dR);
     }
 }
 
@@ -294,7 +305,7 @@ static void choose(Search *S, int i, const int *placed) {
     if (i == S->R) { complete(S); return; }
     const Region *g = &S->reg[i];
     Walk *W = &S->w[i];
-    int none = 1, sub[MAXS];
+    int none = 1, sub[MAXS] = {0};
     for (int a = 0; a < g->ns; a++) {
         W->fixed[a] = S->points[g->s[a].edge];
         W->count[a] = 0;
@@ -318,29 +329,8 @@ static void choose(Search *S, int i, const int *placed) {
     for (int iR = 0; iR < g->ns; iR++) {
         for (int t = 1; t <= 4 && t <= g->ns - 1; t++) {
             int iL = (iR + t) % g->ns;
-            W->count[iL]++;
-            W->count[iR]++;
-            int ok = (W->fixed[iL] < 0 || W->count[iL] <= W->fixed[iL]) &&
-                     (W->fixed[iR] < 0 || W->count[iR] <= W->fixed[iR]);
-            if (ok) {
-                int got[2];
-                free_points(g, W, got);
-                ok = got[0] <= W->cap[0] && got[1] <= W->cap[1];
-            }
-            if (ok) {
-                int n = span(g, iR, iL, sub);
-                int mark = admit(S, g, sub, n, 1);
-                if (mark >= 0) {
-                    W->L[0] = iL;
-                    W->Rr[0] = iR;
-                    W->kk = 1;
-                    walk(S, i, t);
-                    W->kk = 0;
-                    rollback(S, mark);
-                }
-            }
-            W->count[iL]--;
-            W->count[iR]--;
+            int n = span(g, iR, iL, sub);
+            next_chord(S, i, iL, iR, sub, n, 1, t);
         }
     }
 }

@@ -612,6 +612,7 @@ typedef struct {
     int met[MAXL1], crossed;  /* the curve's crossings with each parent loop; loops crossed */
     unsigned stamp[MAXD], now;  /* face membership */
     PyObject *out;
+    PyObject *seen;  /* the children listed (a child is drawn in several ways) */
     int failed;
     long long nodes, closed, bounded, rejected, uncolourable;
 } Draw;
@@ -854,8 +855,16 @@ static void emit1(Draw *w)
             if (first == wanted) accepted = 1;
         }
     if (!accepted) { w->rejected++; return; }
-    uint16_t tw[MAXD];
+    uint16_t tw[MAXD + 4];
     for (int i = 0; i < D; i++) tw[i] = (uint16_t)best[i];
+    for (int k = 0; k < h->nmarks; k++) tw[D + k] = (uint16_t)best[D + k];
+    /* one of each child: the list would otherwise hold every way it was drawn */
+    PyObject *key = PyBytes_FromStringAndSize((const char *)tw, (Py_ssize_t)(2 * (D + h->nmarks)));
+    int listed = key ? PySet_Contains(w->seen, key) : -1;
+    if (listed == 0 && PySet_Add(w->seen, key) < 0) listed = -1;
+    Py_XDECREF(key);
+    if (listed < 0) { w->failed = 1; return; }
+    if (listed) return;
     PyObject *marks = PyList_New(h->nmarks);
     if (!marks) { w->failed = 1; return; }
     for (int k = 0; k < h->nmarks; k++)
@@ -1034,6 +1043,8 @@ static PyObject *first_children(PyObject *self, PyObject *args)
     w->budget = limit - w->pc;
     w->out = PyList_New(0);
     if (!w->out) return NULL;
+    w->seen = PySet_New(NULL);
+    if (!w->seen) { Py_DECREF(w->out); return NULL; }
     int n0 = w->n;
     for (int y0 = 0; y0 < n0 && !w->failed; y0++) {
         int p1, p2, lp = w->loop[y0];
@@ -1046,6 +1057,7 @@ static PyObject *first_children(PyObject *self, PyObject *args)
         w->crossed = 0;
         unsub1(w, y0, p1);
     }
+    Py_CLEAR(w->seen);
     if (w->failed) {
         Py_DECREF(w->out);
         if (w->failed == 1) return NULL;

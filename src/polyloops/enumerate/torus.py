@@ -55,9 +55,9 @@ from polyloops.core.labellings import proper_colourings
 
 __all__ = ["ANNULUS", "COMPILED_SEARCH", "HANDLE", "SECOND_STAGE", "THIRD", "TorusArrangement",
            "TorusSearchStats", "axis_runs", "candidate_torus_arrangements", "carries_polycube",
-           "compiled_search_available", "decomposes", "face_need", "first_stage", "layered_need",
-           "orientable", "polycube_decompositions", "third_sides_consistent", "torus_arrangements",
-           "torus_children", "two_axis_bases", "two_stage_decompositions"]
+           "compiled_search_available", "decomposes", "face_need", "first_stage", "labelled_mesh",
+           "layered_need", "orientable", "polycube_decompositions", "third_sides_consistent",
+           "torus_arrangements", "torus_children", "two_axis_bases", "two_stage_decompositions"]
 
 ANNULUS, HANDLE = "A", "H"  # an end of the annulus face; the face with the handle
 MARK_NEED = {HANDLE: 2, ANNULUS: 1}  # a holed torus is crossed twice at least, an annulus end once
@@ -1035,6 +1035,12 @@ def carries_polycube(a: TorusArrangement) -> bool:
     the others."""
     from polyloops.core.labellings import admits_polycube
 
+    return admits_polycube(*labelled_mesh(a))
+
+
+def labelled_mesh(a: TorusArrangement) -> tuple[HalfEdgeMap, list[int]]:
+    """The dual quad mesh of a second-stage arrangement and the label of each of its loops (in
+    the mesh's numbering): :data:`THIRD` for the third axis, the class in ``B`` otherwise."""
     m = a.quad_mesh()  # quad v is crossing v
     system = m.loop_system
     klass = _classes(a)
@@ -1047,7 +1053,7 @@ def carries_polycube(a: TorusArrangement) -> bool:
     for v in range(m.num_faces):
         for lp in system.loops_of_face(m, v):
             faces.setdefault(lp, set()).add(v)
-    return admits_polycube(m, [klass[mine[frozenset(faces[lp])]] for lp in range(len(system.loops))])
+    return m, [klass[mine[frozenset(faces[lp])]] for lp in range(len(system.loops))]
 
 
 def _layered_code(a: TorusArrangement) -> bytes:
