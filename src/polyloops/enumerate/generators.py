@@ -495,8 +495,9 @@ def share_of(top: Any, res: int, mod: int) -> Any:
 # -- the torus ------------------------------------------------------------------------------------
 
 class TorusGenerator(Generator):
-    """The candidate maps of genus 1 (:func:`polyloops.enumerate.torus.candidate_torus_arrangements`):
-    a job is share ``res/mod`` of the two-axis arrangements of the second stage, covering
+    """The maps of genus 1 that carry a polycube
+    (:func:`polyloops.enumerate.torus.candidate_torus_arrangements`): a job is share ``res/mod``
+    of the two-axis arrangements of the second stage, covering
     every corner count at once; it counts the states it builds (the first stage's, and the
     regions the second cuts)."""
 

@@ -35,7 +35,9 @@ that axis, so the two other axes' loops form a cellular arrangement ``B`` (its c
 is bipartite), and the deleted loops are pairwise disjoint, each crossing every region of ``B``
 at most once.  Taking the axis whose deletion leaves fewest crossings, ``B`` has at most a third
 of the crossings.  :func:`candidate_torus_arrangements` lists every such ``B`` with the search
-above, and then adds the third axis's loops to it one at a time, each child kept when its new
+above, and then its third axis: region by region
+(:func:`polyloops.enumerate.torus_regions.third_axis_systems`, where the level graphs of ``B``
+cut early), or, as the twin kept for the tests, one loop at a time, each child kept when its new
 loop is the canonical third-axis loop to delete (every state of this stage is cellular).
 
 >>> from collections import Counter
