@@ -954,9 +954,9 @@ def _third_axes(base: TorusArrangement, max_crossings: int, stats: TorusSearchSt
 
 @lru_cache(maxsize=4)
 def _bases(max_crossings: int, compiled: bool) -> tuple[tuple[bytes, ...], TorusSearchStats]:
-    """:func:`two_axis_bases` (each as its ``twin`` array of uint16, compactly: there are about
-    a million through 13 crossings) and the first stage's statistics, kept for the process's
-    later shares (a catalog's worker runs several)."""
+    """:func:`two_axis_bases` (each as its ``twin`` array of uint16, compactly: 150,791 through
+    14 crossings) and the first stage's statistics, kept for the process's later shares (a
+    catalog's worker runs several)."""
     import array
 
     stats = TorusSearchStats()

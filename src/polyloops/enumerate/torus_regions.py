@@ -122,7 +122,6 @@ _Chord = tuple[tuple[int, int, bool], tuple[int, int, bool]]  # two ends: (edge,
 
 @dataclass(frozen=True)
 class _Side:
-    dart: int
     edge: int  # the edge's lower dart: its points are numbered along it
     reverse: bool  # the region walks the edge against its numbering
     loop: int
@@ -158,8 +157,8 @@ def _setup(base: TorusArrangement, cut_one_way: bool) -> _Setup:
     forward = _walk_forward(base)
     loops = base.loop_of
     faces = base.faces
-    sides = [[_Side(d, min(d, base.twin[d]), d != min(d, base.twin[d]), loops[d], klass[loops[d]],
-                    forward[d]) for d in face] for face in faces]
+    sides = [[_Side(min(d, base.twin[d]), d != min(d, base.twin[d]), loops[d], klass[loops[d]], forward[d])
+              for d in face] for face in faces]
     need = [layered_need(len(face), [s.axis for s in sides[f]], len({s.loop for s in sides[f]}) < len(face))
             for f, face in enumerate(faces)]
     axis_sides = [[sum(side.axis == k for side in sides[f]) for k in (0, 1)] for f in range(len(faces))]
@@ -177,9 +176,9 @@ def third_axis_systems(base: TorusArrangement, max_crossings: int, stats: TorusS
     from polyloops.enumerate.torus import TorusSearchStats
 
     stats = stats if stats is not None else TorusSearchStats()
-    setup = _setup(base, cut_one_way)
-    if max_crossings - base.crossings < 0:
+    if max_crossings < base.crossings:
         return
+    setup = _setup(base, cut_one_way)
     if COMPILED and compiled_available():
         yield from _compiled_systems(base, max_crossings, setup, stats)
     else:
