@@ -592,11 +592,12 @@ def read_bases(path: str) -> tuple[tuple[bytes, ...], Any]:
             (length,) = struct.unpack_from("<H", data, at)
             bases.append(data[at + 2:at + 2 + length])
             at += 2 + length
-    except (struct.error, ValueError) as exc:
+        stats = TorusSearchStats(**header["search"])
+    except (struct.error, ValueError, KeyError, TypeError) as exc:  # TypeError: other statistics
         raise ValueError(f"{path}: damaged ({exc})") from exc
     if header.get("version") != SCHEMA_VERSION or len(bases) != header.get("count") or at != len(data):
         raise ValueError(f"{path}: incomplete or from another version")
-    return tuple(bases), TorusSearchStats(**header["search"])
+    return tuple(bases), stats
 
 
 register(PlantriGenerator())
