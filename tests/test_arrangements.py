@@ -332,7 +332,7 @@ def test_a_spilled_top_gives_each_share_its_part(tmp_path):
     path = spill_frontier(20, 1, None, tmp_path)
     stamp = path.stat().st_mtime_ns
     for res in range(3):
-        mine, mine_search = read_frontier_share(str(path), res, 3, res == 0)
+        mine, mine_search = read_frontier_share(str(path), 20, res, 3, res == 0)
         theirs = share_of(top, res, 3)
         assert mine == theirs and [a.candidate for a in mine.roots] == [a.candidate for a in theirs.roots]
         assert mine_search == (search if res == 0 else None)

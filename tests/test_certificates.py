@@ -10,8 +10,8 @@ from pathlib import Path
 import pytest
 
 from polyloops.cli import main
-from polyloops.enumerate.catalog_run import build_catalog
-from polyloops.enumerate.census import default_catalog
+from polyloops.enumerate.catalog_run import build_catalog, write_census
+from polyloops.enumerate.census import default_catalog, read_catalog
 from polyloops.enumerate.conjecture import (
     ConjectureError,
     certificate_lines,
@@ -30,13 +30,7 @@ def _small_catalog(top: int = 30) -> Path:
     test_reach.py)."""
     out = Path(tempfile.mkdtemp(prefix="polyloops-small-catalog-"))
     atexit.register(shutil.rmtree, out, True)
-    lines = [line for line in (REAL / "catalog.jsonl").read_text().splitlines()
-             if json.loads(line)["corners"] <= top]
-    (out / "catalog.jsonl").write_text("\n".join(lines) + "\n")
-    summary = json.loads((REAL / "summary.json").read_text())
-    summary = {k: ({n: v for n, v in t.items() if int(n) <= top}
-                   if isinstance(t, dict) and k != "search" else t) for k, t in summary.items()}
-    (out / "summary.json").write_text(json.dumps(summary, indent=1) + "\n")
+    write_census(read_catalog(REAL).through(top), out)
     cert = REAL_CERT.read_text().splitlines()
     kept = [line for line in cert[1:] if json.loads(line)["corners"] <= top]
     header = {**json.loads(cert[0]), "max_corners": top, "classes": len(kept)}
@@ -200,10 +194,18 @@ def test_a_catalog_starting_above_the_cube_proves_nothing(tmp_path):
 
 
 def test_a_copy_of_the_shipped_catalog_cut_short_fails_the_shipped_certificate(tmp_path, capsys):
+    cat = write_census(read_catalog(SHIPPED).through(24), tmp_path / "cat")
+    status, out, _ = run(capsys, "conjecture", "check", str(CERT), "--catalog", str(cat))
+    assert status == 1 and "only through 24" in out
+
+
+def test_a_summary_cut_short_over_all_the_records_is_no_catalog(tmp_path, capsys):
+    """A summary that counts less than the records hold (or more) is refused by every reader,
+    naming both sides: the certificate is not checked against it."""
     cat = tmp_path / "cat"
     shutil.copytree(SHIPPED, cat)
     summary = json.loads((cat / "summary.json").read_text())
     summary["counts"] = {k: v for k, v in summary["counts"].items() if int(k) <= 24}
     (cat / "summary.json").write_text(json.dumps(summary))
-    status, out, _ = run(capsys, "conjecture", "check", str(CERT), "--catalog", str(cat))
-    assert status == 1 and "only through 24" in out
+    status, _, err = run(capsys, "conjecture", "check", str(CERT), "--catalog", str(cat))
+    assert status == 1 and "records with 26 corners, which the summary does not count" in err

@@ -165,17 +165,18 @@ def test_the_first_stage_is_spilled_once_and_read_back(tmp_path):
     arrangements and statistics, a rerun reads it instead of listing them again, and a damaged
     file is refused and written again."""
     from polyloops.enumerate.generators import read_bases, spill_bases
+    from polyloops.enumerate.spill import SpillMismatch
 
     path = spill_bases(8, tmp_path)
-    bases, stats = read_bases(str(path))
+    bases, stats = read_bases(str(path), 8)
     listed, listed_stats = torus.first_stage(8)
     assert bases == listed and len(bases) > 10 and stats == listed_stats
     stamp = path.stat().st_mtime_ns
     assert spill_bases(8, tmp_path) == path and path.stat().st_mtime_ns == stamp
     path.write_bytes(path.read_bytes()[:-3])
     read_bases.cache_clear()
-    with pytest.raises(ValueError, match=r"damaged|incomplete"):
-        read_bases(str(path))
+    with pytest.raises(SpillMismatch, match=r"truncated"):
+        read_bases(str(path), 8)
     spill_bases(8, tmp_path)
     read_bases.cache_clear()
-    assert read_bases(str(path))[0] == bases
+    assert read_bases(str(path), 8)[0] == bases

@@ -49,6 +49,16 @@ def merged_summary(old: dict, new: dict) -> dict:
     return out
 
 
+def shipped_summary(summary: dict, into: Path) -> dict:
+    """The summary as shipped: the records' mode and the digest of the one file that ships
+    (catalog.jsonl; queries build the database from it)."""
+    from polyloops.enumerate.catalog_run import file_digest
+
+    first = (into / "catalog.jsonl").read_text().partition("\n")[0]
+    mode = json.loads(first)["symmetry"] if first else "full"
+    return {**summary, "symmetry": mode, "files": {"catalog.jsonl": file_digest(into / "catalog.jsonl")}}
+
+
 def check_records(old_dir: Path, new_dir: Path) -> None:
     top = max(int(n) for n in json.loads((old_dir / "summary.json").read_text())["counts"])
     old = (old_dir / "catalog.jsonl").read_text().splitlines()
@@ -80,7 +90,7 @@ def ship(run: Path, into: Path = SHIPPED, slack: int = 10, workers: int = 1) -> 
     shutil.copyfile(run / "catalog.jsonl", into / ".catalog.jsonl.new")
     (into / ".catalog.jsonl.new").replace(into / "catalog.jsonl")
     (into / "catalog.sqlite").unlink(missing_ok=True)
-    write_atomic(into / "summary.json", json.dumps(summary, indent=1) + "\n")
+    write_atomic(into / "summary.json", json.dumps(shipped_summary(summary, into), indent=1) + "\n")
     top = max(int(n) for n in summary["counts"])
     result = settle_catalog(into, top, slack, workers)
     lines = list(certificate_lines(result))

@@ -106,3 +106,19 @@ def seconds_arg(text: str) -> float:
 
 def json_flag(p: argparse.ArgumentParser) -> None:
     p.add_argument("--json", action="store_true", help="print one JSON object for scripts")
+
+
+def genus_option(p: argparse.ArgumentParser, what: str = "catalog") -> None:
+    """``--genus G``: which shipped catalog (or certificate) a command reads when none is given."""
+    p.add_argument("--genus", type=int, choices=(0, 1), default=None, metavar="G",
+                   help=f"without a {what}: the shipped one of genus G (0, the default, or 1)")
+
+
+def catalog_dir(given: str | None, genus: int | None) -> Any:
+    """The catalog directory a command reads: the one given, else the shipped one of ``genus``
+    (installed with the package)."""
+    from pathlib import Path
+
+    from polyloops.enumerate.census import default_catalog
+
+    return Path(given) if given else default_catalog(genus or 0)

@@ -8,7 +8,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from polyloops.cli.args import SYMMETRIES, AddCommand, Parser, count_arg, emit, written
+from polyloops.cli.args import SYMMETRIES, AddCommand, Parser, catalog_dir, count_arg, emit, genus_option, written
 from polyloops.cli.load import EXIT_OK, CliError, write_text
 
 
@@ -91,11 +91,11 @@ def cmd_catalog_query(args: argparse.Namespace) -> int:
     from polyloops.enumerate.census import CatalogError, query
 
     try:
-        columns, rows = query(Path(args.dir), args.where)
+        columns, rows = query(catalog_dir(args.dir, args.genus), args.where)
     except CatalogError as err:
-        raise CliError(str(err)) from None
+        raise CliError(str(err), getattr(err, "status", 2)) from None
     if args.json:
-        print(json.dumps({"catalog": args.dir, "where": args.where, "count": len(rows),
+        print(json.dumps({"catalog": str(catalog_dir(args.dir, args.genus)), "where": args.where, "count": len(rows),
                           "rows": [dict(zip(columns, r, strict=True)) for r in rows]}, indent=1))
     else:
         print("\t".join(columns))
@@ -108,9 +108,9 @@ def cmd_catalog_export(args: argparse.Namespace) -> int:
     from polyloops.enumerate.census import CatalogError, export_csv
 
     try:
-        text = export_csv(Path(args.dir))
+        text = export_csv(catalog_dir(args.dir, args.genus))
     except CatalogError as err:
-        raise CliError(str(err)) from None
+        raise CliError(str(err), getattr(err, "status", 2)) from None
     rows = max(0, text.count("\n") - 1)  # the header line aside
     if args.output:
         write_text(args.output, text)
@@ -125,12 +125,14 @@ EXPORT_HELP = "a catalog's table as CSV"
 
 
 def _query_arguments(p: argparse.ArgumentParser) -> None:
-    p.add_argument("dir", metavar="DIR")
+    p.add_argument("dir", metavar="DIR", nargs="?", help="a catalog directory (default: the shipped one)")
+    genus_option(p)
     p.add_argument("where", metavar="WHERE", help='an SQL condition, e.g. "corners = 20 AND chiral"')
 
 
 def _export_arguments(p: argparse.ArgumentParser) -> None:
-    p.add_argument("dir", metavar="DIR")
+    p.add_argument("dir", metavar="DIR", nargs="?", help="a catalog directory (default: the shipped one)")
+    genus_option(p)
     p.add_argument("--csv", action="store_true", required=True, help="CSV (the only format so far)")
     p.add_argument("-o", "--output", metavar="OUT.csv", help="write here instead of to standard output")
 

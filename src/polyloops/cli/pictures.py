@@ -94,7 +94,7 @@ def cmd_gallery(args: argparse.Namespace) -> int:
     try:
         census = read_catalog(Path(args.dir) if args.dir else None)
     except CatalogError as err:
-        raise CliError(str(err)) from None
+        raise CliError(str(err), getattr(err, "status", 2)) from None
     total = len(census.entries) if args.limit is None else min(args.limit, len(census.entries))
     bar = tqdm(total=total, desc="gallery", unit="class", disable=None, file=sys.stderr)
     try:
@@ -150,7 +150,7 @@ def cmd_sheet(args: argparse.Namespace) -> int:
             try:
                 entries = read_entries(path)
             except CatalogError as err:
-                raise CliError(str(err)) from None
+                raise CliError(str(err), getattr(err, "status", 2)) from None
             for i, entry in enumerate(entries):
                 if args.limit is not None and len(items) >= args.limit:
                     break  # the structures past the limit are not built

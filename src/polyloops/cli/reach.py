@@ -8,7 +8,17 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from polyloops.cli.args import FILE_HELP, SYMMETRIES, AddCommand, Parser, count_arg, emit, plural
+from polyloops.cli.args import (
+    FILE_HELP,
+    SYMMETRIES,
+    AddCommand,
+    Parser,
+    catalog_dir,
+    count_arg,
+    emit,
+    genus_option,
+    plural,
+)
 from polyloops.cli.load import (
     EXIT_INVALID,
     EXIT_OK,
@@ -140,13 +150,13 @@ def cmd_conjecture_settle(args: argparse.Namespace) -> int:
     genus = 1 if args.which == "genus1" else 0
     check_output(args.output)
     try:
-        census = read_catalog(Path(args.catalog))
+        census = read_catalog(catalog_dir(args.catalog, genus))
         covered = complete_range(census, genus)
         total = len(catalog_signatures(census, args.max_corners))
     except (CatalogError, ConjectureError) as err:
-        raise CliError(str(err)) from None
+        raise CliError(str(err), getattr(err, "status", 2)) from None
     if args.max_corners > covered:
-        raise CliError(f"--max-corners {args.max_corners}: the catalog {args.catalog} holds every class "
+        raise CliError(f"--max-corners {args.max_corners}: the catalog {census.directory} holds every class "
                        f"only through {covered} corners; extend it first (polyloops catalog)")
     if args.slack < 2:
         raise CliError("--slack must be at least 2")
@@ -155,7 +165,7 @@ def cmd_conjecture_settle(args: argparse.Namespace) -> int:
         result = settle_catalog(census.directory, args.max_corners, args.slack, args.workers, args.dask,
                                 progress=lambda _: bar.update(1))
     except (CatalogError, ConjectureError) as err:
-        raise CliError(str(err)) from None
+        raise CliError(str(err), getattr(err, "status", 2)) from None
     finally:
         bar.close()
     write_text(args.output, "\n".join(certificate_lines(result)) + "\n")
@@ -179,16 +189,26 @@ def cmd_conjecture_settle(args: argparse.Namespace) -> int:
 
 
 def cmd_conjecture_check(args: argparse.Namespace) -> int:
-    from polyloops.enumerate.census import CatalogError
-    from polyloops.enumerate.conjecture import ConjectureError, check_certificate
+    from polyloops.enumerate.census import CatalogError, read_catalog
+    from polyloops.enumerate.conjecture import Certificate, ConjectureError, read_header, shipped_certificate
 
-    text = read_text_file(args.certificate)
+    given = args.certificate or str(shipped_certificate(args.genus or 0))
+    text = read_text_file(given)
+    lines = tuple(text.splitlines())
     try:
-        check = check_certificate(text.splitlines(), Path(args.catalog))
+        cert = Certificate(Path(given), read_header(lines[0] if lines else ""), lines)
     except ConjectureError as err:  # not a certificate at all: bad input, not a failed check
-        raise CliError(f"{args.certificate}: {err}") from None
+        raise CliError(f"{given}: {err}") from None
+    if args.genus is not None and cert.genus != args.genus:
+        raise CliError(f"{given}: a genus-{cert.genus} certificate, not genus {args.genus}")
+    args.catalog = str(catalog_dir(args.catalog, cert.genus))
+    args.certificate = given
+    try:
+        check = cert.check(read_catalog(Path(args.catalog)))
     except CatalogError as err:
-        raise CliError(str(err)) from None
+        raise CliError(str(err), getattr(err, "status", 2)) from None
+    except ConjectureError as err:
+        raise CliError(f"{args.catalog}: {err}") from None
     problems = check.problems
     data = {"valid": check.valid, "genus": check.genus, "max_corners": check.header["max_corners"],
             "checked_corners": check.checked_corners, "catalog_corners": check.catalog_corners,
@@ -248,8 +268,8 @@ def add_commands(command: AddCommand) -> None:
         g = sub.add_parser(f"genus{genus}", help=f"settle every class of a genus-{genus} catalog up to N "
                            "corners", description=f"settle every class of a genus-{genus} catalog up to N "
                            f"corners: {what}; exit 1 if some class is not settled")
-        g.add_argument("--catalog", required=True, metavar="DIR",
-                       help=f"a catalog directory (catalogs/genus{genus})")
+        g.add_argument("--catalog", metavar="DIR",
+                       help=f"a catalog directory (default: the shipped catalogs/genus{genus})")
         g.add_argument("--max-corners", type=count_arg(8), required=True, metavar="N")
         g.add_argument("--slack", type=count_arg(2), default=10, metavar="K",
                        help="detours may go up to K corners above the class (tried 2, 4, ..., K; default 10)")
@@ -261,7 +281,10 @@ def add_commands(command: AddCommand) -> None:
     c = sub.add_parser("check", help="re-check a certificate without trusting the search",
                        description="re-check a certificate against a catalog: every class present, "
                        "every removal and detour replayed with the Definition-4 checker")
-    c.add_argument("certificate", metavar="CERT")
-    c.add_argument("--catalog", required=True, metavar="DIR")
+    c.add_argument("certificate", metavar="CERT", nargs="?",
+                   help="a certificate (default: the shipped one of --genus)")
+    c.add_argument("--catalog", metavar="DIR", help="the catalog it settles (default: the shipped one of "
+                   "the certificate's genus)")
+    genus_option(c, "certificate")
     c.add_argument("--json", action="store_true", help="print one JSON object for scripts")
     c.set_defaults(func=cmd_conjecture_check)

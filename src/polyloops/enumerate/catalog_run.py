@@ -12,8 +12,12 @@ each written through a temporary file and a rename.
 
 from __future__ import annotations
 
+import contextlib
+import fcntl
+import hashlib
 import json
-from collections.abc import Callable
+import os
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -24,7 +28,7 @@ from polyloops.enumerate.catalog import MODES
 from polyloops.enumerate.generators import GENERATORS, Generator, Job, JobResult, run_job
 from polyloops.enumerate.parallel import run_jobs
 from polyloops.enumerate.records import CatalogEntry, class_names, write_jsonl, write_sqlite
-from polyloops.io.files import InputError, read_text, write_atomic
+from polyloops.io.files import InputError, OutputError, check_within, read_text, write_atomic
 
 
 def choose_generator(generator: str | None, method: str = "auto",
@@ -112,7 +116,9 @@ CATALOG_FILES = ("catalog.jsonl", "catalog.sqlite", "summary.json")
 
 def existing_extent(out: Path) -> Extent | None:
     """The extent of the catalog already in ``out``, or ``None`` when it holds none (no
-    directory, or only the ``parts/`` of an interrupted run).
+    directory, only the ``parts/`` of an interrupted run, or the records of a merge that was
+    stopped before its ``summary.json``, the file written last: no reader accepts them, and
+    the rerun writes them again).
 
     Raises
     ------
@@ -120,18 +126,20 @@ def existing_extent(out: Path) -> Extent | None:
         When catalog files are there but cannot be read as one (the message names the file).
     """
     present = [name for name in CATALOG_FILES if (out / name).exists() or (out / name).is_symlink()]
-    if not present:
+    if "summary.json" not in present:
         return None
     path = out / "summary.json"
     try:
         summary = json.loads(read_text(path, stdin=False))
         counts = [int(n) for n in summary["counts"]]
-        first = read_text(out / "catalog.jsonl", stdin=False).partition("\n")[0]
-        symmetry = Symmetry.parse(json.loads(first)["symmetry"]) if first else Symmetry.FULL
+        symmetry = summary.get("symmetry")
+        if symmetry is None:  # written before summaries named their mode: the first record does
+            first = read_text(out / "catalog.jsonl", stdin=False).partition("\n")[0]
+            symmetry = json.loads(first)["symmetry"] if first else "full"
         share = summary.get("share")
         share = (int(share[0]), int(share[1])) if share is not None else \
             ((-1, -1) if "partial" in summary else None)
-        return Extent(min(counts), max(counts), symmetry, share, int(summary.get("genus", 0)))
+        return Extent(min(counts), max(counts), Symmetry.parse(symmetry), share, int(summary.get("genus", 0)))
     except InputError as err:
         raise CatalogRunError(f"{out}: holds a catalog that cannot be read ({err})") from None
     except (ValueError, KeyError, TypeError, IndexError, AttributeError) as err:
@@ -139,17 +147,58 @@ def existing_extent(out: Path) -> Extent | None:
                               f"({path.name}: {err!r})") from None
 
 
+LOCK_NAME = ".polyloops-lock"
+
+
+@contextlib.contextmanager
+def locked(out: Path) -> Iterator[None]:
+    """Hold the directory's lock for a whole run: a second run into the same directory is
+    refused at once (two runs finishing in either order would leave whichever ended last).
+    The lock is the operating system's (``flock``): a run that dies releases it."""
+    path = out / LOCK_NAME
+    try:
+        check_within(path, out)
+        fd = os.open(path, os.O_RDWR | os.O_CREAT | os.O_NOFOLLOW, 0o644)
+    except OutputError as err:
+        raise CatalogRunError(str(err)) from None
+    except OSError as err:
+        raise CatalogRunError(f"{out}: cannot write: {err.strerror}") from None
+    try:
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            raise CatalogRunError(f"{out}: another catalog run is writing into this directory; wait for it "
+                                  "or choose another directory") from None
+        yield
+    finally:
+        os.close(fd)
+
+
 def part_path(out: Path, job: Job) -> Path:
     """Where a finished job's result is kept, so that a rerun skips it."""
     return out / "parts" / f"{job.name}.json"
 
 
+def part_text(result: JobResult) -> str:
+    """A finished job's part file: its result and the SHA-256 digest of that result's JSON, so
+    that an edited part is recomputed rather than merged."""
+    body = json.dumps(result.to_json(), separators=(",", ":"), sort_keys=True)
+    return json.dumps({"sha256": hashlib.sha256(body.encode()).hexdigest(), "result": json.loads(body)},
+                      separators=(",", ":"), sort_keys=True)
+
+
 def load_part(out: Path, job: Job) -> JobResult | None:
-    """A finished job's result, or ``None`` when it is missing, damaged or of another schema
-    version (it is then recomputed)."""
+    """A finished job's result, or ``None`` when it is missing, damaged, edited (its digest
+    does not match), of another schema version or of another job (it is then recomputed)."""
+    path = part_path(out, job)
     try:
-        result = JobResult.from_json(json.loads(read_text(part_path(out, job), stdin=False)))
-    except (InputError, ValueError, KeyError, TypeError, AttributeError):
+        check_within(path, out)
+        data = json.loads(read_text(path, stdin=False))
+        body = json.dumps(data["result"], separators=(",", ":"), sort_keys=True)
+        if hashlib.sha256(body.encode()).hexdigest() != data["sha256"]:
+            return None
+        result = JobResult.from_json(data["result"])
+    except (InputError, OutputError, ValueError, KeyError, TypeError, AttributeError, RecursionError):
         return None
     return result if result.job == job else None
 
@@ -157,16 +206,21 @@ def load_part(out: Path, job: Job) -> JobResult | None:
 def execute(generator: Generator, jobs: list[Job], out: Path, workers: int = 1, dask: str | None = None,
             progress: Callable[[JobResult], None] | None = None) -> list[JobResult]:
     """Run the jobs not yet in ``out/parts`` and return every job's result, in job order."""
-    (out / "parts").mkdir(parents=True, exist_ok=True)
+    parts = out / "parts"
+    try:
+        check_within(parts / "x", out)
+    except OutputError as err:
+        raise CatalogRunError(str(err)) from None
+    parts.mkdir(parents=True, exist_ok=True)
     done = {job: load_part(out, job) for job in jobs}
     todo = [job for job, part in done.items() if part is None]
     for part in done.values():
         if part is not None and progress:
             progress(part)
-    contexts = generator.prepare(todo, workers, dask, out / "parts") if todo else []
+    contexts = generator.prepare(todo, workers, dask, parts) if todo else []
     tasks = [(generator, job, context) for job, context in zip(todo, contexts, strict=True)]
     for result in run_jobs(run_job, tasks, workers, dask, ordered=False):
-        write_atomic(part_path(out, result.job), json.dumps(result.to_json(), separators=(",", ":")))
+        write_atomic(part_path(out, result.job), part_text(result), within=out)
         done[result.job] = result
         if progress:
             progress(result)
@@ -228,18 +282,32 @@ def summarize(generator: Generator, results: list[JobResult], min_n: int, max_n:
     return out
 
 
+def file_digest(path: Path) -> str:
+    """The SHA-256 digest of a file, as ``summary.json`` records each catalog file's."""
+    digest = hashlib.sha256()
+    with open(path, "rb") as fh:
+        while chunk := fh.read(1 << 22):
+            digest.update(chunk)
+    return digest.hexdigest()
+
+
 def write_catalog(out: Path, results: list[JobResult], symmetry: Symmetry | str,
                   summary: dict[str, Any]) -> int:
-    """Write ``catalog.jsonl``, ``catalog.sqlite`` and ``summary.json`` atomically; returns the
+    """Write ``catalog.jsonl`` and ``catalog.sqlite``, then ``summary.json`` last, each
+    atomically; the summary records the mode and each file's digest, so a set whose merge was
+    stopped half-way (new records under an old summary, or no summary) is refused by every
+    reader and finished by a rerun.  ``summary`` gains the mode and the digests.  Returns the
     number of records."""
     symmetry = Symmetry.parse(symmetry)
     records = sorted((rec for r in results for c in r.corners.values() for rec in c.records[str(symmetry)]),
                      key=lambda rec: (rec.corners, rec.signature))
     names = class_names(records, symmetry, int(summary.get("genus", 0)))
     entries = [CatalogEntry(name, symmetry, rec) for name, rec in zip(names, records, strict=True)]
-    write_jsonl(out / "catalog.jsonl", entries)
-    write_sqlite(out / "catalog.sqlite", entries, symmetry)
-    write_atomic(out / "summary.json", json.dumps(summary, indent=1) + "\n")
+    write_jsonl(out / "catalog.jsonl", entries, within=out)
+    write_sqlite(out / "catalog.sqlite", entries, symmetry, within=out)
+    summary["symmetry"] = str(symmetry)
+    summary["files"] = {name: file_digest(out / name) for name in ("catalog.jsonl", "catalog.sqlite")}
+    write_atomic(out / "summary.json", json.dumps(summary, indent=1) + "\n", within=out)
     return len(entries)
 
 
@@ -335,18 +403,59 @@ def build_catalog(out: Path | str, max_corners: int, min_corners: int = 8,
     if not out.absolute().parent.is_dir():  # like every other output: the directory above must exist
         raise CatalogRunError(f"{out}: the directory {out.absolute().parent} does not exist")
     share = None if mod is None else (res or 0, mod)
-    old = existing_extent(out)
     new = Extent(min_corners, max_corners, symmetry, share, genus)
+    _refuse_less(out, new, overwrite)  # before any work, and again under the lock
+    try:
+        out.mkdir(exist_ok=True)
+    except OSError as err:
+        raise CatalogRunError(f"{out}: cannot write: {err.strerror}") from None
+    with locked(out):
+        _refuse_less(out, new, overwrite)
+        jobs = chosen.plan(min_corners, max_corners, share, workers)
+        if on_plan:
+            on_plan(jobs)
+        try:
+            results = execute(chosen, jobs, out, workers, dask, progress)
+            summary = summarize(chosen, results, min_corners, max_corners, share)
+            written = write_catalog(out, results, symmetry, summary)
+        except CatalogRunError:
+            raise
+        except OutputError as err:
+            raise CatalogRunError(str(err)) from None
+        except (RuntimeError, OSError) as err:
+            raise CatalogRunError(f"{out}: {err}") from None
+    return CatalogBuild(out, symmetry, summary, written)
+
+
+def _refuse_less(out: Path, new: Extent, overwrite: bool) -> None:
+    old = existing_extent(out)
     if old is not None and not overwrite and not new.covers(old):
         raise WouldLoseResultsError(f"{out}: holds a catalog of {old.describe()}; this build of "
                                     f"{new.describe()} would replace it with less")
-    jobs = chosen.plan(min_corners, max_corners, share, workers)
-    if on_plan:
-        on_plan(jobs)
-    try:
-        results = execute(chosen, jobs, out, workers, dask, progress)
-    except (RuntimeError, OSError) as err:
-        raise CatalogRunError(f"{out}: {err}") from None
-    summary = summarize(chosen, results, min_corners, max_corners, share)
-    written = write_catalog(out, results, symmetry, summary)
-    return CatalogBuild(out, symmetry, summary, written)
+
+
+def write_census(census: Any, out: Path | str) -> Path:
+    """Write a :class:`~polyloops.enumerate.census.Census` (a catalog read, or cut with
+    :meth:`~polyloops.enumerate.census.Census.through`) as a catalog directory ``out``: its
+    records, then its summary with the mode and the records' digest, so that readers accept
+    exactly these records.  The summary's other tables are cut to its counts' range.
+
+    >>> import tempfile
+    >>> from polyloops.enumerate.census import read_catalog
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     small = read_catalog(write_census(read_catalog().through(20), Path(tmp) / "small"))
+    >>> len(small), small.max_corners
+    (11, 20)
+    """
+    out = Path(out)
+    out.mkdir(exist_ok=True)
+    counts = census.summary.get("counts", {})
+    summary = {k: ({n: v for n, v in t.items() if n in counts}
+                   if isinstance(t, dict) and t and all(n.isdigit() for n in t) else t)
+               for k, t in census.summary.items() if k != "files"}
+    write_jsonl(out / "catalog.jsonl", census.entries, within=out)
+    (out / "catalog.sqlite").unlink(missing_ok=True)  # queries build it from the records
+    summary["symmetry"] = str(census.symmetry)
+    summary["files"] = {"catalog.jsonl": file_digest(out / "catalog.jsonl")}
+    write_atomic(out / "summary.json", json.dumps(summary, indent=1) + "\n", within=out)
+    return out

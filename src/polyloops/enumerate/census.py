@@ -14,7 +14,9 @@ is the one place that reads them.
 
 from __future__ import annotations
 
+import hashlib
 import json
+import re
 from collections.abc import Iterator
 from dataclasses import dataclass
 from functools import cached_property
@@ -23,8 +25,8 @@ from typing import Any
 
 from polyloops.core.symmetry import Symmetry
 from polyloops.enumerate import records
-from polyloops.enumerate.records import CatalogEntry, CatalogError
-from polyloops.io.files import InputError, read_text
+from polyloops.enumerate.records import CatalogEntry, CatalogError, CatalogMismatchError
+from polyloops.io.files import InputError, read_bytes, read_text
 
 
 @dataclass(frozen=True)
@@ -113,6 +115,13 @@ def default_catalog(genus: int = 0) -> Path:
     return Path(str(files("polyloops") / "catalogs" / f"genus{genus}"))
 
 
+def _read_bytes(path: Path) -> bytes:
+    try:
+        return read_bytes(path, stdin=False)
+    except InputError as err:
+        raise CatalogError(str(err)) from None
+
+
 def _read_text(path: Path) -> str:
     """A catalog file's text: a regular file only (a FIFO or ``/dev/zero`` in its place is
     refused, not read)."""
@@ -123,26 +132,111 @@ def _read_text(path: Path) -> str:
 
 
 def read_entries(directory: Path) -> list[CatalogEntry]:
-    """The entries of ``directory/catalog.jsonl``, in file order; a bad line raises
+    """The entries of ``directory/catalog.jsonl``, in file order; a bad line (not JSON, not a
+    record, a name that is no class name, a signature that does not decode) raises
     :class:`CatalogError` naming the file and line."""
+    return _read_entries(directory)[0]
+
+
+def _read_entries(directory: Path) -> tuple[list[CatalogEntry], list[int]]:
+    """The entries and the number of darts each one's signature names."""
+    from polyloops.core.canonical import SignatureError, signature_darts
+
     path = Path(directory) / "catalog.jsonl"
-    out = []
+    out, sizes = [], []
     for i, line in enumerate(_read_text(path).splitlines()):
         try:
-            out.append(CatalogEntry.from_json(json.loads(line)))
-        except (ValueError, KeyError, TypeError, AttributeError) as err:
+            entry = CatalogEntry.from_json(json.loads(line))
+            if not NAME.fullmatch(entry.name):
+                raise ValueError(f"{entry.name[:40]!r} is not a class name such as P16.2 or T32.1")
+            darts = signature_darts(entry.signature)
+        except SignatureError as err:
+            raise CatalogError(f"{path}: line {i + 1}: not a catalog record (its signature: {err})") from None
+        except (ValueError, KeyError, TypeError, AttributeError, RecursionError) as err:
             raise CatalogError(f"{path}: line {i + 1}: not a catalog record ({err})") from None
-    return out
+        out.append(entry)
+        sizes.append(darts)
+    return out, sizes
 
 
-def read_catalog(directory: Path | None = None) -> Census:
-    """A catalog directory as a :class:`Census`: its entries in catalog order and its summary.
+NAME = re.compile(r"(T?[PRL]?|T)[1-9][0-9]{0,5}\.[1-9][0-9]{0,8}")
+
+
+def _digest(path: Path) -> str | None:
+    digest = hashlib.sha256()
+    try:
+        digest.update(_read_bytes(path))
+    except CatalogError:
+        return None
+    return digest.hexdigest()
+
+
+def catalog_problem(directory: Path, entries: list[CatalogEntry], summary: dict[str, Any],
+                    darts: list[int]) -> str | None:
+    """What makes the records of a catalog not prove what its summary claims, or ``None``:
+    the files differ from the digests the summary records; two modes; the records out of
+    catalog order or their names not the ones :func:`~polyloops.enumerate.records.class_names`
+    gives; a signature twice; a record whose corners or faces its signature contradicts; a
+    count per corner count that differs from the summary's.  ``darts`` gives the size of the
+    map each record's signature names (read from its head, after its check characters,
+    :func:`~polyloops.core.canonical.signature_darts`): cheap enough for every reader."""
+    genus = int(summary.get("genus", 0))
+    for name, want in (summary.get("files") or {}).items():
+        path = directory / str(name)
+        if name == "catalog.sqlite" and not (path.exists() or path.is_symlink()):
+            continue  # a shipped catalog leaves the database out: queries build it from the records
+        if _digest(path) != want:
+            return (f"{path} is not the file {directory / 'summary.json'} records (its digest differs: "
+                    "edited, or written by a run that was stopped; run the build again)")
+    modes = {e.symmetry for e in entries}
+    stated = summary.get("symmetry")
+    if len(modes) > 1 or (stated is not None and entries and str(entries[0].symmetry) != stated):
+        return f"records in modes {sorted(str(m) for m in modes)}, the summary's mode {stated}"
+    mode = str(entries[0].symmetry) if entries else (stated or "full")
+    order = sorted(entries, key=lambda e: (e.corners, e.signature))
+    seen: set[str] = set()
+    for e in entries:
+        if e.signature in seen:
+            return f"class {e.name} is listed twice (its signature appears on two records)"
+        seen.add(e.signature)
+    if order != entries:
+        return "the records are not in catalog order (by corners, then signature)"
+    names = records.class_names([e.record for e in entries], mode, genus) if genus in records.GENUS_PREFIX \
+        else [e.name for e in entries]
+    for e, name in zip(entries, names, strict=True):
+        if e.name != name:
+            return f"record {e.name} should be named {name} (names rank each corner count's signatures)"
+    for e, size in zip(entries, darts, strict=True):
+        faces, corners = size // 4, size // 4 + 2 - 2 * genus
+        if size % 4 or e.corners != corners or e.record.faces != faces:
+            return (f"record {e.name} says {e.corners} corners and {e.record.faces} faces; its signature "
+                    f"names a map of genus {genus} with {corners} corners and {faces} faces")
+    counts = summary.get("counts", {})
+    listed: dict[int, int] = {}
+    for e in entries:
+        listed[e.corners] = listed.get(e.corners, 0) + 1
+    beyond = sorted(n for n in listed if str(n) not in counts)
+    if beyond:
+        return f"records with {beyond[0]} corners, which the summary does not count"
+    for n, row in sorted(counts.items(), key=lambda kv: int(kv[0])):
+        claimed, held = row.get(mode), listed.get(int(n), 0)
+        if claimed != held:
+            return (f"the summary counts {claimed} {mode} classes with {n} corners; "
+                    f"catalog.jsonl holds {held}")
+    return None
+
+
+def read_catalog(directory: Path | str | None = None, *, genus: int | None = None) -> Census:
+    """A catalog directory as a :class:`Census`, checked: its records must prove what its
+    summary claims (:func:`catalog_problem`).
 
     Parameters
     ----------
     directory:
-        A directory written by :func:`~polyloops.enumerate.catalog_run.build_catalog` (default:
-        the shipped ``catalogs/genus0``).
+        A directory written by :func:`~polyloops.enumerate.catalog_run.build_catalog`.
+    genus:
+        Without ``directory``: the shipped catalog of this genus (default 0); with it, the
+        genus the catalog must have.
 
     Returns
     -------
@@ -151,23 +245,45 @@ def read_catalog(directory: Path | None = None) -> Census:
     Raises
     ------
     CatalogError
-        When a file is missing or a line is not a record (the message names file and line).
+        When a file is missing, a line is not a record (the message names file and line), or
+        the catalog is of another genus than ``genus``.
+    CatalogMismatchError
+        When the records do not prove the summary's counts (the message names both numbers).
 
     >>> census = read_catalog()
     >>> census.symmetry, census.max_corners >= 26, census.by_name["P8.1"].record.automorphisms
     (<Symmetry.FULL: 'full'>, True, 48)
+    >>> read_catalog(genus=1)["T32.1"].corners
+    32
     """
-    directory = Path(directory) if directory is not None else default_catalog()
-    entries = read_entries(directory)
+    if directory is None:
+        wanted = 0 if genus is None else genus
+        directory = default_catalog(wanted)
+        if not (directory / "catalog.jsonl").is_file():
+            raise CatalogError(f"no catalog of genus {wanted} ships with polyloops (the shipped ones: "
+                               f"genus {', '.join(str(g) for g in SHIPPED_GENERA)})")
+    directory = Path(directory)
+    entries, darts = _read_entries(directory)
     path = directory / "summary.json"
+    if not (path.exists() or path.is_symlink()):
+        raise CatalogError(f"{path}: missing (a catalog run that was stopped while it wrote its files; "
+                           "run it again to finish them)")
     try:
         summary = json.loads(_read_text(path))
-    except ValueError as err:
+    except (ValueError, RecursionError) as err:
         raise CatalogError(f"{path}: not JSON ({err})") from None
     problem = summary_problem(summary)
     if problem:
         raise CatalogError(f"{path}: not a catalog summary ({problem})")
+    if genus is not None and int(summary.get("genus", 0)) != genus:
+        raise CatalogError(f"{directory}: a catalog of genus {summary.get('genus', 0)}, not {genus}")
+    problem = catalog_problem(directory, entries, summary, darts)
+    if problem:
+        raise CatalogMismatchError(f"{directory}: not a catalog its records prove: {problem}")
     return Census(directory, tuple(entries), summary)
+
+
+SHIPPED_GENERA = (0, 1)
 
 
 def summary_problem(summary: Any) -> str | None:
@@ -190,30 +306,33 @@ def summary_problem(summary: Any) -> str | None:
 
 
 def query(out: Path, where: str) -> tuple[list[str], list[tuple[Any, ...]]]:
-    """Rows of ``DIR/catalog.sqlite`` (or, where the directory has none, of the same table built
-    in memory from ``DIR/catalog.jsonl``) matching an SQL WHERE clause
-    (:func:`polyloops.enumerate.records.query`).
+    """Rows of a catalog matching an SQL WHERE clause (:func:`polyloops.enumerate.records.query`),
+    after the catalog is read and checked (:func:`read_catalog`): from ``DIR/catalog.sqlite``
+    (its digest checked too), or, where the directory has none, from the same table built in
+    memory from the records.
 
     >>> columns, rows = query(default_catalog(), "corners = 16")
     >>> columns[:3], [r[0] for r in rows]
     (['name', 'signature', 'corners'], ['P16.1', 'P16.2'])
     """
-    return records.query(Path(out) / "catalog.sqlite", where, _entries_without_database(Path(out)))
+    census = read_catalog(out)
+    return records.query(census.directory / "catalog.sqlite", where, _entries_without_database(census))
 
 
 def export_csv(out: Path) -> str:
-    """The whole ``polycubes`` table of ``DIR/catalog.sqlite`` as CSV text."""
-    return records.csv_text(Path(out) / "catalog.sqlite", _entries_without_database(Path(out)))
+    """The whole ``polycubes`` table of a catalog (read and checked as :func:`query` says) as CSV."""
+    census = read_catalog(out)
+    return records.csv_text(census.directory / "catalog.sqlite", _entries_without_database(census))
 
 
-def _entries_without_database(out: Path) -> list[CatalogEntry] | None:
-    """The records of a catalog that has ``catalog.jsonl`` but no ``catalog.sqlite`` (the
-    shipped catalog: the table is built in memory, so the package carries each record once);
-    ``None`` when the database is there (or neither is, and the query says so)."""
-    database = out / "catalog.sqlite"
-    if database.exists() or database.is_symlink() or not (out / "catalog.jsonl").exists():
+def _entries_without_database(census: Census) -> list[CatalogEntry] | None:
+    """The records of a catalog that has no ``catalog.sqlite`` (the shipped catalog: the table
+    is built in memory, so the package carries each record once); ``None`` when the database
+    is there."""
+    database = census.directory / "catalog.sqlite"
+    if database.exists() or database.is_symlink():
         return None
-    return read_entries(out)
+    return list(census.entries)
 
 
 @dataclass(frozen=True)

@@ -579,3 +579,69 @@ def check_certificate(lines: Iterable[str], directory: Path | Census) -> Certifi
             problems.append(CertificateProblem(0, sig, "catalog class missing from the certificate",
                                                names[sig]))
     return CertificateCheck(header, checked, covered, records, tuple(problems), genus)
+
+
+CERTIFICATE_NAME = "reachability-certificate.jsonl"
+
+
+def shipped_certificate(genus: int = 0) -> Path:
+    """Where the certificate of the shipped catalog of ``genus`` is installed.
+
+    >>> shipped_certificate(1).name
+    'reachability-certificate.jsonl'
+    """
+    from polyloops.enumerate.census import default_catalog
+
+    return default_catalog(genus) / CERTIFICATE_NAME
+
+
+@dataclass(frozen=True)
+class Certificate:
+    """A reachability certificate read from a file: its checked header and its lines.  It
+    proves nothing until :meth:`check` replays it against a catalog."""
+
+    path: Path
+    header: dict[str, Any]
+    lines: tuple[str, ...]
+
+    @property
+    def genus(self) -> int:
+        """The genus the header's kind names."""
+        return next(g for g, kind in CERTIFICATE_KINDS.items() if kind == self.header["kind"])
+
+    @property
+    def max_corners(self) -> int:
+        """The range the header claims (what :meth:`check` confirms or refuses)."""
+        return int(self.header["max_corners"])
+
+    def check(self, catalog: Path | Census | None = None) -> CertificateCheck:
+        """:func:`check_certificate` against ``catalog`` (default: the shipped catalog of the
+        certificate's genus).
+
+        >>> check = read_certificate(genus=1).check()
+        >>> check.valid, check.genus, check.checked_corners >= 44
+        (True, 1, True)
+        """
+        return check_certificate(self.lines, read_catalog(genus=self.genus) if catalog is None else catalog)
+
+
+def read_certificate(path: Path | str | None = None, *, genus: int | None = None) -> Certificate:
+    """A certificate file (default: the shipped one of ``genus``, 0 unless given), its header
+    checked (:func:`read_header`).
+
+    Raises
+    ------
+    ConjectureError
+        When the first line is not a certificate header, or its genus is not ``genus``.
+    polyloops.io.files.InputError
+        When the file cannot be read.
+    """
+    from polyloops.io.files import read_text
+
+    where = shipped_certificate(0 if genus is None else genus) if path is None else Path(path)
+    lines = tuple(read_text(where, stdin=False).splitlines())
+    header = read_header(lines[0] if lines else "")
+    cert = Certificate(where, header, lines)
+    if genus is not None and cert.genus != genus:
+        raise ConjectureError(f"{where}: a genus-{cert.genus} certificate, not genus {genus}")
+    return cert

@@ -375,7 +375,7 @@ class LoopsGenerator(Generator):
 
         top, top_search = context if context is not None else (None, None)
         if isinstance(top, str):  # a spilled top: read this share's part
-            top, top_search = read_frontier_share(top, job.res, job.mod, bool(top_search))
+            top, top_search = read_frontier_share(top, job.n, job.res, job.mod, bool(top_search))
         stats = [SearchStats(**top_search)] if top_search else []
         # a given ``top`` is this share's part of the frontier (share_of): all of it is ours
         res, mod = (0, 1) if top is not None else (job.res, job.mod)
@@ -419,69 +419,79 @@ def loops_frontier(max_n: int, workers: int = 1, dask: str | None = None) -> tup
     return top, sum(stats, SearchStats()).as_dict()
 
 
-TOP_MAGIC = b"polyloops-top-1\n"
+def frontier_tag(max_n: int) -> Any:
+    """What a spilled top must be to serve a loops run to ``max_n`` corners: this search, its
+    schema and cuts, and the bound."""
+    import polyloops.enumerate.arrangements as arrangements
+    from polyloops.enumerate.spill import SpillTag
+
+    return SpillTag("loops-top", {"schema": SCHEMA_VERSION, "colour_cut": arrangements.COLOUR_CUT,
+                                  "meet_cut": arrangements.MEET_CUT}, max_n)
+
+
+def _node_bytes(kind: bytes, node: Any) -> bytes:
+    return kind + bytes([node.candidate]) + node.code
 
 
 def spill_frontier(max_n: int, workers: int, dask: str | None, where: Path) -> Path:
-    """The top of the loops search for ``max_n`` corners in a file of ``where`` (computed and
-    written atomically unless a complete one is there): a header line with the split level and
-    the top's statistics, then one record a node (``R`` a root, ``S`` a shallow candidate, a
-    byte whether it is a candidate, a 4-byte length, the code)."""
-    import struct
+    """The top of the loops search for ``max_n`` corners in ``where/loops-top-N.bin``
+    (:mod:`polyloops.enumerate.spill`; meta: the split level and the top's statistics; one
+    record a node: ``R`` a root or ``S`` a shallow candidate, a byte whether it is a
+    candidate, the code).  Kept when the file there is proved to be this run's, computed and
+    written atomically otherwise.
 
-    import polyloops.enumerate.arrangements as arrangements
-    from polyloops.io.files import writing
+    Raises
+    ------
+    SpillRefused
+        When the name is a link or not a regular file.
+    """
+    from polyloops.enumerate.spill import SpillMismatch, iter_spill, write_spill
 
     path = where / f"loops-top-{max_n}.bin"
-    made_by = {"version": SCHEMA_VERSION, "colour_cut": arrangements.COLOUR_CUT,
-               "meet_cut": arrangements.MEET_CUT}
-    if path.is_file():  # a top written by a run of this search: read, not recomputed
-        with open(path, "rb") as fh:
-            try:
-                if fh.read(len(TOP_MAGIC)) == TOP_MAGIC:
-                    (size,) = struct.unpack("<I", fh.read(4))
-                    if json.loads(fh.read(size)).get("made_by") == made_by:
-                        return path
-            except (struct.error, ValueError):
-                pass  # damaged: computed again
+    tag = frontier_tag(max_n)
+    try:
+        iter_spill(path, tag)  # proved (header, size, digest) before it is used
+        return path
+    except SpillMismatch:
+        pass  # another run's, damaged, or absent: computed again
     top, top_search = loops_frontier(max_n, workers, dask)
-    with writing(path) as pending, open(pending.path, "wb") as fh:
-        fh.write(TOP_MAGIC)
-        header = json.dumps({"loops": top.loops, "search": top_search, "made_by": made_by}).encode()
-        fh.write(struct.pack("<I", len(header)) + header)
-        for kind, nodes in ((b"R", top.roots), (b"S", top.shallow)):
-            for node in nodes:
-                fh.write(kind + struct.pack("<BI", node.candidate, len(node.code)) + node.code)
-    del top  # the workers read their shares from the file
+    nodes = [_node_bytes(b"R", node) for node in top.roots] + [_node_bytes(b"S", node) for node in top.shallow]
+    write_spill(path, tag, nodes, {"loops": top.loops, "search": top_search})
+    del top, nodes  # the workers read their shares from the file
     return path
 
 
-def read_frontier_share(path: str, res: int, mod: int,
+def read_frontier_share(path: str, max_n: int, res: int, mod: int,
                         with_search: bool) -> tuple[Any, dict[str, int] | None]:
-    """Share ``res`` of ``mod`` of a spilled top (:func:`spill_frontier`): its roots (rank
-    ``res`` modulo ``mod``), the shallow candidates for share 0, and the top's statistics when
-    ``with_search``; only this share's nodes are kept in memory."""
-    import struct
+    """Share ``res`` of ``mod`` of a spilled top (:func:`spill_frontier`) for ``max_n``
+    corners: its roots (rank ``res`` modulo ``mod``), the shallow candidates for share 0, and
+    the top's statistics when ``with_search``; only this share's nodes are kept in memory.
 
+    Raises
+    ------
+    SpillMismatch
+        When the file is not the top of a run to ``max_n`` corners (or was changed).
+    """
     from polyloops.enumerate.arrangements import Arrangement, Frontier
+    from polyloops.enumerate.spill import SpillMismatch, iter_spill
 
+    meta, records = iter_spill(Path(path), frontier_tag(max_n))
     roots, shallow = [], []
-    with open(path, "rb") as fh:
-        if fh.read(len(TOP_MAGIC)) != TOP_MAGIC:
-            raise ValueError(f"{path}: not a spilled top of the loops search")
-        (size,) = struct.unpack("<I", fh.read(4))
-        header = json.loads(fh.read(size))
-        rank = 0
-        while kind := fh.read(1):
-            candidate, size = struct.unpack("<BI", fh.read(5))
-            code = fh.read(size)
-            if kind == b"R":
-                if rank % mod == res:
-                    roots.append(Arrangement(code, bool(candidate)))
-                rank += 1
-            elif res == 0:
-                shallow.append(Arrangement(code, bool(candidate)))
-    return Frontier(header["loops"], tuple(roots), tuple(shallow)), header["search"] if with_search else None
+    rank = 0
+    for rec in records:
+        kind, node = rec[:1], Arrangement(rec[2:], bool(rec[1]))
+        if kind == b"R":
+            if rank % mod == res:
+                roots.append(node)
+            rank += 1
+        elif kind == b"S":
+            if res == 0:
+                shallow.append(node)
+        else:
+            raise SpillMismatch(f"{path}: a node of unknown kind")
+    if type(meta.get("loops")) is not int or not isinstance(meta.get("search"), dict):
+        raise SpillMismatch(f"{path}: no statistics of the top")
+    return Frontier(meta["loops"], tuple(roots), tuple(shallow)), meta["search"] if with_search else None
 
 
 def share_of(top: Any, res: int, mod: int) -> Any:
@@ -531,7 +541,7 @@ class TorusGenerator(Generator):
         from polyloops.enumerate.torus import TorusSearchStats, candidate_torus_arrangements
 
         stats: list[TorusSearchStats] = []
-        bases = read_bases(context) if context is not None else None
+        bases = read_bases(context, job.n // 3) if context is not None else None
         for a in candidate_torus_arrangements(job.n, job.res, job.mod, on_stats=stats.append, bases=bases):
             if a.crossings >= job.low:
                 yield a.quad_mesh()
@@ -540,64 +550,61 @@ class TorusGenerator(Generator):
         tally.visited += total.get("states", 0) + total.get("region_choices", 0)
 
 
-BASES_MAGIC = b"polyloops torus bases\n"
+def bases_tag(max_crossings: int) -> Any:
+    """What a spilled first stage must be to serve a torus run to ``max_crossings``."""
+    from polyloops.enumerate.spill import SpillTag
+
+    return SpillTag("torus-bases", {"schema": SCHEMA_VERSION}, max_crossings)
 
 
 def spill_bases(max_crossings: int, where: Path) -> Path:
     """The first stage of the torus search (:func:`polyloops.enumerate.torus.first_stage`) in
-    a file of ``where``, computed and written atomically unless a complete one is there: a
-    header line with the statistics, then each arrangement as a 2-byte length and its
-    ``twin`` array."""
-    import struct
+    ``where/torus-bases-K.bin`` (:mod:`polyloops.enumerate.spill`; meta: the statistics; one
+    record an arrangement's ``twin`` array).  Kept when the file there is proved to be this
+    run's, computed and written atomically otherwise.
 
+    Raises
+    ------
+    SpillRefused
+        When the name is a link or not a regular file.
+    """
     from polyloops.enumerate import torus
-    from polyloops.io.files import writing
+    from polyloops.enumerate.spill import SpillMismatch, write_spill
 
     path = where / f"torus-bases-{max_crossings}.bin"
-    if path.is_file():
-        try:
-            read_bases(str(path))
-            return path
-        except ValueError:
-            pass  # damaged: listed again
+    try:
+        read_bases(str(path), max_crossings)
+        return path
+    except SpillMismatch:
+        pass  # another run's, damaged, or absent: listed again
     bases, stats = torus.first_stage(max_crossings)
-    with writing(path) as pending, open(pending.path, "wb") as fh:
-        fh.write(BASES_MAGIC)
-        header = json.dumps({"version": SCHEMA_VERSION, "count": len(bases), "search": vars(stats)}).encode()
-        fh.write(struct.pack("<I", len(header)) + header)
-        for raw in bases:
-            fh.write(struct.pack("<H", len(raw)) + raw)
+    write_spill(path, bases_tag(max_crossings), bases, {"search": vars(stats)})
     torus._bases.cache_clear()  # the workers read the file
+    read_bases.cache_clear()
     return path
 
 
 @lru_cache(maxsize=2)
-def read_bases(path: str) -> tuple[tuple[bytes, ...], Any]:
-    """The arrangements and statistics :func:`spill_bases` wrote (kept for the process's
-    later shares); ``ValueError`` when the file is not a complete one."""
-    import struct
+def read_bases(path: str, max_crossings: int) -> tuple[tuple[bytes, ...], Any]:
+    """The arrangements and statistics :func:`spill_bases` wrote for ``max_crossings`` (kept
+    for the process's later shares).
 
+    Raises
+    ------
+    SpillMismatch
+        When the file is not the first stage of a run to ``max_crossings`` (or was changed).
+    """
+    from polyloops.enumerate.spill import SpillMismatch, read_spill
     from polyloops.enumerate.torus import TorusSearchStats
 
-    data = Path(path).read_bytes()
-    if not data.startswith(BASES_MAGIC):
-        raise ValueError(f"{path}: not a list of torus arrangements")
-    at = len(BASES_MAGIC)
+    spill = read_spill(Path(path), bases_tag(max_crossings))
     try:
-        (size,) = struct.unpack_from("<I", data, at)
-        header = json.loads(data[at + 4:at + 4 + size])
-        at += 4 + size
-        bases = []
-        while at < len(data):
-            (length,) = struct.unpack_from("<H", data, at)
-            bases.append(data[at + 2:at + 2 + length])
-            at += 2 + length
-        stats = TorusSearchStats(**header["search"])
-    except (struct.error, ValueError, KeyError, TypeError) as exc:  # TypeError: other statistics
-        raise ValueError(f"{path}: damaged ({exc})") from exc
-    if header.get("version") != SCHEMA_VERSION or len(bases) != header.get("count") or at != len(data):
-        raise ValueError(f"{path}: incomplete or from another version")
-    return tuple(bases), stats
+        stats = TorusSearchStats(**spill.meta["search"])
+    except (KeyError, TypeError) as exc:  # TypeError: other statistics
+        raise SpillMismatch(f"{path}: no statistics of this search ({exc})") from None
+    if any(len(raw) % 2 or len(raw) > 0xFFFF for raw in spill.records):
+        raise SpillMismatch(f"{path}: an arrangement of the wrong size")
+    return spill.records, stats
 
 
 register(PlantriGenerator())

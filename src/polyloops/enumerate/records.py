@@ -30,12 +30,25 @@ from polyloops.core.errors import PolyloopsError
 from polyloops.core.symmetry import Symmetry
 from polyloops.io.files import InputError, check_regular, read_only_uri, write_atomic, writing
 
-__all__ = ["COLUMNS", "GENUS_PREFIX", "NAME_PREFIX", "CatalogEntry", "CatalogError", "CatalogRecord",
+__all__ = ["COLUMNS", "GENUS_PREFIX", "NAME_PREFIX", "CatalogEntry", "CatalogError", "CatalogMismatchError",
+           "CatalogRecord",
            "class_names", "csv_text", "fill_tables", "query", "row", "write_jsonl", "write_sqlite"]
 
 
 class CatalogError(PolyloopsError, ValueError):
-    """A catalog directory that cannot be read; the message names the file (and line)."""
+    """A catalog directory that cannot be read; the message names the file (and line).
+    ``status`` is the command line's exit status for it: 2, bad input."""
+
+    status = 2
+
+
+class CatalogMismatchError(CatalogError):
+    """A catalog read whole whose records do not prove what its summary claims (a count per
+    corner count that differs, a record twice, a record whose corners its signature
+    contradicts, files that do not match the digests the summary records): checked, and not a
+    catalog, so the command line exits 1.  The message names both sides."""
+
+    status = 1
 
 
 @dataclass(frozen=True)
@@ -158,10 +171,12 @@ def row(entry: CatalogEntry) -> list[Any]:
             int(rec.irreducible)]
 
 
-def write_jsonl(path: str | os.PathLike[str], entries: Iterable[CatalogEntry]) -> None:
-    """``catalog.jsonl``: one compact JSON object a line, through the shared writer."""
+def write_jsonl(path: str | os.PathLike[str], entries: Iterable[CatalogEntry], *,
+                within: str | os.PathLike[str] | None = None) -> None:
+    """``catalog.jsonl``: one compact JSON object a line, through the shared writer (confined
+    to ``within``, as :func:`polyloops.io.files.write_atomic` says)."""
     lines = [json.dumps(e.to_json(), separators=(",", ":")) for e in entries]
-    write_atomic(path, "\n".join(lines) + ("\n" if lines else ""))
+    write_atomic(path, "\n".join(lines) + ("\n" if lines else ""), within=within)
 
 
 def fill_tables(con: sqlite3.Connection, entries: Iterable[CatalogEntry], symmetry: Symmetry) -> None:
@@ -179,10 +194,11 @@ def fill_tables(con: sqlite3.Connection, entries: Iterable[CatalogEntry], symmet
     con.commit()
 
 
-def write_sqlite(path: str | os.PathLike[str], entries: Iterable[CatalogEntry], symmetry: Symmetry) -> None:
+def write_sqlite(path: str | os.PathLike[str], entries: Iterable[CatalogEntry], symmetry: Symmetry, *,
+                 within: str | os.PathLike[str] | None = None) -> None:
     """``catalog.sqlite`` (:func:`fill_tables`), built in a temporary file and put in place
     whole."""
-    with writing(path) as pending:
+    with writing(path, within=within) as pending:
         con = sqlite3.connect(pending.path)
         fill_tables(con, entries, symmetry)
         con.close()
@@ -202,6 +218,10 @@ def query(path: str | os.PathLike[str], where: str,
         is bad.
     """
     name = os.fspath(path)
+    try:
+        where.encode("utf-8")
+    except UnicodeEncodeError:  # bytes the shell passed through that are not UTF-8
+        raise CatalogError(f"{os.path.dirname(name) or '.'}: bad query: the WHERE clause is not UTF-8 text") from None
     if entries is not None:
         con = sqlite3.connect(":memory:")
         fill_tables(con, entries, entries[0].symmetry if entries else Symmetry.FULL)

@@ -147,15 +147,57 @@ def _stream_into(out: Output, data: bytes | None = None, source: str | None = No
             fh.write(data or b"")
 
 
-def write_atomic(path: str | os.PathLike[str], text: str | bytes) -> None:
+def check_within(path: str | os.PathLike[str], root: str | os.PathLike[str]) -> None:
+    """Refuse a file an output directory's writer would place outside ``root`` or write
+    through anything but a regular file: a name that leaves it (``../x``, an absolute path), a
+    symbolic link on the way or in its place, a device or FIFO.  Such writers (the gallery's
+    pages, a catalog's files, a run's ``parts/``) own every name below their directory, so they
+    never follow a link out of it.
+
+    >>> check_within("site/a/b.html", "site")
+    >>> check_within("site/../b.html", "site")
+    Traceback (most recent call last):
+    ...
+    polyloops.io.files.OutputError: site/../b.html: outside the output directory site
+    """
+    name, top = os.path.abspath(os.fspath(path)), os.path.abspath(os.fspath(root))
+    rel = os.path.relpath(name, top)
+    if rel == os.curdir or rel.split(os.sep)[0] == os.pardir or os.path.isabs(rel):
+        raise OutputError(f"{os.fspath(path)}: outside the output directory {os.fspath(root)}")
+    at = top
+    parts = rel.split(os.sep)
+    for i, part in enumerate(parts):
+        at = os.path.join(at, part)
+        try:
+            info = os.lstat(at)
+        except FileNotFoundError:
+            return
+        except OSError as err:
+            raise OutputError(f"{os.fspath(path)}: cannot write: {_reason(err)}") from None
+        if stat.S_ISLNK(info.st_mode):
+            raise OutputError(f"{at}: a symbolic link inside the output directory {os.fspath(root)}; "
+                              "polyloops does not write through it")
+        last = i == len(parts) - 1
+        if last and not stat.S_ISREG(info.st_mode):
+            raise OutputError(f"{at}: not a regular file; polyloops does not replace it")
+        if not last and not stat.S_ISDIR(info.st_mode):
+            raise OutputError(f"{at}: not a directory")
+
+
+def write_atomic(path: str | os.PathLike[str], text: str | bytes, *,
+                 within: str | os.PathLike[str] | None = None) -> None:
     """Write text (UTF-8) or bytes to ``path`` as the module says: a regular file through a
-    temporary file and a rename, a device or FIFO directly, ``-`` to standard output.
+    temporary file and a rename, a device or FIFO directly, ``-`` to standard output.  With
+    ``within``, the file must be a regular file (or new) inside that directory, reached
+    through no link (:func:`check_within`).
 
     Raises
     ------
     OutputError
         When ``path`` must not be replaced or the write fails (no space, no permission).
     """
+    if within is not None:
+        check_within(path, within)
     data = text.encode("utf-8") if isinstance(text, str) else text
     out = resolve_output(path)
     if out.sink is not Sink.REPLACE:
@@ -177,7 +219,8 @@ class Pending:
 
 
 @contextlib.contextmanager
-def writing(path: str | os.PathLike[str], suffix: str = ".tmp") -> Iterator[Pending]:
+def writing(path: str | os.PathLike[str], suffix: str = ".tmp", *,
+            within: str | os.PathLike[str] | None = None) -> Iterator[Pending]:
     """For writers that need a file name (matplotlib, meshio, SQLite): yields a temporary file
     to write (``.path``, with ``suffix`` for writers that choose a format by extension), and
     puts it in place as the module says once the block succeeds; on failure nothing changes
@@ -189,7 +232,11 @@ def writing(path: str | os.PathLike[str], suffix: str = ".tmp") -> Iterator[Pend
     ...         _ = pathlib.Path(out.path).write_text("made by a library")
     ...     print((pathlib.Path(tmp) / "b.txt").read_text())
     made by a library
+
+    ``within`` confines the file as :func:`write_atomic` says.
     """
+    if within is not None:
+        check_within(path, within)
     out = resolve_output(path)
     where = os.path.dirname(out.target) if out.sink is Sink.REPLACE else None
     name = os.path.basename(out.target)
@@ -288,5 +335,5 @@ def read_only_uri(path: str | os.PathLike[str]) -> str:
 
 
 __all__ = ["MAX_FILE_BYTES", "STDIO", "InputError", "Output", "OutputError", "Pending", "Sink",
-           "check_regular", "read_bytes", "read_only_uri", "read_text", "resolve_output",
+           "check_regular", "check_within", "read_bytes", "read_only_uri", "read_text", "resolve_output",
            "write_atomic", "writing"]

@@ -213,5 +213,5 @@ def write_class_pages(out: Path, entries: list[CatalogEntry], graph: MoveGraph, 
                     write_thumbnail(step.structure, picture)
                 step_images[(e.name, k)] = f"../img/steps/{e.name}-{k}.png"
     for e in entries:
-        write_atomic(out / "class" / f"{e.name}.html", class_page(e, graph, listed, step_images))
-    write_atomic(out / "moves.html", moves_page(entries, graph, title))
+        write_atomic(out / "class" / f"{e.name}.html", class_page(e, graph, listed, step_images), within=out)
+    write_atomic(out / "moves.html", moves_page(entries, graph, title), within=out)

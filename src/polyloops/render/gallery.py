@@ -31,7 +31,7 @@ from pathlib import Path
 
 from polyloops.core.corners import CATEGORIES
 from polyloops.enumerate.census import CatalogEntry, Census
-from polyloops.io.files import write_atomic
+from polyloops.io.files import check_within, write_atomic
 
 
 @dataclass(frozen=True)
@@ -80,8 +80,16 @@ def build_gallery(census: Census, out: str | Path, limit: int | None = None,
     from polyloops.enumerate.parallel import run_jobs
     from polyloops.render.viewer import write_plotly_js
 
+    from polyloops.enumerate.census import NAME
+
     out = Path(out)
     entries = list(census.entries[:limit] if limit is not None else census.entries)
+    for entry in entries:  # names become file names: only class names, never a path
+        if not NAME.fullmatch(entry.name):
+            raise ValueError(f"record {entry.name[:60]!r} is not named as a class (P16.2, T32.1); "
+                             "its picture and page would not stay in the site")
+    for sub in ("img", "view", "class", "img/steps"):
+        check_within(out / sub / "x", out)
     (out / "img").mkdir(parents=True, exist_ok=True)
     (out / "view").mkdir(exist_ok=True)
     if not (out / "view" / "plotly.min.js").exists():
@@ -89,6 +97,8 @@ def build_gallery(census: Census, out: str | Path, limit: int | None = None,
     tasks = []
     for entry in entries:
         picture, page = out / "img" / f"{entry.name}.png", out / "view" / f"{entry.name}.html"
+        check_within(picture, out)
+        check_within(page, out)
         if picture.exists() and page.exists():
             if progress is not None:
                 progress(entry.name)
@@ -99,8 +109,12 @@ def build_gallery(census: Census, out: str | Path, limit: int | None = None,
         if progress is not None:
             progress(name)
     up_to = {"full": "rotations and reflections", "rotation": "rotations", "labelled": "renumbering"}
-    title = (f"Genus-{census.genus} polycubes through {census.max_corners} corners, "
-             f"up to {up_to[str(census.symmetry)]}")
+    if limit is None or len(entries) == len(census.entries):
+        span = f"through {census.max_corners} corners"
+    else:  # a limited gallery says what it shows, not the catalog's whole range
+        span = (f"the first {len(entries)} of {len(census.entries)} classes "
+                f"({entries[0].corners if entries else 0} to {entries[-1].corners if entries else 0} corners)")
+    title = f"Genus-{census.genus} polycubes, {span}, up to {up_to[str(census.symmetry)]}"
     full = str(census.symmetry) == "full"  # the move graph names classes by full signature
     if full:
         from polyloops.enumerate.move_graph import move_graph
@@ -109,7 +123,7 @@ def build_gallery(census: Census, out: str | Path, limit: int | None = None,
         listed = Census(census.directory, tuple(entries), census.summary)
         write_class_pages(out, entries, move_graph(listed, workers=workers), title)
     write_atomic(out / "index.html", gallery_html([_row(e) for e in entries], title, class_pages=full,
-                                                  genus=census.genus))
+                                                  genus=census.genus), within=out)
     return GalleryBuild(out, len(entries))
 
 
