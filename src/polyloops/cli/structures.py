@@ -146,7 +146,7 @@ def cmd_identify(args: argparse.Namespace) -> int:
     try:
         found = identify(ls, args.catalog)
     except CatalogError as err:
-        raise CliError(f"{args.catalog or 'the shipped catalog'}: not a catalog directory ({err})") from None
+        raise CliError(str(err), err.status) from None
     if found.name is not None:
         text = f"{args.file}: {found.name}"
     elif found.genus != found.catalog_genus:
