@@ -634,7 +634,6 @@ def test_a_toy_generator_builds_a_catalog_through_the_pipeline(tmp_path):
 def test_crosschecks_agree_with_the_shipped_catalog_and_catch_a_gap(tmp_path):
     """The sampled plantri comparison and the reachability comparison find nothing missing in
     the shipped catalog, and both notice a class taken out of a copy of it."""
-    import shutil
 
     from polyloops.enumerate.crosscheck import plantri_sample, reach_agreement
 
@@ -653,8 +652,8 @@ def test_crosschecks_agree_with_the_shipped_catalog_and_catch_a_gap(tmp_path):
     kept = [e for e in census.entries if e.name != "P20.3"]
     names = class_names([e.record for e in kept], "full")
     counts = {**census.summary["counts"], "20": {**census.summary["counts"]["20"], "full": 5}}
-    cut = write_census(Census(SHIPPED, tuple(CatalogEntry(n, e.symmetry, e.record) for n, e in zip(names, kept)),
-                              {**census.summary, "counts": counts}), tmp_path / "cut")
+    renamed = tuple(CatalogEntry(n, e.symmetry, e.record) for n, e in zip(names, kept, strict=True))
+    cut = write_census(Census(SHIPPED, renamed, {**census.summary, "counts": counts}), tmp_path / "cut")
     assert len(read_catalog(cut)) == len(census) - 1
     assert plantri_sample(cut, 20, mod=4, k=4, seed=7).missing == (gone.signature,)
     assert reach_agreement(cut, 20).missing == (gone.signature,)

@@ -20,6 +20,9 @@ SYMMETRIES = tuple(mode.value for mode in Symmetry)
 # The corners command also accepts 'none', an older name for 'labelled'.
 SYMMETRIES_WITH_ALIASES = (SYMMETRIES[0], *MODE_ALIASES, *SYMMETRIES[1:])
 
+# Local worker processes: more than a machine has cores only queue; a typo of 10**9 must not fork.
+MAX_WORKERS = 1024
+
 Command = Callable[[argparse.Namespace], int]
 # command(name, func, help, file_arg=True, json_flag=True) -> the command's parser
 AddCommand = Callable[..., argparse.ArgumentParser]

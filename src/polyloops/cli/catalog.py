@@ -5,11 +5,21 @@ from __future__ import annotations
 import argparse
 import json
 import sys
-from pathlib import Path
 from typing import Any
 
-from polyloops.cli.args import SYMMETRIES, AddCommand, Parser, catalog_dir, count_arg, emit, genus_option, written
+from polyloops.cli.args import (
+    MAX_WORKERS,
+    SYMMETRIES,
+    AddCommand,
+    Parser,
+    catalog_dir,
+    count_arg,
+    emit,
+    genus_option,
+    written,
+)
 from polyloops.cli.load import EXIT_OK, CliError, write_text
+from polyloops.enumerate.bounds import MAX_CATALOG_CORNERS
 
 
 def cmd_catalog(args: argparse.Namespace) -> int:
@@ -95,7 +105,8 @@ def cmd_catalog_query(args: argparse.Namespace) -> int:
     except CatalogError as err:
         raise CliError(str(err), getattr(err, "status", 2)) from None
     if args.json:
-        print(json.dumps({"catalog": str(catalog_dir(args.dir, args.genus)), "where": args.where, "count": len(rows),
+        print(json.dumps({"catalog": str(catalog_dir(args.dir, args.genus)), "where": args.where,
+                          "count": len(rows),
                           "rows": [dict(zip(columns, r, strict=True)) for r in rows]}, indent=1))
     else:
         print("\t".join(columns))
@@ -143,14 +154,17 @@ def add_commands(command: AddCommand, hidden: AddCommand) -> None:
                 "arrangements of loops; "
                 "'catalog query DIR WHERE' "
                 "searches one, 'catalog export DIR --csv' writes its table", file_arg=False)
-    p.add_argument("--max-corners", type=count_arg(0), metavar="N", help="required to build")
-    p.add_argument("--min-corners", type=count_arg(8), default=8, metavar="M")
+    p.add_argument("--max-corners", type=count_arg(0, MAX_CATALOG_CORNERS), metavar="N",
+                   help=f"required to build; at most {MAX_CATALOG_CORNERS} (the searches' arrays hold no "
+                   "more, and no run gets near: 36 corners take minutes of CPU at genus 0)")
+    p.add_argument("--min-corners", type=count_arg(8, MAX_CATALOG_CORNERS), default=8, metavar="M")
     p.add_argument("--genus", type=int, choices=(0, 1), default=0,
-                   help="0 (the sphere; default) or 1 (the torus: the torus generator, which does "
-                   "not yet reach the smallest genus-1 polycubes, 32 corners, in reasonable time)")
+                   help="0 (the sphere; default) or 1 (the torus: the torus generator; the smallest "
+                   "genus-1 polycube, the square ring, has 32 corners and is found in about 10 s)")
     p.add_argument("--symmetry", choices=SYMMETRIES, default="full",
                    help="which classes the records list (summary.json counts all three); default full")
-    p.add_argument("--workers", type=count_arg(1), default=1, metavar="K", help="local worker processes")
+    p.add_argument("--workers", type=count_arg(1, MAX_WORKERS), default=1, metavar="K",
+                   help="local worker processes")
     from polyloops.enumerate.generators import GENERATORS
 
     p.add_argument("--generator", choices=sorted(GENERATORS), default=None,

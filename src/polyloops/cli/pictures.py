@@ -7,7 +7,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from polyloops.cli.args import FILE_HELP, AddCommand, count_arg, written
+from polyloops.cli.args import FILE_HELP, MAX_WORKERS, AddCommand, count_arg, written
 from polyloops.cli.load import (
     EXIT_INVALID,
     EXIT_OK,
@@ -211,7 +211,7 @@ def add_commands(command: AddCommand) -> None:
                    "catalogs/genus0)")
     p.add_argument("-o", "--output", metavar="SITE", required=True, help="the site's directory")
     p.add_argument("--limit", type=count_arg(1), metavar="N", help="only the first N classes")
-    p.add_argument("--workers", type=count_arg(1), default=1, metavar="K",
+    p.add_argument("--workers", type=count_arg(1, MAX_WORKERS), default=1, metavar="K",
                    help="local worker processes drawing the pictures and pages")
     p = command("sheet", cmd_sheet, "a grid of small renders with captions, from files or a catalog "
                 "directory", file_arg=False)
@@ -219,5 +219,5 @@ def add_commands(command: AddCommand) -> None:
     p.add_argument("-o", "--output", metavar="OUT", required=True, help="OUT.png or OUT.svg")
     p.add_argument("--columns", type=count_arg(1), default=6, metavar="N", help="pictures per row")
     p.add_argument("--limit", type=count_arg(1), metavar="N", help="draw at most N")
-    p.add_argument("--workers", type=count_arg(1), default=1, metavar="K",
+    p.add_argument("--workers", type=count_arg(1, MAX_WORKERS), default=1, metavar="K",
                    help="local worker processes drawing the pictures (PNG sheets)")

@@ -10,6 +10,7 @@ from typing import Any
 
 from polyloops.cli.args import (
     FILE_HELP,
+    MAX_WORKERS,
     SYMMETRIES,
     AddCommand,
     Parser,
@@ -244,7 +245,8 @@ def add_commands(command: AddCommand) -> None:
                    "(resumable level by level) and the counts in DIR/summary.json")
     p.add_argument("--overwrite", action="store_true", help="replace a search of other parameters "
                    "stored in DIR (without it, refused; the same search is resumed)")
-    p.add_argument("--workers", type=count_arg(1), default=1, metavar="K", help="local worker processes")
+    p.add_argument("--workers", type=count_arg(1, MAX_WORKERS), default=1, metavar="K",
+                   help="local worker processes")
     p.add_argument("--dask", metavar="ADDRESS", help="expand levels on a Dask cluster (an address, or local)")
     p = command("path", cmd_path, "a shortest sequence of loop additions and removals from SOURCE "
                 "to TARGET, every structure within --max-corners (exit 1 when there is none)",
@@ -274,7 +276,8 @@ def add_commands(command: AddCommand) -> None:
         g.add_argument("--slack", type=count_arg(2), default=10, metavar="K",
                        help="detours may go up to K corners above the class (tried 2, 4, ..., K; default 10)")
         g.add_argument("-o", "--output", required=True, metavar="CERT", help="the certificate (JSON lines)")
-        g.add_argument("--workers", type=count_arg(1), default=1, metavar="K", help="local worker processes")
+        g.add_argument("--workers", type=count_arg(1, MAX_WORKERS), default=1, metavar="K",
+                       help="local worker processes")
         g.add_argument("--dask", metavar="ADDRESS", help="a Dask cluster (an address, or local)")
         g.add_argument("--json", action="store_true", help="print one JSON object for scripts")
         g.set_defaults(func=cmd_conjecture_settle)

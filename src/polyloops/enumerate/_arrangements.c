@@ -689,6 +689,11 @@ static PyObject *children(PyObject *self, PyObject *args)
     Py_buffer rb, tb;
     int limit, colour_cut = 1, meet_cut = 1;
     if (!PyArg_ParseTuple(args, "y*y*i|pp", &rb, &tb, &limit, &colour_cut, &meet_cut)) return NULL;
+    if (limit < 0 || limit > MAXD / 4) {  /* the arrays hold MAXD darts: four a crossing */
+        PyBuffer_Release(&rb); PyBuffer_Release(&tb);
+        return PyErr_Format(PyExc_ValueError, "a limit of %d crossings: the compiled search holds 0 to %d",
+                            limit, MAXD / 4);
+    }
     Ctx *c = &ctx;
     int n = (int)(tb.len / 2), implicit = rb.len == 0;
     static uint16_t blocks[MAXD];   /* an empty rot: four darts a crossing, in order */

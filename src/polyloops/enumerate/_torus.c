@@ -482,6 +482,11 @@ static PyObject *children(PyObject *self, PyObject *args)
     Py_buffer tb, lb;
     int limit;
     if (!PyArg_ParseTuple(args, "y*y*i", &tb, &lb, &limit)) return NULL;
+    if (limit < 0 || limit > MAXD / 4) {  /* a child's arrays hold MAXD darts: four a crossing */
+        PyBuffer_Release(&tb); PyBuffer_Release(&lb);
+        return PyErr_Format(PyExc_ValueError, "a limit of %d crossings: the compiled search holds 0 to %d",
+                            limit, MAXD / 4);
+    }
     Ctx *c = &ctx;
     Map *p = &c->p;
     int D = (int)(tb.len / 2);
@@ -967,6 +972,11 @@ static PyObject *first_children(PyObject *self, PyObject *args)
     int limit, colours;
     (void)self;
     if (!PyArg_ParseTuple(args, "y*Oii", &tb, &marks, &limit, &colours)) return NULL;
+    if (limit < 0 || limit > MAXD / 4) {
+        PyBuffer_Release(&tb);
+        return PyErr_Format(PyExc_ValueError, "a limit of %d crossings: the compiled search holds 0 to %d",
+                            limit, MAXD / 4);
+    }
     Draw *w = &dw;
     int D = (int)(tb.len / 2), bad = tb.len % 2 || D % 4 || D > MAXD / 4 || (colours != 0 && colours != 2);
     const uint16_t *twin = tb.buf;

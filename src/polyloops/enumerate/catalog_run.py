@@ -24,6 +24,7 @@ from typing import Any
 
 from polyloops.core.errors import PolyloopsError
 from polyloops.core.symmetry import Symmetry
+from polyloops.enumerate.bounds import MAX_CATALOG_CORNERS
 from polyloops.enumerate.catalog import MODES
 from polyloops.enumerate.generators import GENERATORS, Generator, Job, JobResult, run_job
 from polyloops.enumerate.parallel import run_jobs
@@ -112,6 +113,7 @@ class Extent:
 
 
 CATALOG_FILES = ("catalog.jsonl", "catalog.sqlite", "summary.json")
+
 
 
 def existing_extent(out: Path) -> Extent | None:
@@ -381,6 +383,9 @@ def build_catalog(out: Path | str, max_corners: int, min_corners: int = 8,
     (2, {'labelled': 3, 'rotation': 1, 'full': 1})
     """
     out = Path(out)
+    if not 0 <= max_corners <= MAX_CATALOG_CORNERS or min_corners < 0:
+        raise CatalogRunError(f"--max-corners {max_corners}: a catalog run goes to at most "
+                              f"{MAX_CATALOG_CORNERS} corners")
     if max_corners < min_corners:
         raise CatalogRunError("--max-corners must be at least --min-corners")
     if (res is None) != (mod is None) or (mod is not None and not 0 <= res < mod):  # type: ignore[operator]

@@ -27,7 +27,6 @@ added with :func:`register`.
 
 from __future__ import annotations
 
-import json
 import time
 from abc import ABC, abstractmethod
 from collections import Counter
@@ -455,7 +454,8 @@ def spill_frontier(max_n: int, workers: int, dask: str | None, where: Path) -> P
     except SpillMismatch:
         pass  # another run's, damaged, or absent: computed again
     top, top_search = loops_frontier(max_n, workers, dask)
-    nodes = [_node_bytes(b"R", node) for node in top.roots] + [_node_bytes(b"S", node) for node in top.shallow]
+    nodes = [_node_bytes(b"R", node) for node in top.roots]
+    nodes += [_node_bytes(b"S", node) for node in top.shallow]
     write_spill(path, tag, nodes, {"loops": top.loops, "search": top_search})
     del top, nodes  # the workers read their shares from the file
     return path

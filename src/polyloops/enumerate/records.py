@@ -221,7 +221,8 @@ def query(path: str | os.PathLike[str], where: str,
     try:
         where.encode("utf-8")
     except UnicodeEncodeError:  # bytes the shell passed through that are not UTF-8
-        raise CatalogError(f"{os.path.dirname(name) or '.'}: bad query: the WHERE clause is not UTF-8 text") from None
+        raise CatalogError(f"{os.path.dirname(name) or '.'}: bad query: the WHERE clause is not UTF-8 "
+                           "text") from None
     if entries is not None:
         con = sqlite3.connect(":memory:")
         fill_tables(con, entries, entries[0].symmetry if entries else Symmetry.FULL)

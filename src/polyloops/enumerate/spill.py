@@ -98,7 +98,8 @@ def spill_state(path: Path) -> str:
                        "(remove it and run again)")
 
 
-def write_spill(path: Path, tag: SpillTag, records: Iterable[bytes], meta: dict[str, Any] | None = None) -> None:
+def write_spill(path: Path, tag: SpillTag, records: Iterable[bytes],
+                meta: dict[str, Any] | None = None) -> None:
     """Write ``records`` to ``path`` under ``tag``, atomically (a temporary file and a rename:
     a stopped run leaves the old file or none, never half of one).
 
@@ -144,10 +145,11 @@ def _header(path: Path, fh: Any, tag: SpillTag) -> tuple[dict[str, Any], int]:
         raise SpillMismatch(f"{path}: another format of run file")
     for key, want in (("kind", tag.kind), ("version", tag.version), ("bound", tag.bound)):
         if header.get(key) != want:
-            raise SpillMismatch(f"{path}: made for {key} {header.get(key)!r}, not {want!r}"
-                                if key != "bound" else f"{path}: made for bound {header.get(key)!r}, not {want}")
+            shown = want if key == "bound" else repr(want)
+            raise SpillMismatch(f"{path}: made for {key} {header.get(key)!r}, not {shown}")
     body = header.get("body_bytes")
-    if type(body) is not int or type(header.get("records")) is not int or not isinstance(header.get("sha256"), str):
+    if (type(body) is not int or type(header.get("records")) is not int
+            or not isinstance(header.get("sha256"), str)):
         raise SpillMismatch(f"{path}: damaged header")
     if size != len(MAGIC) + 4 + length + body:
         raise SpillMismatch(f"{path}: {size} bytes where its header promises "
@@ -159,7 +161,7 @@ def _open(path: Path) -> Any:
     if spill_state(path) == "absent":
         raise SpillMismatch(f"{path}: absent")
     try:
-        return open(path, "rb")  # noqa: SIM115 - closed by the callers' with
+        return open(path, "rb")
     except OSError as err:
         raise SpillRefused(f"{path}: cannot read: {err.strerror}") from None
 
@@ -213,7 +215,8 @@ def read_spill(path: Path, tag: SpillTag) -> Spill:
         body = fh.read()
     if hashlib.sha256(body).hexdigest() != header["sha256"]:
         raise SpillMismatch(f"{path}: its body does not match its digest (edited or damaged)")
-    out, at = [], 0
+    out: list[bytes] = []
+    at = 0
     while at < len(body):
         if at + 4 > len(body):
             raise SpillMismatch(f"{path}: damaged record {len(out) + 1}")

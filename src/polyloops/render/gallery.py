@@ -77,10 +77,9 @@ def build_gallery(census: Census, out: str | Path, limit: int | None = None,
     ValueError
         When a record's signature does not decode.
     """
+    from polyloops.enumerate.census import NAME
     from polyloops.enumerate.parallel import run_jobs
     from polyloops.render.viewer import write_plotly_js
-
-    from polyloops.enumerate.census import NAME
 
     out = Path(out)
     entries = list(census.entries[:limit] if limit is not None else census.entries)
@@ -112,8 +111,8 @@ def build_gallery(census: Census, out: str | Path, limit: int | None = None,
     if limit is None or len(entries) == len(census.entries):
         span = f"through {census.max_corners} corners"
     else:  # a limited gallery says what it shows, not the catalog's whole range
-        span = (f"the first {len(entries)} of {len(census.entries)} classes "
-                f"({entries[0].corners if entries else 0} to {entries[-1].corners if entries else 0} corners)")
+        low, high = (entries[0].corners, entries[-1].corners) if entries else (0, 0)
+        span = f"the first {len(entries)} of {len(census.entries)} classes ({low} to {high} corners)"
     title = f"Genus-{census.genus} polycubes, {span}, up to {up_to[str(census.symmetry)]}"
     full = str(census.symmetry) == "full"  # the move graph names classes by full signature
     if full:
