@@ -8,7 +8,6 @@ import sys
 from collections.abc import Callable
 from typing import Any
 
-from polyloops.cli.load import EXIT_USAGE
 from polyloops.core.symmetry import MODE_ALIASES, Symmetry
 from polyloops.core.words import plural  # noqa: F401  (the commands' counts in words)
 
@@ -28,11 +27,21 @@ Command = Callable[[argparse.Namespace], int]
 AddCommand = Callable[..., argparse.ArgumentParser]
 
 
+class UsageError(Exception):
+    """A command line that does not parse: ``main`` prints ``line`` and exits 2 (with
+    ``--json``, also one object)."""
+
+    def __init__(self, prog: str, message: str):
+        super().__init__(message)
+        self.message = message
+        self.line = f"{prog}: {message} (see --help)"
+
+
 class Parser(argparse.ArgumentParser):
     """Usage errors as one line and exit status 2."""
 
     def error(self, message: str) -> None:  # type: ignore[override]
-        self.exit(EXIT_USAGE, f"{self.prog}: {message} (see --help)\n")
+        raise UsageError(self.prog, message)
 
 
 def emit(args: argparse.Namespace, data: Any, text: str) -> None:

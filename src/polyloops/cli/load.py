@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import sys
 from pathlib import Path
+from typing import Any
 
 from polyloops.core.halfedge import FaceListError, MapError
 from polyloops.core.loops import OddFaceError
@@ -37,9 +38,13 @@ EXIT_OK, EXIT_INVALID, EXIT_USAGE = 0, 1, 2
 
 
 class CliError(Exception):
-    def __init__(self, message: str, status: int = EXIT_USAGE):
+    """A one-line error and its exit status; ``data`` is what ``--json`` prints with it (the
+    error's object then holds it, ``error`` and ``status``)."""
+
+    def __init__(self, message: str, status: int = EXIT_USAGE, data: dict[str, Any] | None = None):
         super().__init__(message)
         self.status = status
+        self.data = data
 
 
 def open_input(arg: str, given: str | None = None) -> Source:

@@ -11,15 +11,18 @@ input or usage, 3 for an internal error (a bug).  Errors are one line naming the
 from __future__ import annotations
 
 import argparse
+import contextlib
+import json
 import os
 import signal
 import sys
 from collections.abc import Sequence
+from typing import Any
 
 from polyloops import __version__
 from polyloops.cli import catalog, corners, moves, orient, pictures, reach, segmentation, structures
-from polyloops.cli.args import FILE_HELP, Command, Parser
-from polyloops.cli.load import EXIT_OK, CliError
+from polyloops.cli.args import FILE_HELP, Command, Parser, UsageError
+from polyloops.cli.load import EXIT_OK, EXIT_USAGE, CliError
 
 EXIT_INTERNAL = 3
 
@@ -58,15 +61,24 @@ def build_parser() -> argparse.ArgumentParser:
 
 def main(argv: Sequence[str] | None = None) -> int:
     parser = build_parser()
-    args = parser.parse_args(list(sys.argv[1:] if argv is None else argv))
+    given = list(sys.argv[1:] if argv is None else argv)
+    try:
+        args = parser.parse_args(given)
+    except UsageError as err:
+        print(err.line, file=sys.stderr)
+        if "--json" in given:
+            print(json.dumps({"error": err.message, "status": EXIT_USAGE}, indent=2))
+        return EXIT_USAGE
     # 'catalog-query' is an older spelling of 'catalog query'; other names keep their hyphen
     command = args.command.replace("-", " ") if args.command.startswith("catalog-") else args.command
     name = command + (f" {args.action}" if getattr(args, "action", None) else "")
     previous = _terminate_cleanly()
+    guard = _ClosedPipeGuard.install()
     try:
         return args.func(args)
     except CliError as err:
         print(f"polyloops {name}: {_clip_words(str(err))}", file=sys.stderr)
+        _json_error(args, str(err), err.status, err.data)
         return err.status
     except BrokenPipeError:  # output piped into head, for example
         return EXIT_OK
@@ -76,12 +88,75 @@ def main(argv: Sequence[str] | None = None) -> int:
     except Exception as err:  # a bug, not bad input: one line, the traceback on request
         if os.environ.get("POLYLOOPS_DEBUG"):
             raise
-        print(f"polyloops {name}: internal error: {type(err).__name__}: {_clip_words(str(err))} "
-              "(set POLYLOOPS_DEBUG=1 to see where)", file=sys.stderr)
+        message = f"internal error: {type(err).__name__}: {_clip_words(str(err))}"
+        print(f"polyloops {name}: {message} (set POLYLOOPS_DEBUG=1 to see where)", file=sys.stderr)
+        _json_error(args, message, EXIT_INTERNAL)
         return EXIT_INTERNAL
     finally:
         if previous is not None:
             signal.signal(signal.SIGTERM, previous)
+        if guard is not None:
+            guard.uninstall()
+
+
+class _ClosedPipeGuard:
+    """Standard output that a reader closed (``polyloops verify BAD | head -1``) swallows
+    what is still written, so the command runs to its end and its exit status is its verdict,
+    never the 0 of an aborted print.  Once the pipe is gone, the descriptor is pointed at
+    ``/dev/null`` so that the interpreter's last flush cannot fail either."""
+
+    def __init__(self, stream: Any):
+        self._stream = stream
+        self._gone = False
+
+    @classmethod
+    def install(cls) -> _ClosedPipeGuard | None:
+        if isinstance(sys.stdout, cls) or not hasattr(sys.stdout, "fileno"):
+            return None
+        try:
+            sys.stdout.fileno()
+        except (OSError, ValueError):  # a stand-in for stdout (pytest's capture, a notebook)
+            return None
+        guard = cls(sys.stdout)
+        sys.stdout = guard
+        return guard
+
+    def uninstall(self) -> None:
+        if sys.stdout is self:
+            sys.stdout = self._stream
+
+    def _closed(self) -> None:
+        self._gone = True
+        with contextlib.suppress(OSError, ValueError):
+            devnull = os.open(os.devnull, os.O_WRONLY)
+            os.dup2(devnull, self._stream.fileno())
+            os.close(devnull)
+
+    def write(self, text: str) -> int:
+        if not self._gone:
+            try:
+                return self._stream.write(text)
+            except BrokenPipeError:
+                self._closed()
+        return len(text)
+
+    def flush(self) -> None:
+        if not self._gone:
+            try:
+                self._stream.flush()
+            except BrokenPipeError:
+                self._closed()
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self._stream, name)
+
+
+def _json_error(args: argparse.Namespace | None, message: str, status: int,
+                data: dict[str, Any] | None = None) -> None:
+    """Under ``--json``, an error is one object on standard output too, as every result is."""
+    if args is not None and getattr(args, "json", False):
+        with contextlib.suppress(OSError, ValueError):
+            print(json.dumps({**(data or {}), "error": _clip_words(message), "status": status}, indent=2))
 
 
 def _terminate_cleanly():

@@ -40,8 +40,9 @@ def cmd_orient(args: argparse.Namespace) -> int:
         why = explain(problem)
         assert why is not None
         info.update(found=False, condition=why.condition, reason=why.reason, witness=why.witness)
-        print(json.dumps(info, indent=2) if args.json else summary)
-        raise CliError(f"{args.file}: no orientation: {why.reason}", EXIT_INVALID)
+        if not args.json:
+            print(summary)
+        raise CliError(f"{args.file}: no orientation: {why.reason}", EXIT_INVALID, data=info)
 
     if args.count:
         n = count_solutions(solver, problem)
@@ -64,17 +65,18 @@ def cmd_orient(args: argparse.Namespace) -> int:
                 "(one JSON per line)")
             return EXIT_OK
         n = 0
-        if args.json:
-            print("[")
+        found: list[list[int]] = []
         for s in structures:
-            if args.json:
-                print(("," if n else "") + json.dumps({"signs": list(s.signs or ())}))
+            if args.json:  # one object at the end, the orientations a list inside it
+                found.append(list(s.signs or ()))
             else:
-                print(" ".join("+" if x > 0 else "-" for x in s.signs or ()))
+                print(" ".join("+" if x > 0 else "-" for x in s.signs or ()), flush=True)
             n += 1
+        if not n:
+            return fail()
         if args.json:
-            print("]")
-        return EXIT_OK if n else fail()
+            print(json.dumps({**info, "count": n, "orientations": found}, indent=2))
+        return EXIT_OK
     signs = next(solver.solutions(problem), None)
     if signs is None:
         return fail()

@@ -87,10 +87,16 @@ def cmd_reach(args: argparse.Namespace) -> int:
 
 
 def cmd_path(args: argparse.Namespace) -> int:
-    from polyloops.enumerate.reach import find_path
+    from polyloops.enumerate.reach import find_path, no_path_reason
 
     source = read_valid_structure(args.source)
     target = read_valid_structure(args.target)
+    reason = no_path_reason(source, target)
+    if reason is not None:
+        raise CliError(f"{args.source} -> {args.target}: no path at any size ({reason})", EXIT_INVALID)
+    if args.max_corners is None:
+        raise CliError("--max-corners M is needed: the invariants moves keep agree, so only a search "
+                       "within M corners can tell")
     for name, ls in ((args.source, source), (args.target, target)):
         if ls.map.num_corners > args.max_corners:
             raise CliError(f"{name}: has {ls.map.num_corners} corners, more than --max-corners")
@@ -253,7 +259,8 @@ def add_commands(command: AddCommand) -> None:
                 file_arg=False)
     p.add_argument("source", metavar="SOURCE", help=FILE_HELP)
     p.add_argument("target", metavar="TARGET", help=FILE_HELP)
-    p.add_argument("--max-corners", type=count_arg(8), required=True, metavar="M")
+    p.add_argument("--max-corners", type=count_arg(8), metavar="M", help="search within M corners (needed "
+                   "unless the genus or hole orientation already tells that no path exists)")
     p.add_argument("--moves", default="add,remove", help=moves_help)
     p.add_argument("-o", "--output", metavar="OUT.json", help="write the path: every step as a loop "
                    "structure ('polyloops verify OUT.json' checks it)")

@@ -493,6 +493,8 @@ def shortest_path(source: LoopStructure, target: LoopStructure, max_corners: int
     def sig(ls: LoopStructure) -> str:
         return canonical_form(ls, "labelled").signature
 
+    if no_path_reason(source, target) is not None:  # no search can find one
+        return None
     # Per side: signature -> (structure, parent signature); structures are the actual results
     # of applying a move to the parent's structure.
     sides: list[dict[str, tuple[LoopStructure, str | None]]] = [{sig(source): (source, None)},
@@ -599,6 +601,31 @@ class MovePath:
 
         return {"polyloops": 1, "kind": "path", "steps": [to_data(s) for s in self.steps],
                 "moves": [m.to_json() for m in self.moves]}
+
+
+def no_path_reason(source: LoopStructure, target: LoopStructure) -> str | None:
+    """Why no sequence of moves, of any size, leads from ``source`` to ``target``, or ``None``
+    when the invariants moves keep agree: the genus (a move keeps the surface), and at
+    positive genus the hole orientation (:mod:`polyloops.core.holes`; a move never changes the
+    subgroup of homology each axis's loops span, docs/reachability.md).  Paths are asked up to
+    renumbering, axes fixed, so the invariant is compared as it is, not up to the axes.
+
+    >>> from polyloops.io.examples import load_example
+    >>> ring, ring_x = load_example("ring").dualize(), load_example("ring-x").dualize()
+    >>> no_path_reason(load_example("cube").dualize(), ring)
+    'moves keep the genus: 0 and 1'
+    >>> no_path_reason(ring, ring_x).split(":")[0]
+    'moves keep the hole orientation'
+    """
+    from polyloops.core.holes import hole_orientation
+
+    if source.map.genus != target.map.genus:
+        return f"moves keep the genus: {source.map.genus} and {target.map.genus}"
+    if source.map.genus > 0:
+        a, b = hole_orientation(source), hole_orientation(target)
+        if a != b:
+            return f"moves keep the hole orientation: {a} and {b}"
+    return None
 
 
 def find_path(source: LoopStructure, target: LoopStructure, max_corners: int,
