@@ -68,7 +68,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         print(err.line, file=sys.stderr)
         if "--json" in given:
             print(json.dumps({"error": err.message, "status": EXIT_USAGE}, indent=2))
-        return EXIT_USAGE
+        raise SystemExit(EXIT_USAGE) from None  # as argparse does: callers see a usage error
     # 'catalog-query' is an older spelling of 'catalog query'; other names keep their hyphen
     command = args.command.replace("-", " ") if args.command.startswith("catalog-") else args.command
     name = command + (f" {args.action}" if getattr(args, "action", None) else "")

@@ -6,7 +6,16 @@ import argparse
 import sys
 from typing import Any
 
-from polyloops.cli.args import AddCommand, count_arg, emit, seconds_arg, stream, structure_facts, written
+from polyloops.cli.args import (
+    AddCommand,
+    count_arg,
+    emit,
+    plural,
+    seconds_arg,
+    stream,
+    structure_facts,
+    written,
+)
 from polyloops.cli.load import EXIT_INVALID, EXIT_OK, CliError, read_valid_structure, write_output
 from polyloops.core.directions import Axis
 from polyloops.io.formats import to_data
@@ -111,8 +120,11 @@ def _estimate(ls: Any, axes: list[Axis], want_remove: bool, args: argparse.Names
     for a in axes:
         est = estimate_additions(ls, a, args.walks or 10000, args.seed or 0, budget.next_share())
         data["estimates"][a.name] = est.to_json()
+        if not est.made:
+            lines.append(f"additions {a}: no estimate (the time limit ended before the first random walk)")
+            continue
         lines.append(f"additions {a}: about {est.estimate:.4g} (95% interval {est.low:.4g} to "
-                     f"{est.high:.4g}, {est.walks} random walks)")
+                     f"{est.high:.4g}, {plural(est.walks, 'random walk')})")
     if want_remove:
         data["removals"] = len(removals(ls))
         lines.append(f"removals  {data['removals']}")

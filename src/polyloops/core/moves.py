@@ -34,6 +34,7 @@ corners and faces are then renumbered consecutively in their old order.
 
 from __future__ import annotations
 
+import math
 import random
 from collections import defaultdict
 from collections.abc import Callable, Iterable, Iterator, Sequence
@@ -467,9 +468,20 @@ class AdditionEstimate:
     high: float
     walks: int
 
-    def to_json(self) -> dict[str, float | int]:
-        """A JSON-ready dict of the estimate."""
-        return {"estimate": self.estimate, "low": self.low, "high": self.high, "walks": self.walks}
+    @property
+    def made(self) -> bool:
+        """Whether any walk was taken: with none (the time ran out first) there is no estimate,
+        not an estimate of 0."""
+        return self.walks > 0
+
+    def to_json(self) -> dict[str, float | int | None]:
+        """A JSON-ready dict of the estimate (``null`` values when no walk was taken: JSON has
+        no infinity)."""
+        if not self.made:
+            return {"estimate": None, "low": None, "high": None, "walks": 0}
+        finite = {k: (v if math.isfinite(v) else None) for k, v in
+                  (("estimate", self.estimate), ("low", self.low), ("high", self.high))}
+        return {**finite, "walks": self.walks}
 
 
 def estimate_additions(ls: LoopStructure, axis: Axis, walks: int = 2000, seed: int = 0,

@@ -236,9 +236,14 @@ class ReachStore:
         if not overwrite and (directory / "summary.json").exists() and not self.path.exists():
             raise WouldReplaceSearchError(f"{directory}: holds a summary.json but no reach.sqlite; a "
                                           "search would replace it")
-        directory.mkdir(exist_ok=True)
-        self.con = _open_store(self.path)
-        stored = dict(self.con.execute("SELECT key, value FROM meta"))
+        try:
+            directory.mkdir(exist_ok=True)
+            self.con = _open_store(self.path)
+            stored = dict(self.con.execute("SELECT key, value FROM meta"))
+        except OSError as err:
+            raise ReachError(f"{directory}: cannot write: {err.strerror or err}") from None
+        except sqlite3.Error as err:  # a directory it may not write into, a full disk
+            raise ReachError(f"{self.path}: cannot write: {err}") from None
         wanted = {k: json.dumps(v) for k, v in params.items()}
         if stored:
             differ = [k for k in wanted if stored.get(k) != wanted[k]]
@@ -403,6 +408,16 @@ def explore(start: LoopStructure, max_corners: int, max_depth: int | None = None
     >>> result.by_corners
     {8: 1, 12: 3, 16: 15}
     """
+    try:
+        return _explore(start, max_corners, max_depth, kinds, mode, directory, workers, dask, progress,
+                        overwrite)
+    except sqlite3.Error as err:  # a store that cannot be written on (read-only, full disk)
+        raise ReachError(f"{directory}: cannot write the search's store: {err}") from None
+
+
+def _explore(start: LoopStructure, max_corners: int, max_depth: int | None, kinds: Sequence[MoveKind],
+             mode: Symmetry | str, directory: Path | None, workers: int, dask: str | None,
+             progress: Callable[[dict[str, Any]], None] | None, overwrite: bool) -> ReachResult:
     mode = Symmetry.parse(mode)
     if not start.oriented:
         raise ValueError("reachability needs an oriented loop structure")

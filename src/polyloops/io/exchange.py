@@ -242,7 +242,7 @@ def obj_triangles(text: str) -> tuple[np.ndarray, np.ndarray] | None:
     try:
         points = np.array(vertex_words, dtype=float).reshape(-1, 3)
         ids = np.array(face_words, dtype=np.int64).reshape(-1, 3)
-    except ValueError:
+    except (ValueError, OverflowError):  # OverflowError: an index of 20 digits
         return None
     if not np.isfinite(points).all():
         return None

@@ -231,8 +231,35 @@ def read_labelled_mesh(mesh: str | os.PathLike[str], labels: str | os.PathLike[s
 
 def _triangles(name: str, path: str) -> tuple[tuple[Point, ...], tuple[Triangle, ...]]:
     try:
-        return read_triangle_mesh(path)
+        points, triangles = read_triangle_mesh(path)
     except FormatError as err:  # LabelledMeshError among them
         raise LabelledMeshError(str(err), where=name) from None
     except OSError as err:
         raise LabelledMeshError(f"cannot read: {err.strerror or err}", where=name) from None
+    except OverflowError:
+        raise LabelledMeshError("a vertex index too large for any mesh", where=name) from None
+    return used_vertices(points, triangles, name)
+
+
+def used_vertices(points: Sequence[Point], triangles: Sequence[Triangle],
+                  name: str = "mesh") -> tuple[tuple[Point, ...], tuple[Triangle, ...]]:
+    """The mesh with the vertices no triangle uses left out (a file may list spare vertices
+    anywhere), renumbered in order; a triangle that repeats a vertex is refused by number.
+
+    >>> used_vertices([(0, 0, 0), (9, 9, 9), (1, 0, 0), (0, 1, 0)], [(0, 2, 3)])
+    (((0, 0, 0), (1, 0, 0), (0, 1, 0)), ((0, 1, 2),))
+    >>> used_vertices([(0, 0, 0), (1, 0, 0)], [(0, 0, 1)])
+    Traceback (most recent call last):
+    ...
+    polyloops.io.labelled_mesh.LabelledMeshError: triangle 1 repeats a vertex ([1, 1, 2]): a degenerate ...
+    """
+    for k, t in enumerate(triangles):
+        if len(set(t)) != 3:
+            raise LabelledMeshError(f"triangle {k + 1} repeats a vertex ({[v + 1 for v in t]}): a degenerate "
+                                    "triangle has no normal", where=name)
+    used = sorted({v for t in triangles for v in t})
+    if len(used) == len(points):
+        return tuple(points), tuple(tuple(t) for t in triangles)  # type: ignore[misc]
+    new = {v: i for i, v in enumerate(used)}
+    return (tuple(points[v] for v in used),
+            tuple((new[a], new[b], new[c]) for a, b, c in triangles))

@@ -63,6 +63,8 @@ def voxels_from_npy(data: bytes) -> list[Cell]:
                              f"{len(data) - stream.tell()} bytes of data")
         grid = np.load(io.BytesIO(data), allow_pickle=False)
     except (ValueError, OSError, EOFError) as err:
-        message = " ".join(w if len(w) <= 80 else w[:60] + "..." for w in str(err).split(" "))
+        # numpy's own messages run over lines (a huge header's has three): the first, on one line
+        first = str(err).strip().splitlines()[0] if str(err).strip() else type(err).__name__
+        message = " ".join(w if len(w) <= 80 else w[:60] + "..." for w in first.split(" "))
         raise ValueError(f"not a NumPy .npy array: {message}") from None
     return voxels_from_grid(grid)
