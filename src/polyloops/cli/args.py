@@ -8,6 +8,7 @@ import sys
 from collections.abc import Callable
 from typing import Any
 
+from polyloops.core.errors import PolyloopsError
 from polyloops.core.symmetry import MODE_ALIASES, Symmetry
 from polyloops.core.words import plural  # noqa: F401  (the commands' counts in words)
 
@@ -27,7 +28,7 @@ Command = Callable[[argparse.Namespace], int]
 AddCommand = Callable[..., argparse.ArgumentParser]
 
 
-class UsageError(Exception):
+class UsageError(PolyloopsError):
     """A command line that does not parse: ``main`` prints ``line`` and exits 2 (with
     ``--json``, also one object)."""
 

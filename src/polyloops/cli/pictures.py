@@ -7,7 +7,15 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from polyloops.cli.args import FILE_HELP, MAX_WORKERS, AddCommand, count_arg, written
+from polyloops.cli.args import (
+    FILE_HELP,
+    MAX_WORKERS,
+    AddCommand,
+    catalog_dir,
+    count_arg,
+    genus_option,
+    written,
+)
 from polyloops.cli.load import (
     EXIT_INVALID,
     EXIT_OK,
@@ -92,7 +100,7 @@ def cmd_gallery(args: argparse.Namespace) -> int:
 
     out = output_dir(args.output)
     try:
-        census = read_catalog(Path(args.dir) if args.dir else None)
+        census = read_catalog(catalog_dir(args.dir, args.genus))
     except CatalogError as err:
         raise CliError(str(err), getattr(err, "status", 2)) from None
     total = len(census.entries) if args.limit is None else min(args.limit, len(census.entries))
@@ -136,19 +144,19 @@ def _caption(source: str, obj: Any) -> str:
 
 
 def cmd_sheet(args: argparse.Namespace) -> int:
-    from polyloops.enumerate.census import CatalogError, read_entries
+    from polyloops.enumerate.census import CatalogError, read_catalog
     from polyloops.render.polycube import PictureError
     from polyloops.render.sheet import render_sheet
 
     out = picture_output(args.output)
     items: list[tuple[str, Any]] = []
-    for source in args.sources:
+    for source in args.sources or [str(catalog_dir(None, args.genus))]:
         path = Path(source)
         if not source.startswith(("sig:", "example:")) and _is_dir(path):
             if not (path / "catalog.jsonl").is_file():
                 raise CliError(f"{source}: a directory, but no catalog.jsonl in it")
             try:
-                entries = read_entries(path)
+                entries = list(read_catalog(path).entries)  # checked as every reader checks it
             except CatalogError as err:
                 raise CliError(str(err), getattr(err, "status", 2)) from None
             for i, entry in enumerate(entries):
@@ -208,14 +216,17 @@ def add_commands(command: AddCommand) -> None:
                 "these columns, a button that copies the signature, and a viewer page per class "
                 "(resumable)", file_arg=False)
     p.add_argument("dir", metavar="DIR", nargs="?", help="a catalog directory (default: the shipped "
-                   "catalogs/genus0)")
+                   "one of --genus)")
+    genus_option(p)
     p.add_argument("-o", "--output", metavar="SITE", required=True, help="the site's directory")
     p.add_argument("--limit", type=count_arg(1), metavar="N", help="only the first N classes")
     p.add_argument("--workers", type=count_arg(1, MAX_WORKERS), default=1, metavar="K",
                    help="local worker processes drawing the pictures and pages")
     p = command("sheet", cmd_sheet, "a grid of small renders with captions, from files or a catalog "
                 "directory", file_arg=False)
-    p.add_argument("sources", metavar="DIR|FILE", nargs="+", help="catalog directories or " + FILE_HELP)
+    p.add_argument("sources", metavar="DIR|FILE", nargs="*", help="catalog directories or " + FILE_HELP
+                   + " (default: the shipped catalog of --genus)")
+    genus_option(p)
     p.add_argument("-o", "--output", metavar="OUT", required=True, help="OUT.png or OUT.svg")
     p.add_argument("--columns", type=count_arg(1), default=6, metavar="N", help="pictures per row")
     p.add_argument("--limit", type=count_arg(1), metavar="N", help="draw at most N")

@@ -629,12 +629,28 @@ def read_certificate(path: Path | str | None = None, *, genus: int | None = None
     """A certificate file (default: the shipped one of ``genus``, 0 unless given), its header
     checked (:func:`read_header`).
 
+    Parameters
+    ----------
+    path:
+        A certificate written by ``polyloops conjecture genus0`` or ``genus1``.
+    genus:
+        Without ``path``: which shipped certificate; with it, the genus it must have.
+
+    Returns
+    -------
+    Certificate
+        Its header and lines; :meth:`Certificate.check` replays it against a catalog.
+
     Raises
     ------
     ConjectureError
         When the first line is not a certificate header, or its genus is not ``genus``.
     polyloops.io.files.InputError
         When the file cannot be read.
+
+    >>> cert = read_certificate(genus=1)
+    >>> cert.genus, cert.max_corners >= 44
+    (1, True)
     """
     from polyloops.io.files import read_text
 
