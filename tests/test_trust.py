@@ -279,12 +279,10 @@ def test_two_runs_at_once_leave_the_larger_catalog(tmp_path):
     assert max(r["corners"] for r in records(cat)) == 28
 
 
-def test_a_merge_stopped_before_its_summary_is_finished_by_a_rerun(tmp_path, monkeypatch):
-    """A run stopped after writing its records and before its summary leaves a directory no
-    reader accepts; the rerun resumes from the parts and writes the whole set."""
+def _stop_before_the_summary(monkeypatch) -> None:
+    """Make the next merge stop (as Ctrl-C would) when it comes to write ``summary.json``."""
     import polyloops.enumerate.catalog_run as catalog_run
 
-    cat = tmp_path / "cat"
     real = catalog_run.write_atomic
 
     def stop_at_summary(path, text, **kw):
@@ -293,6 +291,13 @@ def test_a_merge_stopped_before_its_summary_is_finished_by_a_rerun(tmp_path, mon
         return real(path, text, **kw)
 
     monkeypatch.setattr(catalog_run, "write_atomic", stop_at_summary)
+
+
+def test_a_merge_stopped_before_its_summary_is_finished_by_a_rerun(tmp_path, monkeypatch):
+    """A run stopped after writing its records and before its summary leaves a directory no
+    reader accepts; the rerun resumes from the parts and writes the whole set."""
+    cat = tmp_path / "cat"
+    _stop_before_the_summary(monkeypatch)
     with pytest.raises(KeyboardInterrupt):
         build_catalog(cat, 20)
     monkeypatch.undo()
@@ -305,18 +310,9 @@ def test_a_merge_stopped_before_its_summary_is_finished_by_a_rerun(tmp_path, mon
 def test_a_merge_stopped_over_an_older_catalog_is_refused_then_finished(tmp_path, monkeypatch):
     """New records under the summary of the smaller catalog they replace: readers refuse the
     set (the digest), the rerun finishes it."""
-    import polyloops.enumerate.catalog_run as catalog_run
-
     cat = tmp_path / "cat"
     build_catalog(cat, 16)
-    real = catalog_run.write_atomic
-
-    def stop_at_summary(path, text, **kw):
-        if Path(path).name == "summary.json":
-            raise KeyboardInterrupt
-        return real(path, text, **kw)
-
-    monkeypatch.setattr(catalog_run, "write_atomic", stop_at_summary)
+    _stop_before_the_summary(monkeypatch)
     with pytest.raises(KeyboardInterrupt):
         build_catalog(cat, 20)
     monkeypatch.undo()
