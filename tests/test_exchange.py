@@ -190,7 +190,12 @@ def test_from_voxels_text_and_npy(tmp_path, capsys):
     ("0 0 0\n0 0\n", 2, "line 2"),
     ("0 0 x\n", 2, "line 1"),
     ("# nothing\n", 2, "no cubes"),
-    ("0 0 0\n1 1 0\n", 1, "components"),  # touching only along an edge: two surfaces
+    ("0 0 0\n1 1 0\n", 1, "2 pieces"),  # touching only along an edge: two surfaces
+    # a hollow 3x3x3 block: a cavity, not two pieces
+    ("".join(f"{x} {y} {z}\n" for x in range(3) for y in range(3) for z in range(3)
+             if (x, y, z) != (1, 1, 1)), 1, "a cavity of 1 empty cell, (1, 1, 1)"),
+    # a chain of five cubes whose two ends touch at a corner only: the split cannot mend it
+    ("0 0 0\n0 1 0\n1 1 0\n1 1 1\n1 0 1\n", 1, "meets itself at the position (1, 1, 1)"),
 ])
 def test_from_voxels_bad_input(content, code, words, tmp_path, capsys):
     path = tmp_path / "cubes.txt"

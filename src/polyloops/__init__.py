@@ -24,6 +24,7 @@ import polyloops._startup  # noqa: F401  (first: before numpy loads, the command
 __version__ = "0.1.0"
 
 from polyloops.core.canonical import canonical_form, from_signature, is_isomorphic, signature
+from polyloops.core.coarsen import coarsen
 from polyloops.core.corners import classify, corner_configurations
 from polyloops.core.directions import Axis, Direction
 from polyloops.core.duality import DualityError, dualize, is_order_equivalent, primalize
@@ -87,6 +88,7 @@ __all__ = [
     "build_catalog",
     "canonical_form",
     "classify",
+    "coarsen",
     "corner_configurations",
     "count_orientations",
     "describe",

@@ -121,9 +121,18 @@ def cmd_from_voxels(args: argparse.Namespace) -> int:
     except VoxelError as err:
         raise CliError(f"{args.file}: {err}", EXIT_INVALID) from None
     cubes = len({tuple(c) for c in cells})  # a cube listed twice is one cube
-    written(args, write_output(args.output, q), {"cubes": cubes, **structure_facts(q)}, document=to_data(q),
+    facts: dict[str, Any] = {"cubes": cubes}
+    removed = ""
+    if args.coarsen:
+        from polyloops.core.coarsen import coarsen_polycube
+
+        coarser = coarsen_polycube(q)
+        q = coarser.polycube
+        facts["removed loops"] = coarser.removed
+        removed = f" ({plural(coarser.removed, 'loop')} removed)"
+    written(args, write_output(args.output, q), {**facts, **structure_facts(q)}, document=to_data(q),
             line=f"{plural(cubes, 'cube')}: a polycube with {plural(q.map.num_corners, 'corner')} and "
-            f"{plural(q.map.num_faces, 'face')}, genus {q.genus}, written to {args.output}")
+            f"{plural(q.map.num_faces, 'face')}, genus {q.genus}{removed}, written to {args.output}")
     return EXIT_OK
 
 
@@ -188,6 +197,9 @@ def add_commands(command: AddCommand) -> None:
     p.add_argument("file", metavar="FILE", help="cubes: 'x y z' per line (# comments), or a .npy grid")
     p.add_argument("-o", "--output", metavar="OUT", help="write the polycube here (.json, .graph, .obj); "
                    "default: JSON on standard output")
+    p.add_argument("--coarsen", action="store_true", help="remove the loops that only subdivide flat "
+                   "faces while the structure stays valid (a 3x3x2 ring of cubes becomes the square "
+                   "ring T32.1); the polycube gets compact coordinates")
     p = command("signature", cmd_signature, "a canonical name: equal exactly for isomorphic "
                 "structures (mirror images of the surface identified); use it as sig:NAME anywhere")
     p.add_argument("--symmetry", choices=SYMMETRIES, default="full",
