@@ -360,7 +360,15 @@ def test_moves_cli_on_a_large_slab(tmp_path, capsys):
     out = json.loads(capsys.readouterr().out)
     assert out["complete"] == {"Z": False} and out["additions"]["Z"] >= 0
     assert main(["moves", str(path), "--count", "--add", "Z", "--time-limit", "1"]) == 0
-    assert "lower bound" in capsys.readouterr().out
+    assert "(>=: Z not finished, stopped by the time limit" in capsys.readouterr().out
+    # one budget for all three axes, and the line names each axis it did not finish
+    start = time.monotonic()
+    assert main(["moves", str(path), "--count", "--time-limit", "1.5", "--json"]) == 0
+    assert time.monotonic() - start < 5.0
+    unfinished = [a for a, done in json.loads(capsys.readouterr().out)["complete"].items() if not done]
+    assert main(["moves", str(path), "--count", "--time-limit", "1.5"]) == 0
+    text = capsys.readouterr().out
+    assert unfinished and f"{' and '.join(unfinished)} not finished" in text and "shared across" in text
     start = time.monotonic()
     assert main(["moves", str(path), "--add", "Z", "--time-limit", "1", "--json"]) == 0
     assert time.monotonic() - start < 5.0

@@ -415,3 +415,18 @@ def test_numpy_obj_reader_agrees_with_the_line_reader(lines):
         return
     assert fast[0].tolist() == [list(p) for p in points]
     assert fast[1].tolist() == [ids for _, ids in faces]
+
+
+@pytest.mark.parametrize("change", ["top faces down", "all reversed"])
+def test_the_picture_reddens_the_charts_the_witness_names(change):
+    """A witness made of charts' turning numbers alone: those charts are drawn tinted red."""
+    from polyloops.render.segmentation import hot_parts
+
+    q = load_example("cube")
+    labels = [q.face_normal(f) for f in range(6)]
+    labels = ([Direction.NZ if d == Direction.PZ else d for d in labels] if change == "top faces down"
+              else [-d for d in labels])
+    report = check_segmentation(labelled_mesh_from_polycube(q, labels))
+    charts, boundaries = hot_parts(report)
+    assert report.global_.witness.turning and set(report.global_.witness.turning) <= charts
+    assert set(report.global_.witness.all_boundaries()) <= boundaries

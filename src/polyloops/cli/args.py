@@ -10,7 +10,7 @@ from typing import Any
 
 from polyloops.core.errors import PolyloopsError
 from polyloops.core.symmetry import MODE_ALIASES, Symmetry
-from polyloops.core.words import plural  # noqa: F401  (the commands' counts in words)
+from polyloops.core.words import plural
 
 FILE_HELP = ("a polyloops JSON file, a DualCube .graph/.apg file or an OBJ quad mesh, "
              "example:NAME for a bundled example ('polyloops examples' lists them), or sig:SIGNATURE")
@@ -79,8 +79,27 @@ def written(args: argparse.Namespace, text: str | None, facts: dict[str, Any],
         emit(args, data, "")
     elif text is not None:
         print(text, end="")
-    elif line is not None:
-        say(getattr(args, "output", None), line)
+    else:
+        output = getattr(args, "output", None)
+        say(output, line if line is not None else f"wrote {output}: {fact_line(facts)}")
+
+
+def fact_line(facts: dict[str, Any]) -> str:
+    """The facts of what a command wrote, in words (for a writer given no line of its own).
+
+    >>> fact_line({"kind": "loop-structure", "corners": 8, "faces": 6, "genus": 0, "loops": 3})
+    'a loop structure with 8 corners, 6 faces and 3 loops, genus 0'
+    >>> fact_line({"rows": 1})
+    '1 row'
+    """
+    if "kind" in facts:
+        parts = [plural(facts["corners"], "corner"), plural(facts["faces"], "face")]
+        if "loops" in facts:
+            parts.append(plural(facts["loops"], "loop"))
+        counts = ", ".join(parts[:-1]) + " and " + parts[-1]
+        return f"a {facts['kind'].replace('-', ' ')} with {counts}, genus {facts['genus']}"
+    return ", ".join(plural(v, k.removesuffix("s")) for k, v in facts.items()
+                     if isinstance(v, int) and not isinstance(v, bool))
 
 
 def stream(args: argparse.Namespace, line: str) -> None:

@@ -16,6 +16,7 @@ from polyloops.cli.args import (
     count_arg,
     emit,
     genus_option,
+    plural,
     written,
 )
 from polyloops.cli.load import EXIT_OK, CliError, write_text
@@ -93,7 +94,7 @@ def cmd_catalog(args: argparse.Namespace) -> int:
     built_count = search.get("arrangements", search.get("states"))
     if built_count is not None:
         text += f"\narrangements built: {built_count} (generator {generator})"
-    emit(args, summary, f"{text}\nwrote {built.records} records ({args.symmetry}) to {args.output}")
+    emit(args, summary, f"{text}\nwrote {plural(built.records, 'record')} ({args.symmetry}) to {args.output}")
     return EXIT_OK
 
 

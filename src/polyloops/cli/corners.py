@@ -5,20 +5,22 @@ from __future__ import annotations
 import argparse
 
 from polyloops.cli.args import SYMMETRIES_WITH_ALIASES, AddCommand, emit
-from polyloops.cli.load import EXIT_OK, CliError
+from polyloops.cli.load import EXIT_OK, CliError, picture_output
 
 
 def cmd_corners(args: argparse.Namespace) -> int:
     from polyloops.enumerate.corners import corner_classes, corner_rows
 
-    for path, draw in ((args.png, "png"), (args.svg, "svg")):
-        if path:
-            from polyloops.render.corners import corner_sheet
+    pictures = [(picture_output(path, (f".{draw}",)), draw)
+                for path, draw in ((args.png, "png"), (args.svg, "svg")) if path]  # checked before drawing
+    for path, draw in pictures:
+        from polyloops.render.corners import corner_sheet
 
-            try:
-                corner_sheet(path)
-            except (OSError, ValueError) as err:
-                raise CliError(f"{path}: cannot write the {draw} picture: {err}") from None
+        try:
+            corner_sheet(path)
+        except (OSError, ValueError) as err:
+            raise CliError(f"{path}: cannot write the {draw} picture: {err}") from None
+    drawn = "".join(f"\ndrew the 126 configurations to {path}" for path, _ in pictures)
     if args.symmetry in ("labelled", "none"):
         rows = corner_rows(args.witnesses)
         text = "\n".join(
@@ -29,14 +31,16 @@ def cmd_corners(args: argparse.Namespace) -> int:
         shown = sum(1 for r in rows if r["examples"])
         header = (f"{len(rows)} corner configurations (id, category, directions counter-clockwise, "
                   f"bundled examples that contain it); {shown} appear in the bundled examples")
-        emit(args, {"symmetry": "labelled", "configurations": rows}, header + "\n" + text)
+        emit(args, {"symmetry": "labelled", "configurations": rows, "pictures": [p for p, _ in pictures]},
+             header + "\n" + text + drawn)
         return EXIT_OK
     classes = [c.to_json() for c in corner_classes(args.symmetry)]
     text = "\n".join(f"{r['class']:>3}  {r['category']:<18} size {r['size']:>2}  "
                      f"{' '.join(r['representative']):<20} members {r['members']}"  # type: ignore[arg-type]
                      for r in classes)
     header = f"{len(classes)} classes of corner configurations under symmetry '{args.symmetry}'"
-    emit(args, {"symmetry": str(args.symmetry), "classes": classes}, header + "\n" + text)
+    emit(args, {"symmetry": str(args.symmetry), "classes": classes, "pictures": [p for p, _ in pictures]},
+         header + "\n" + text + drawn)
     return EXIT_OK
 
 

@@ -214,7 +214,7 @@ def picture_output(path: str, suffixes: tuple[str, ...] = (".png", ".svg")) -> s
     ``suffixes``, that may be written; checked before the work (exit 2)."""
     if path != "-" and Path(path).suffix.lower() not in suffixes:  # ".png" alone has no suffix
         names = " or ".join(f"NAME{s}" for s in suffixes)
-        what = "pictures are" if ".png" in suffixes else "the viewer is"
+        what = "the viewer is" if ".html" in suffixes else "pictures are"
         raise CliError(f"{path}: {what} written as {names}")
     check_output(path)
     return path

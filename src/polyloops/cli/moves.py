@@ -42,7 +42,7 @@ def _count_additions(ls: Any, axes: list[Axis], args: argparse.Namespace) -> Any
 
 
 def cmd_moves(args: argparse.Namespace) -> int:
-    from polyloops.core.moves import RemovalCheck, check_removal, removals
+    from polyloops.core.moves import RemovalCheck, check_removal, loop_names, removals
     from polyloops.enumerate.listing import list_additions
 
     if sum(map(bool, (args.count, args.shortest is not None, args.sample is not None))) > 1:
@@ -70,9 +70,12 @@ def cmd_moves(args: argparse.Namespace) -> int:
             data["additions"], data["complete"] = counted.counts, counted.complete
             shown = [f"{a}:{'' if counted.complete[a] else '>='}{n}" for a, n in counted.counts.items()]
             lines.append("additions " + "  ".join(shown))
-            if not all(counted.complete.values()):
-                why = "the time limit" if args.time_limit is not None and args.limit is None else "a limit"
-                lines.append(f"(>=: stopped by {why}; a lower bound)")
+            unfinished = [a for a, done in counted.complete.items() if not done]
+            if unfinished:
+                why = ("the time limit, shared across the axes" if args.time_limit is not None
+                       and args.limit is None else "a limit")
+                lines.append(f"(>=: {' and '.join(unfinished)} not finished, stopped by {why}; "
+                             f"{'a lower bound' if len(unfinished) == 1 else 'lower bounds'})")
         if want_remove:
             data["removals"] = len(removals(ls))
             lines.append(f"removals  {data['removals']}")
@@ -96,12 +99,14 @@ def cmd_moves(args: argparse.Namespace) -> int:
     if want_remove:
         removal_rows = []
         removable = set(removals(ls))
+        names = loop_names(ls)
         for lp in ls.loops:
             # The reasons come from the loop-by-loop test, asked only where the verdict is no.
             check = RemovalCheck(lp.id, True) if lp.id in removable else check_removal(ls, lp.id)
-            removal_rows.append({"loop": lp.id, "axis": str(ls.axes[lp.id]), "segments": list(lp.edges),
-                                 "removable": check.valid, "reason": check.reason})
-            stream(args, f"remove {lp.id:>3}  {ls.axes[lp.id]}-loop of {len(lp)} segments: "
+            removal_rows.append({"loop": lp.id, "name": names[lp.id], "axis": str(ls.axes[lp.id]),
+                                 "segments": list(lp.edges), "removable": check.valid,
+                                 "reason": check.reason})
+            stream(args, f"remove {names[lp.id]:>5}  loop {lp.id}, of {plural(len(lp), 'segment')}: "
                    + ("removable" if check.valid else f"not removable: {check.reason}"))
         data["removals"] = removal_rows
     if args.json:
@@ -151,17 +156,20 @@ def cmd_add(args: argparse.Namespace) -> int:
 
 
 def cmd_remove(args: argparse.Namespace) -> int:
-    from polyloops.core.moves import check_removal, remove_loop
+    from polyloops.core.moves import MoveError, check_removal, parse_removal, remove_loop
 
     ls = read_valid_structure(args.file)
-    if not 0 <= args.loop < len(ls.loops):
-        raise CliError(f"{args.file}: there is no loop {args.loop} (loops are 0..{len(ls.loops) - 1})")
-    check = check_removal(ls, args.loop)
+    try:
+        loop = parse_removal(ls, args.loop)
+    except MoveError as err:
+        advice = f"'polyloops moves {args.file} --remove' lists the loops"
+        raise CliError(f"{args.file}: {err} ({advice})") from None
+    check = check_removal(ls, loop)
     if not check.valid:
         raise CliError(f"{args.file}: loop {args.loop} is not removable: {check.reason}", EXIT_INVALID)
-    child = remove_loop(ls, args.loop)
+    child = remove_loop(ls, loop)
     written(args, write_output(args.output, child),
-            {"move": {"remove": args.loop, "axis": ls.axes[args.loop].name}, **structure_facts(child)},
+            {"move": {"remove": loop, "axis": ls.axes[loop].name}, **structure_facts(child)},
             document=to_data(child))
     return EXIT_OK
 
@@ -196,6 +204,6 @@ def add_commands(command: AddCommand) -> None:
     p.add_argument("move", metavar="MOVE")
     p.add_argument("-o", "--output", metavar="OUT", help="write the new structure here")
     p = command("remove", cmd_remove, "remove one loop, if that leaves a polycube loop structure")
-    p.add_argument("loop", metavar="LOOP", type=count_arg(0),
-                   help="a loop id from 'polyloops moves --remove'")
+    p.add_argument("loop", metavar="LOOP", help="a loop as 'polyloops moves --remove' names it: its "
+                   "axis and rank among that axis's loops (X0: the first X-loop), or its id (3)")
     p.add_argument("-o", "--output", metavar="OUT", help="write the new structure here")

@@ -14,6 +14,7 @@ from polyloops.cli.args import (
     catalog_dir,
     count_arg,
     genus_option,
+    plural,
     written,
 )
 from polyloops.cli.load import (
@@ -67,8 +68,9 @@ def cmd_render(args: argparse.Namespace) -> int:
         raise CliError(f"{args.file}: {err}") from None
     except OSError as err:
         raise write_error(out, err) from None
-    written(args, None, {"drew": drew, "views": args.views if drew == "polycube" else 0,
-                         "valid": report.valid})
+    views = args.views if drew == "polycube" else 0
+    shown = f"the polycube in {plural(views, 'view')}" if views else f"the {drew}"
+    written(args, None, {"drew": drew, "views": views, "valid": report.valid}, f"drew {shown} to {out}")
     return status
 
 
@@ -116,7 +118,8 @@ def cmd_gallery(args: argparse.Namespace) -> int:
         bar.close()
     index = out / "index.html"
     written(args, None, {"classes": built.classes, "index": str(index)},
-            f"wrote {built.classes} classes to {index} (open it in a browser; no network needed)")
+            f"wrote {plural(built.classes, 'class', 'classes')} to {index} (open it in a browser; no "
+            "network needed)")
     return EXIT_OK
 
 
@@ -189,7 +192,7 @@ def cmd_sheet(args: argparse.Namespace) -> int:
         raise write_error(out, err) from None
     finally:
         bar.close()
-    written(args, None, {"pictures": len(items)}, f"drew {len(items)} polycubes to {out}")
+    written(args, None, {"pictures": len(items)}, f"drew {plural(len(items), 'polycube')} to {out}")
     return EXIT_OK
 
 

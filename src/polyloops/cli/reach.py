@@ -77,7 +77,7 @@ def cmd_reach(args: argparse.Namespace) -> int:
             write_atomic(out / "summary.json", json.dumps(data, indent=1) + "\n", within=out)
         except OSError as err:
             raise CliError(str(err)) from None
-    lines = [f"{result.states} states within {args.max_corners} corners "
+    lines = [f"{plural(result.states, 'state')} within {args.max_corners} corners "
              f"({args.symmetry}, moves {','.join(k.value for k in kinds)}), "
              f"largest distance {result.max_distance}, {result.seconds:.1f} s"
              + ("" if result.complete else f"; stopped at depth {args.max_depth}")]

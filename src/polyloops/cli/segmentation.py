@@ -18,6 +18,7 @@ from polyloops.cli.load import (
     write_output,
 )
 from polyloops.core.halfedge import MapError
+from polyloops.core.words import plural
 from polyloops.io.files import InputError
 from polyloops.io.labelled_mesh import LabelledMesh, LabelledMeshError
 from polyloops.io.labelled_mesh import read_labelled_mesh as read_mesh_files
@@ -64,7 +65,7 @@ def format_report(source: str, report) -> str:
     lines = [f"{source}: labelled segmentation: {verdict}",
              f"  charts {len(seg.charts)}  boundaries {len(seg.boundaries)}  corners {len(seg.corners)}"]
     local = report.local
-    lines.append(f"  local criteria: {'pass' if local.valid else f'{len(local.violations)} violations'}")
+    lines.append(f"  local criteria: {'pass' if local.valid else plural(len(local.violations), 'violation')}")
     lines += [f"    {v.rule}: {v.message}" for v in local.violations]
     g = report.global_
     state = {True: "pass", False: "FAIL", None: "not decided"}[g.valid]

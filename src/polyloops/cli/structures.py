@@ -158,6 +158,8 @@ def cmd_identify(args: argparse.Namespace) -> int:
         raise CliError(str(err), err.status) from None
     if found.name is not None:
         text = f"{args.file}: {found.name}"
+    elif found.not_polycube is not None:
+        text = f"{args.file}: not in the catalog: it is no polycube ({found.not_polycube})"
     elif found.genus != found.catalog_genus:
         text = (f"{args.file}: not in the catalog (genus {found.genus}; "
                 f"the catalog has genus {found.catalog_genus})")

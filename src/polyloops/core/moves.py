@@ -1076,6 +1076,8 @@ def parse_addition(ls: LoopStructure, text: str) -> Addition:
             move = Addition(Axis.parse(label.strip().upper()), parse_cycle(corners))
         except ValueError:
             raise MoveError(f"move {text!r}: {MOVE_SYNTAX}") from None
+        if not move.cycle:
+            raise MoveError(f"move {text!r} names no corners: {MOVE_SYNTAX}")
         missing = [c for c in move.cycle if not 0 <= c < ls.map.num_corners]
         if missing:
             raise MoveError(f"move {text!r}: there is no corner {missing[0]} (corners are 0 to "
@@ -1090,3 +1092,44 @@ def parse_addition(ls: LoopStructure, text: str) -> Addition:
     if found is None:
         raise MoveError(f"there is no addition {text}")
     return found
+
+
+def loop_names(ls: LoopStructure) -> list[str]:
+    """Each loop's name as ``add`` and ``remove`` take it: its axis and its rank among the loops
+    of that axis, in loop order (``Y0`` is the first Y-loop).
+
+    >>> from polyloops.io.examples import load_example
+    >>> loop_names(load_example("box-2x1x1").dualize())
+    ['Y0', 'Z0', 'X0', 'X1']
+    """
+    seen = dict.fromkeys(Axis, 0)
+    names = []
+    for a in ls.axes:
+        names.append(f"{a}{seen[a]}")
+        seen[a] += 1
+    return names
+
+
+def parse_removal(ls: LoopStructure, text: str) -> int:
+    """The loop id ``text`` names on ``ls``: a loop id (``3``) or an axis and a rank among the
+    loops of that axis (``X0``, see :func:`loop_names`).  Raises :class:`MoveError` when it names
+    no loop; whether the loop is removable is :func:`check_removal`'s question.
+
+    >>> from polyloops.io.examples import load_example
+    >>> box = load_example("box-2x1x1").dualize()
+    >>> parse_removal(box, "X1"), parse_removal(box, "3")
+    (3, 3)
+    """
+    word = text.strip().upper()
+    if word.isdigit():
+        if int(word) < len(ls.loops):
+            return int(word)
+        raise MoveError(f"there is no loop {text} (loops are 0 to {len(ls.loops) - 1})")
+    names = loop_names(ls)
+    if word in names:
+        return names.index(word)
+    if word[:1] in "XYZ" and word[1:].isdigit():
+        raise MoveError(f"there is no loop {text} (the {word[0]}-loops are {word[0]}0 to "
+                        f"{word[0]}{sum(str(a) == word[0] for a in ls.axes) - 1})")
+    raise MoveError(f"loop {text!r}: a loop is named by its id (such as 3) or by its axis and its "
+                    "rank among that axis's loops (such as X0)")

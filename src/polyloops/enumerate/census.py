@@ -346,6 +346,7 @@ class Identification:
     genus: int
     max_corners: int  # how far the catalog goes
     catalog_genus: int
+    not_polycube: str | None = None  # when not found: why it is no polycube (loop structure) at all
 
     @property
     def beyond(self) -> bool:
@@ -356,7 +357,8 @@ class Identification:
         """A JSON-ready dict of the identification."""
         return {"name": self.name, "signature": self.signature, "corners": self.corners,
                 "genus": self.genus, "catalog_max_corners": self.max_corners,
-                "catalog_genus": self.catalog_genus, "in_catalog": self.name is not None}
+                "catalog_genus": self.catalog_genus, "in_catalog": self.name is not None,
+                "polycube": self.not_polycube is None, "not_polycube": self.not_polycube}
 
 
 def identify(obj: Any, catalog: Path | Census | None = None) -> Identification:
@@ -385,6 +387,8 @@ def identify(obj: Any, catalog: Path | Census | None = None) -> Identification:
     >>> from polyloops.io.examples import load_example
     >>> identify(load_example("l-shape")).name, identify(load_example("ring-y")).name
     ('P16.2', 'T32.1')
+    >>> print(identify(load_example("torus-cycle")).not_polycube)  # doctest: +ELLIPSIS
+    Definition 4 condition 5: the X-graph has a cycle ...
     """
     from polyloops.core.canonical import canonical_form
 
@@ -393,8 +397,14 @@ def identify(obj: Any, catalog: Path | Census | None = None) -> Identification:
     census = catalog if isinstance(catalog, Census) else read_catalog(catalog)
     sig = canonical_form(obj, census.symmetry).signature
     found = census.by_signature.get(sig)
+    why = None
+    if found is None:  # a catalog lists polycubes only: say when that is why (checked on misses alone)
+        from polyloops.verify import verify
+
+        report = verify(obj)
+        why = None if report.valid else report.first_violation()
     return Identification(found.name if found else None, sig, obj.map.num_corners, obj.map.genus,
-                          census.max_corners, census.genus)
+                          census.max_corners, census.genus, why)
 
 
 @dataclass(frozen=True)

@@ -516,6 +516,17 @@ class TorusGenerator(Generator):
     visits = "arrangements"
     statistics_key = "search"
 
+    def notes(self) -> list[str]:
+        """That the Python search stands in for the compiled one, when that was not built (the
+        same note the genus-0 generators give)."""
+        from polyloops.enumerate.torus import compiled_search_available
+
+        if not compiled_search_available():
+            return ["the compiled torus search was not built (a C compiler and the Python headers are "
+                    "needed at install time); using the Python search, which finds the same classes "
+                    "several times slower"]
+        return []
+
     def plan(self, low: int, high: int, share: tuple[int, int] | None, workers: int) -> list[Job]:
         """One search over every corner count, cut into 16 shares (more with more than 16
         workers): a finished share is kept, so a stopped run loses at most the shares under way

@@ -14,6 +14,7 @@ from __future__ import annotations
 import html
 from pathlib import Path
 
+from polyloops.core.words import plural
 from polyloops.enumerate.census import CatalogEntry
 from polyloops.enumerate.move_graph import Descent, MoveGraph
 from polyloops.io.files import write_atomic
@@ -109,7 +110,7 @@ def _shortest_html(name: str, graph: MoveGraph, listed: set[str], start: str = "
             caption = (f"remove {down.axis}-loop {down.loop}" if down is not None
                        else f"add its {up.axis}-loop {up.loop}" if up is not None else "")
         cells.append(_cell(here, caption))
-    return (f'<h2>From {start}: {len(path) - 1} moves</h2><p class="note">A shortest path of loop '
+    return (f'<h2>From {start}: {plural(len(path) - 1, "move")}</h2><p class="note">A shortest path of loop '
             f"moves among the gallery's classes (breadth first; so within their range of corners: a "
             f"path through larger structures could be shorter).</p><div class=\"row shortest\">"
             f"{''.join(cells)}</div>")
@@ -134,8 +135,8 @@ def _descent_html(name: str, descent: Descent | None, listed: set[str],
     climbs = any(s.move is not None and s.move.kind.value == "add" for s in descent.steps)
     note = (" It climbs first: the detour of the reachability certificate, through larger structures "
             "to a smaller class, then removals." if climbs else " Each step removes a loop.")
-    return (f"<h2>To {start}: {descent.moves} moves</h2><p class=\"note\">A way down with the fewest "
-            f"moves among removals and the certificate's detours (not necessarily a shortest path of "
+    return (f"<h2>To {start}: {plural(descent.moves, 'move')}</h2><p class=\"note\">A way down with the "
+            f"fewest moves among removals and the certificate's detours (not necessarily a shortest path of "
             f"the move graph).{note}</p><div class=\"row strip\">{''.join(cells)}</div>")
 
 

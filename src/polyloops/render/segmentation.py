@@ -6,6 +6,7 @@ from __future__ import annotations
 import os
 from collections.abc import Callable
 from itertools import pairwise
+from typing import Any
 
 import numpy as np
 from matplotlib.patches import Patch
@@ -40,10 +41,24 @@ def _neighbours(ids: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
             np.concatenate([flat[:, 1:].ravel(), flat[1:, :].ravel()]))
 
 
+def hot_parts(report: Any) -> tuple[set[int], set[int]]:
+    """The charts and boundaries drawn in red: those the global witness names (the charts whose
+    turning numbers it uses, the boundaries of its cycles and arcs) and those of local
+    violations (a chart only where the rule is about the chart itself)."""
+    witness = report.global_.witness
+    charts: set[int] = set(witness.turning) if witness is not None else set()
+    boundaries = set(witness.all_boundaries()) if witness is not None else set()
+    for v in report.local.violations:
+        boundaries |= set(v.boundaries)
+        charts |= set(v.charts) if v.rule in ("few-boundaries", "chart-handle") else set()
+    return charts, boundaries
+
+
 def draw_segmentation(ax, report, view: View, pixels: int = PIXELS) -> None:
     """Draw one view from a depth buffer of the mesh's front-facing triangles
     (:func:`~polyloops.render.raster.triangle_buffer`): each pixel shows the nearest triangle
-    in its label's colour (charts that break a local rule of their own tinted red), a pixel
+    in its label's colour (charts that break a local rule of their own, or whose turning number
+    the witness uses, tinted red), a pixel
     is a chart boundary where its neighbour shows another chart (red, and thicker, where
     either triangle lies on the witness or a violation), and the witness corners that are
     visible are marked.  Everything is decided per pixel, so nothing hidden shows through,
@@ -53,11 +68,7 @@ def draw_segmentation(ax, report, view: View, pixels: int = PIXELS) -> None:
     seg = report.segmentation
     mesh = seg.mesh
     witness = report.global_.witness
-    hot_charts: set[int] = set()
-    hot_boundaries = set(witness.all_boundaries()) if witness is not None else set()
-    for v in report.local.violations:
-        hot_boundaries |= set(v.boundaries)
-        hot_charts |= set(v.charts) if v.rule in ("few-boundaries", "chart-handle") else set()
+    hot_charts, hot_boundaries = hot_parts(report)
     hot_edges = {frozenset(e) for b in hot_boundaries for e in pairwise(seg.boundaries[b].vertices)}
     points = np.asarray(mesh.points, dtype=float).reshape(-1, 3)
     tris = np.asarray(mesh.triangles, dtype=np.int64).reshape(-1, 3)

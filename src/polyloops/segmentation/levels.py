@@ -198,7 +198,8 @@ def check_global(seg: Segmentation, max_cuts: int = 10_000, try_mesh_first: bool
         cuts = 0
         while True:
             if not solver.solve(assumptions=list(selectors)):
-                core = minimal_core(solver, list(solver.get_core() or []))
+                # deletion-minimal, whatever its size: each part of the witness is needed
+                core = minimal_core(solver, list(solver.get_core() or []), limit=None)
                 corners = tuple(sorted(selectors[s][1] for s in core if selectors[s][0] == "corner"))
                 charts = tuple(sorted(selectors[s][1] for s in core if selectors[s][0] == "chart"))
                 cycles = tuple(selectors[s][1] for s in core if selectors[s][0] == "cycle")

@@ -110,10 +110,11 @@ class SatSolver:
         return [cuts[selector] for selector in core]
 
 
-def minimal_core(solver: PySatSolver, core: list[int], limit: int = 200) -> list[int]:
+def minimal_core(solver: PySatSolver, core: list[int], limit: int | None = 200) -> list[int]:
     """Drop the assumptions of an unsatisfiable core that it does not need (deletion, in the
-    solver that found it); a core larger than ``limit`` is returned as it is, sorted."""
-    if len(core) > limit:
+    solver that found it), leaving a core from which no assumption can be dropped; a core
+    larger than ``limit`` (``None``: no limit) is returned as it is, sorted."""
+    if limit is not None and len(core) > limit:
         return sorted(core)
     keep = sorted(core)
     for lit in list(keep):
