@@ -45,7 +45,8 @@ def test_identify_says_when_it_is_no_polycube(capsys):
 
 
 @pytest.mark.parametrize("argv, words", [
-    (["dualize", "example:l-shape", "-o", "{out}.json"], "a loop structure with 16 corners, 14 faces and 5 loops"),
+    (["dualize", "example:l-shape", "-o", "{out}.json"],
+     "a loop structure with 16 corners, 14 faces and 5 loops"),
     (["primalize", "{dual}", "-o", "{out}.json"], "a polycube with 8 corners and 6 faces, genus 0"),
     (["convert", "example:l-shape", "{out}.graph"], "a polycube with 16 corners"),
     (["add", "example:cube", "X0", "-o", "{out}.json"], "a loop structure with 12 corners"),

@@ -123,5 +123,13 @@ def _segmentation(args: argparse.Namespace, step: Callable[[str], None]) -> int:
         except OSError as err:
             raise write_error(args.png, err) from None
     source = args.mesh if args.labels is None else f"{args.mesh} + {os.path.basename(args.labels)}"
-    print(json.dumps(report.to_json(), indent=2) if args.json else format_report(source, report))
+    data = report.to_json()
+    text = format_report(source, report)
+    if args.output and report.polycube is not None:
+        data["output"] = args.output
+        text += f"\nwrote {args.output}: the realising polycube"
+    if args.png:
+        data["png"] = args.png
+        text += f"\ndrew the labelled mesh to {args.png}"
+    print(json.dumps(data, indent=2) if args.json else text)
     return EXIT_INVALID if report.valid is False else EXIT_OK
