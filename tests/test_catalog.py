@@ -39,7 +39,8 @@ def test_batches_hold_every_map():
 
 
 def test_counts_of_quadrangulations_match_the_notes():
-    # MATH.md: counts of plantri -qc2 by vertices, 8..18.
+    # The numbers of quadrangulations of the sphere with minimum degree 3 (what plantri -qc2
+    # generates), by vertices, 8..18.
     notes = [1, 0, 1, 1, 3, 3, 12, 19, 64, 155, 510]
     assert [plantri_count(n, plantri()) for n in range(8, 19)] == notes
 
@@ -698,3 +699,17 @@ def test_shipping_a_larger_run_keeps_the_old_counts_and_checks_everything(tmp_pa
     (bad / "catalog.jsonl").write_text("\n".join(records[1:]) + "\n")
     with pytest.raises(tool.ShipError):
         tool.ship(bad, into)
+
+
+def test_the_catalog_readme_counts_what_ships():
+    """The README's count of the shipped genus-0 classes is the summary's."""
+    summary = json.loads((SHIPPED / "summary.json").read_text())
+    readme = (ROOT / "catalogs" / "README.md").read_text()
+    found = re.search(r"with at most (\d+) corners.*?identified: ([\d,]+) classes \(([\d,]+) of them with "
+                      r"(\d+) corners\)", readme, re.S)
+    assert found is not None
+    top, total, at_top, top_again = found.groups()
+    counts = summary["counts"]
+    assert int(top) == int(top_again) == max(int(n) for n in counts)
+    assert int(total.replace(",", "")) == sum(row["full"] for row in counts.values())
+    assert int(at_top.replace(",", "")) == counts[top]["full"]

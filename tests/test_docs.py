@@ -195,3 +195,35 @@ def test_the_api_overview_lists_every_top_level_name():
     assert listed == set(polyloops.__all__) - module.SKIP
 
 
+
+
+def test_one_table_of_layers_and_every_package_in_it():
+    """docs/architecture.md holds the one table of the layers, a row per package; the API index
+    links a page per package and keeps no table of its own."""
+    import pkgutil
+
+    import polyloops
+
+    packages = {info.name.split(".")[1] for info in pkgutil.iter_modules(polyloops.__path__, "polyloops.")
+                if info.ispkg} - {"cli", "examples", "catalogs"}
+    architecture = (ROOT / "docs" / "architecture.md").read_text(encoding="utf-8")
+    rows = set(re.findall(r"^\| `(\w+)` \|", architecture, re.M))
+    assert packages <= rows
+    index = (ROOT / "docs" / "api" / "index.md").read_text(encoding="utf-8")
+    assert "| package |" not in index
+    assert all(f"[`polyloops.{p}`]({p}.md)" in index for p in packages)
+
+
+def test_the_citation_file_states_this_release_and_the_shipped_ranges():
+    import yaml
+
+    import polyloops
+
+    cff = yaml.safe_load((ROOT / "CITATION.cff").read_text(encoding="utf-8"))
+    assert cff["cff-version"] == "1.2.0" and cff["license"] == "MIT"
+    assert cff["version"] == polyloops.__version__
+    for genus in (0, 1):
+        summary = json.loads((ROOT / "catalogs" / f"genus{genus}" / "summary.json").read_text())
+        top = max(int(n) for n in summary["counts"])
+        assert f"genus-{genus} polycubes through {top} corners" in " ".join(cff["abstract"].split())
+    assert (ROOT / "LICENSE").read_text().startswith("MIT License")

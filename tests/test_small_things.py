@@ -93,3 +93,10 @@ def test_corner_pictures_are_checked_before_drawing(monkeypatch, tmp_path, capsy
     assert "does not exist" in capsys.readouterr().err
     assert main(["corners", "--svg", str(tmp_path / "c.png")]) == 2
     assert "pictures are written as NAME.svg" in capsys.readouterr().err
+
+
+def test_the_file_help_lists_every_format_read():
+    from polyloops.cli.args import FILE_HELP
+    from polyloops.io.registry import FORMATS
+
+    assert all(s in FILE_HELP for f in FORMATS if f.reads for s in f.suffixes[:2])

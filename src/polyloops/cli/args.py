@@ -11,9 +11,14 @@ from typing import Any
 from polyloops.core.errors import PolyloopsError
 from polyloops.core.symmetry import MODE_ALIASES, Symmetry
 from polyloops.core.words import plural
+from polyloops.io.registry import FORMATS
 
-FILE_HELP = ("a polyloops JSON file, a DualCube .graph/.apg file or an OBJ quad mesh, "
-             "example:NAME for a bundled example ('polyloops examples' lists them), or sig:SIGNATURE")
+# Every format the registry reads, so that the help never lists fewer than the program takes.
+_MESHES = ", ".join(s for f in FORMATS if f.reads and f.name not in ("json", "apg", "planar")
+                    for s in f.suffixes)
+FILE_HELP = ("a file polyloops reads (polyloops JSON, DualCube .graph/.apg, plantri's planar code "
+             f".pc/.plc, or a quad mesh: {_MESHES}), example:NAME for a bundled example ('polyloops "
+             "examples' lists them), or sig:SIGNATURE")
 
 # The symmetry modes' names, as every --symmetry option offers them.
 SYMMETRIES = tuple(mode.value for mode in Symmetry)

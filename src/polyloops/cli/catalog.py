@@ -150,11 +150,12 @@ def _export_arguments(p: argparse.ArgumentParser) -> None:
 
 
 def add_commands(command: AddCommand, hidden: AddCommand) -> None:
-    p = command("catalog", cmd_catalog, "the catalog of polycubes of genus 0 (or 1) up to "
-                "order-equivalence, by number of corners, from plantri's quadrangulations or "
-                "arrangements of loops; "
-                "'catalog query DIR WHERE' "
-                "searches one, 'catalog export DIR --csv' writes its table", file_arg=False)
+    p = command("catalog", cmd_catalog, "the catalog of polycubes of genus 0 or 1 up to "
+                "order-equivalence, by number of corners: at genus 0 from arrangements of loops or "
+                "plantri's quadrangulations, at genus 1 from the torus search (two stages: "
+                "arrangements of two axes' loops, then the third axis region by region); 'catalog "
+                "query [DIR] WHERE' searches one, 'catalog export [DIR] --csv OUT' writes its table "
+                "(without DIR: the shipped catalog of --genus)", file_arg=False)
     p.add_argument("--max-corners", type=count_arg(0, MAX_CATALOG_CORNERS), metavar="N",
                    help=f"required to build; at most {MAX_CATALOG_CORNERS} (the searches' arrays hold no "
                    "more, and no run gets near: 36 corners take minutes of CPU at genus 0)")

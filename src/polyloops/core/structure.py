@@ -1,7 +1,7 @@
 """Loop structures: the loops of a map with axis labels and, optionally, sides.
 
 A :class:`LoopStructure` is a view of a :class:`HalfEdgeMap`.  In the paper's
-words, and in the primal terms of ``MATH.md``:
+words, and in the primal terms of the quad mesh (docs/model.md, "Dictionary"):
 
 =====================  ======================================
 loop structure         map

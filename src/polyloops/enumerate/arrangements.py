@@ -15,7 +15,7 @@ fewest crossings, and of these the one met first in the canonical numbering), so
 arrangement is built once, from one parent, and the search is a tree that splits into
 independent subtrees (``res``/``mod``).  Deleting a loop keeps loops simple but not region
 sizes, so intermediate arrangements have bigons and large regions; a counting bound prunes
-those that cannot grow into a candidate within the corner budget (``docs/catalog.md`` proves
+those that cannot grow into a candidate within the corner budget (``docs/searches.md`` proves
 it).  Arrangements whose graph of crossing loops is not 3-colourable carry no polycube, nor
 does anything built from them, so they are not built either (cut 4, :data:`COLOUR_CUT`); and no
 corner of a genus-0 polycube meets a strip twice, so a region with several sides on one loop
@@ -230,12 +230,12 @@ class SearchStats:
 
 SINGLE_LOOP = (_pack([1, 0]), _pack([1, 0]))  # one loop, one marker vertex on it
 
-# Cut 4 (docs/catalog.md): arrangements whose crossing graph is not 3-colourable carry no
+# Cut 4 (docs/searches.md): arrangements whose crossing graph is not 3-colourable carry no
 # polycube, nor does any arrangement built from them; they are not built.  The candidate maps
 # are then those of plantri's filter whose crossing graph is 3-colourable, and the catalog's
 # records are the same.  False visits every candidate map (the tests compare both with plantri).
 COLOUR_CUT = True
-# Cut 5 (docs/catalog.md): no corner of a genus-0 polycube meets a strip twice, so a region with
+# Cut 5 (docs/searches.md): no corner of a genus-0 polycube meets a strip twice, so a region with
 # k sides on one loop must still be cut into k pieces; this joins cut 1's bound, and a candidate
 # map has no region with two sides on one loop.  The catalog's records are the same; False
 # gives the candidate maps of cut 4 alone.

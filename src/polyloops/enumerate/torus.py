@@ -29,7 +29,7 @@ leaves the arrangement connected, those with fewest crossings, and of these the 
 canonical numbering of the marked map).  :func:`torus_arrangements` lists every cellular
 arrangement so (``colours`` keeps those whose crossing graph that many colours colour).
 
-**Polycubes, in two stages** (``docs/catalog.md`` proves it).  Deleting every loop of one axis
+**Polycubes, in two stages** (``docs/searches.md`` proves it).  Deleting every loop of one axis
 from a polycube loop structure of positive genus merges its corners along paths of edges of
 that axis, so the two other axes' loops form a cellular arrangement ``B`` (its crossing graph
 is bipartite), and the deleted loops are pairwise disjoint, each crossing every region of ``B``
@@ -354,7 +354,7 @@ def axis_runs(a: TorusArrangement, loop: int, klass: Sequence[int] | None = None
     In a polycube the loop's strip of faces, cut at its level, is a closed rectilinear curve
     that goes straight through faces of one normal (consecutive faces of the same normal are
     coplanar, and a fold back would overlap edges) and turns at each change: so it has at least
-    four runs, alternately of the two other axes (``docs/catalog.md``, "Two stages")."""
+    four runs, alternately of the two other axes (``docs/searches.md``, "Two stages")."""
     klass = klass if klass is not None else _classes(a)
     start = next(d for d in range(len(a.twin)) if a.loop_of[d] == loop)
     seq, e = [], start

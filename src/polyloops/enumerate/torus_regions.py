@@ -2,7 +2,7 @@
 arrangement ``B`` at once.
 
 In a polycube loop structure the third axis's loops cut each region of ``B`` (a disc) into a
-path of corners (``docs/catalog.md``, "Two stages"), so within a region they are parallel
+path of corners (``docs/searches.md``, "Two stages"), so within a region they are parallel
 chords: with ``k`` chords and their ``2k`` ends in cyclic order ``P_0 .. P_2k-1`` around the
 region, the chords are ``P_(a+i) - P_(a-1-i)`` for one offset ``a`` (``k`` choices).  The
 whole third axis is therefore a number of points on each edge of ``B`` and an offset in each
