@@ -86,7 +86,8 @@ def test_non_positive_or_non_integer_bounds_are_bad_input(tmp_path, capsys, clai
     assert status == 2 and "max_corners" in err and err.count("\n") == 1 and out == ""
 
 
-@pytest.mark.parametrize("catalog", [REAL, SHIPPED], ids=["shipped", "cut at 30"])
+@pytest.mark.parametrize("catalog", [pytest.param(REAL, marks=pytest.mark.slow), SHIPPED],
+                         ids=["shipped", "cut at 30"])
 def test_the_shipped_certificate_states_its_range(capsys, catalog):
     cert = catalog / "reachability-certificate.jsonl"
     status, out, _ = run(capsys, "conjecture", "check", str(cert), "--catalog", str(catalog), "--json")

@@ -65,14 +65,19 @@ def test_plain_install_has_the_census(installed, tmp_path):
     assert done.returncode == 0 and "P16.2" in done.stdout, done.stderr
     done = run_installed(installed, tmp_path, "-m", "polyloops", "gallery", "-o", "site", "--limit", "3")
     assert done.returncode == 0 and (tmp_path / "site" / "index.html").is_file(), done.stderr
-    shipped = installed / "polyloops" / "catalogs" / "genus0"
-    done = run_installed(installed, tmp_path, "-m", "polyloops", "conjecture", "check",
-                         str(shipped / "reachability-certificate.jsonl"), "--catalog", str(shipped))
-    assert done.returncode == 0, done.stdout + done.stderr
+    # the genus-0 certificate ships too (its whole check runs in test_certificates, with --run-slow)
+    code = "import polyloops as pl; c = pl.read_certificate(); print(c.header['max_corners'], c.genus)"
+    done = run_installed(installed, tmp_path, "-c", code)
+    assert done.returncode == 0 and done.stdout.split() == ["36", "0"], done.stdout + done.stderr
     # the genus-1 catalog ships beside it: identify finds the ring, its certificate checks
     done = run_installed(installed, tmp_path, "-m", "polyloops", "identify", "example:ring-x")
     assert done.returncode == 0 and "T32.1" in done.stdout, done.stderr
-    genus1 = installed / "polyloops" / "catalogs" / "genus1"
-    done = run_installed(installed, tmp_path, "-m", "polyloops", "conjecture", "check",
-                         str(genus1 / "reachability-certificate.jsonl"), "--catalog", str(genus1))
+    # the shipped genus-1 catalog behind the front door: no path given, only --genus
+    done = run_installed(installed, tmp_path, "-m", "polyloops", "conjecture", "check", "--genus", "1")
     assert done.returncode == 0 and "genus-1" in done.stdout, done.stdout + done.stderr
+    done = run_installed(installed, tmp_path, "-m", "polyloops", "catalog", "query", "--genus", "1",
+                         "corners = 40")
+    assert done.returncode == 0 and done.stdout.count("T40.") == 73, done.stdout + done.stderr
+    code = "import polyloops as pl; print(len(pl.read_catalog(genus=1)))"
+    done = run_installed(installed, tmp_path, "-c", code)
+    assert done.returncode == 0 and done.stdout.strip() == "963", done.stderr

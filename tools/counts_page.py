@@ -153,7 +153,7 @@ def genus1_section(summary: dict, types: dict[str, dict[int, int]]) -> list[str]
     first = next((int(n) for n, c in counts.items() if c["labelled"]), None)
     lines = ["## Genus 1", "",
              "Computed by `polyloops catalog --genus 1` (the torus search of",
-             "[catalog.md](catalog.md#genus-1-the-torus-search)) and regenerated from",
+             "[catalog.md](searches.md#genus-1-the-torus-search)) and regenerated from",
              "`catalogs/genus1/summary.json`. On the torus a loop structure has as many corners as",
              "crossings, and two loops may cross an odd number of times, so every number of corners",
              f"is searched. Through {top} corners the search is complete: "

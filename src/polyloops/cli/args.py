@@ -16,7 +16,7 @@ from polyloops.io.registry import FORMATS
 # Every format the registry reads, so that the help never lists fewer than the program takes.
 _MESHES = ", ".join(s for f in FORMATS if f.reads and f.name not in ("json", "apg", "planar")
                     for s in f.suffixes)
-FILE_HELP = ("a file polyloops reads (polyloops JSON, DualCube .graph/.apg, plantri's planar code "
+FILE_HELP = ("a file polyloops reads (polyloops JSON .json, DualCube .graph/.apg, plantri's planar code "
              f".pc/.plc, or a quad mesh: {_MESHES}), example:NAME for a bundled example ('polyloops "
              "examples' lists them), or sig:SIGNATURE")
 

@@ -367,10 +367,11 @@ class Bases:
 
 
 def check_record(data: Any, corners_bound: int, slack_bound: int | None = None,
-                 bases: Bases | None = None) -> str | None:
+                 bases: Bases | None = None, structure: LoopStructure | None = None) -> str | None:
     """Replay one record with the Definition-4 checker, and check every field it states
     against what the replay shows; the problem, or ``None``.  ``bases`` (genus 1) gives each
-    orientation type's fewest corners and base class."""
+    orientation type's fewest corners and base class; ``structure``, the class its signature
+    names when the caller has decoded it already."""
     if not isinstance(data, dict):
         return "not a certificate record (a JSON object)"
     sig, n = data.get("signature"), data.get("corners")
@@ -379,7 +380,7 @@ def check_record(data: Any, corners_bound: int, slack_bound: int | None = None,
     if not _is_count(n):
         return f"not a certificate record: corners {n!r} is not an integer"
     try:
-        ls = from_signature(sig)
+        ls = structure if structure is not None else from_signature(sig)
     except ValueError as err:
         return f"not a certificate record: {err}"
     if ls.map.num_corners != n:
@@ -456,11 +457,12 @@ def _check_detour(ls: LoopStructure, n: int, detour: Any, slack_bound: int | Non
     return "the detour does not end below the class's corners"
 
 
-def _certificate_bases(parsed: list[tuple[int, Any]], wanted: dict[str, int]) -> Bases:
-    """The orientation types of the catalog's classes in range (computed, not read), their
-    fewest corners, and the base each type's records name (the first, if several: the others
-    are then refused by :func:`check_record`)."""
-    types = {sig: orientation_type(from_signature(sig)) for sig in wanted}
+def _certificate_bases(parsed: list[tuple[int, Any]], wanted: dict[str, int],
+                       structures: dict[str, LoopStructure]) -> Bases:
+    """The orientation types of the catalog's classes in range (computed from ``structures``,
+    the classes decoded, not read), their fewest corners, and the base each type's records
+    name (the first, if several: the others are then refused by :func:`check_record`)."""
+    types = {sig: orientation_type(structures[sig]) for sig in wanted}
     lowest: dict[str, int] = {}
     for sig, t in types.items():
         lowest[t] = min(lowest.get(t, wanted[sig]), wanted[sig])
@@ -554,7 +556,9 @@ def check_certificate(lines: Iterable[str], directory: Path | Census) -> Certifi
             parsed.append((number, json.loads(line)))
         except (ValueError, RecursionError):
             problems.append(CertificateProblem(number, "", "not JSON"))
-    bases = _certificate_bases(parsed, wanted) if genus else None
+    # Genus 1 needs every class decoded for the bases; each is decoded once, here.
+    structures = {sig: from_signature(sig) for sig in wanted} if genus else {}
+    bases = _certificate_bases(parsed, wanted, structures) if genus else None
     for number, data in parsed:
         sig = data.get("signature") if isinstance(data, dict) else None
         if not isinstance(sig, str):
@@ -568,7 +572,7 @@ def check_certificate(lines: Iterable[str], directory: Path | Census) -> Certifi
             problems.append(CertificateProblem(number, sig, "a second record for this class", names[sig]))
             continue
         covered_sigs.add(sig)
-        why = check_record(data, checked, header["slack"], bases)
+        why = check_record(data, checked, header["slack"], bases, structures.get(sig))
         if why is not None:
             problems.append(CertificateProblem(number, sig, why, names[sig]))
     if "classes" in header and header["classes"] != records:
