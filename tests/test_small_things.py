@@ -100,3 +100,18 @@ def test_the_file_help_lists_every_format_read():
     from polyloops.io.registry import FORMATS
 
     assert all(s in FILE_HELP for f in FORMATS if f.reads for s in f.suffixes[:2])
+
+
+@pytest.mark.parametrize("argv", [["render", "example:ring"], ["view", "example:ring"],
+                                  ["sheet", "--limit", "2"], ["corners", "--png"],
+                                  ["segmentation", "example:overhang", "--png"]])
+def test_pictures_go_to_dev_null_as_the_docs_say(argv, capsys):
+    """docs/formats.md: a character device is written into, so -o /dev/null discards."""
+    import os
+
+    if not os.path.exists("/dev/null"):
+        pytest.skip("no /dev/null here")
+    flag = [] if argv[-1] == "--png" else ["-o"]
+    assert main([*argv, *flag, "/dev/null"]) == 0
+    assert "/dev/null" in capsys.readouterr().out
+    assert os.path.exists("/dev/null") and not os.path.isfile("/dev/null")

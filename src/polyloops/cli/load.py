@@ -209,10 +209,21 @@ def say(output: str | None, text: str) -> None:
     print(text, file=sys.stderr if output == "-" else sys.stdout)
 
 
+def streams(path: str) -> bool:
+    """Whether an output is standard output or a device or FIFO (``-o /dev/null``): a picture
+    there takes its command's first format, where a file names its own."""
+    from polyloops.io.files import Sink, resolve_output
+
+    try:
+        return path == "-" or resolve_output(path).sink is Sink.STREAM
+    except OutputError:  # reported by check_output, in its words
+        return False
+
+
 def picture_output(path: str, suffixes: tuple[str, ...] = (".png", ".svg")) -> str:
     """An output for a picture: ``-`` (standard output, as PNG or HTML) or a name with one of
     ``suffixes``, that may be written; checked before the work (exit 2)."""
-    if path != "-" and Path(path).suffix.lower() not in suffixes:  # ".png" alone has no suffix
+    if not streams(path) and Path(path).suffix.lower() not in suffixes:  # ".png" alone has no suffix
         names = " or ".join(f"NAME{s}" for s in suffixes)
         what = "the viewer is" if ".html" in suffixes else "pictures are"
         raise CliError(f"{path}: {what} written as {names}")

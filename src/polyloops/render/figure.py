@@ -21,16 +21,33 @@ def new_figure(width: float, height: float) -> Figure:
     return Figure(figsize=(width, height), dpi=100)
 
 
+def picture_format(path: str | os.PathLike[str]) -> str:
+    """``png`` or ``svg``, by the file's ending; PNG on standard output and on a device or FIFO
+    (``-o /dev/null``).  Raises :class:`ValueError` for another ending.
+
+    >>> picture_format("a.SVG"), picture_format("-"), picture_format("/dev/null")
+    ('svg', 'png', 'png')
+    """
+    from polyloops.io.files import OutputError, Sink, resolve_output
+
+    try:
+        if os.fspath(path) == STDIO or resolve_output(path).sink is Sink.STREAM:
+            return "png"
+    except OutputError:
+        pass  # the writer says what is wrong with it
+    fmt = FORMATS.get(Path(path).suffix.lower())
+    if fmt is None:
+        raise ValueError(f"{path}: pictures are written as .png or .svg")
+    return fmt
+
+
 def save_figure(fig: Figure, path: str | os.PathLike[str]) -> None:
     """Write PNG or SVG by the file's ending, through :func:`polyloops.io.files.writing`.
 
     Metadata that would change from run to run (dates, software versions) is
     left out, so a fixed input gives a byte-identical file.
     """
-    target = Path(path)
-    fmt = "png" if os.fspath(path) == STDIO else FORMATS.get(target.suffix.lower())
-    if fmt is None:
-        raise ValueError(f"{target}: pictures are written as .png or .svg")
+    fmt = picture_format(path)
     metadata = {"Software": None} if fmt == "png" else {"Date": None, "Creator": None}
     with writing(path, suffix=f".{fmt}") as out:
         if fmt == "svg":

@@ -20,10 +20,9 @@ from __future__ import annotations
 import math
 import os
 from collections.abc import Callable, Sequence
-from pathlib import Path
 from typing import TYPE_CHECKING
 
-from polyloops.io.files import STDIO, writing
+from polyloops.io.files import writing
 from polyloops.io.formats import Structure
 
 if TYPE_CHECKING:
@@ -48,13 +47,11 @@ def render_sheet(items: Sequence[tuple[str, Structure]], path: str | os.PathLike
     OSError
         When the file cannot be written.
     """
-    from polyloops.render.figure import FORMATS
+    from polyloops.render.figure import picture_format
 
     if not items:
         raise ValueError("nothing to draw")
-    fmt = "png" if os.fspath(path) == STDIO else FORMATS.get(Path(path).suffix.lower())
-    if fmt is None:
-        raise ValueError(f"{path}: pictures are written as .png or .svg")
+    fmt = picture_format(path)
     columns = max(1, min(columns, len(items)))
     pixels = int(cell * 100)
     if fmt == "svg":
