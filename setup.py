@@ -51,8 +51,8 @@ class OptionalBuildExt(build_ext):
 setup(
     ext_modules=[Extension(f"polyloops.{name.replace('/', '.')}", [f"src/polyloops/{name}.c"],
                            extra_compile_args=["-O2"], optional=True)
-                 for name in ("enumerate/_strips", "enumerate/_arrangements", "enumerate/_torus",
-                              "enumerate/_regions", "core/_canonical",
+                 for name in ("generate/plantri/_strips", "generate/loops/_arrangements",
+                              "generate/torus/_torus", "generate/torus/_regions", "core/_canonical",
                               "core/_cycles", "render/_raster")],
     cmdclass={"build_ext": OptionalBuildExt},
 )

@@ -35,8 +35,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from _common import markdown_table
 
-from polyloops.enumerate.generators import slices
-from polyloops.enumerate.quadrangulations import find_plantri
+from polyloops.generate.plantri import slices
+from polyloops.generate.plantri.quadrangulations import find_plantri
 
 
 def children_cpu() -> float:

@@ -16,9 +16,9 @@ from __future__ import annotations
 import argparse
 import time
 
-import polyloops.enumerate.arrangements as arrangements
-from polyloops.enumerate.arrangements import SearchStats, candidate_arrangements
-from polyloops.enumerate.catalog import map_classes
+import polyloops.generate.loops.arrangements as arrangements
+from polyloops.catalog.classes import map_classes
+from polyloops.generate.loops.arrangements import SearchStats, candidate_arrangements
 
 SETTINGS = {"neither": (False, False), "cut 4": (True, False), "both": (True, True)}
 

@@ -20,8 +20,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _common import markdown_table
 from naive_reach import naive_explore
 
-from polyloops.enumerate.reach import explore
 from polyloops.io.examples import load_example
+from polyloops.reach.search import explore
 
 
 def cpu_seconds() -> float:

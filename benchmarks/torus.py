@@ -16,9 +16,9 @@ from __future__ import annotations
 import argparse
 import time
 
-import polyloops.enumerate.torus as torus
-import polyloops.enumerate.torus_regions as regions
-from polyloops.enumerate.catalog import map_classes
+import polyloops.generate.torus.regions as regions
+import polyloops.generate.torus.search as torus
+from polyloops.catalog.classes import map_classes
 
 
 def row(n: int) -> list[object]:

@@ -323,7 +323,7 @@ def arrangements(draw, max_corners: int = 18, max_loops: int = 6):
     """An arrangement of loops from the canonical construction, drawn as a path down its search
     tree: each step a drawn index among the children (so failures shrink to shallow, early
     arrangements)."""
-    from polyloops.enumerate.arrangements import children
+    from polyloops.generate.loops.arrangements import children
 
     node = None
     for _ in range(max_loops - 1):

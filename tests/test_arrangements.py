@@ -1,4 +1,4 @@
-"""The arrangement search (enumerate/arrangements.py and its compiled core) against its slow
+"""The arrangement search (generate/loops/arrangements.py and its compiled core) against its slow
 twin, against plantri's filter, and its own properties."""
 
 from __future__ import annotations
@@ -12,15 +12,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from arrangement_reference import (
-    canonical_code,
-    meeting_bound,
-    meets_each_loop_once,
-    reference_arrangements,
-    three_colourable,
-)
+from polyloops.catalog.run import CatalogRunError, build_catalog
 from polyloops.core.halfedge import HalfEdgeMap
-from polyloops.enumerate.arrangements import (
+from polyloops.generate.loops.arrangements import (
     Arrangement,
     ArrangementError,
     SearchStats,
@@ -29,8 +23,14 @@ from polyloops.enumerate.arrangements import (
     compiled_generator_available,
     frontier,
 )
-from polyloops.enumerate.catalog_run import CatalogRunError, build_catalog
-from polyloops.enumerate.quadrangulations import candidate_maps, find_plantri
+from polyloops.generate.plantri.quadrangulations import candidate_maps, find_plantri
+from reference.arrangement_reference import (
+    canonical_code,
+    meeting_bound,
+    meets_each_loop_once,
+    reference_arrangements,
+    three_colourable,
+)
 from strategies import arrangements
 
 # Like the strip filter's tests: without a C compiler at install time there is nothing to test
@@ -57,7 +57,7 @@ CUTS = [(False, False), (True, False), (True, True)]  # (cut 4, cut 5)
 
 
 def set_cuts(monkeypatch, colour_cut: bool, meet_cut: bool) -> None:
-    import polyloops.enumerate.arrangements as arrangements_module
+    import polyloops.generate.loops.arrangements as arrangements_module
 
     monkeypatch.setattr(arrangements_module, "COLOUR_CUT", colour_cut)
     monkeypatch.setattr(arrangements_module, "MEET_CUT", meet_cut)
@@ -117,7 +117,7 @@ def mirror_and_renumber(a: Arrangement, rng: random.Random) -> tuple[list[int], 
 @settings(max_examples=60, deadline=None)
 @given(arrangements(), st.randoms(use_true_random=False))
 def test_canonical_form_ignores_numbering_and_mirror(a, rng):
-    from polyloops.enumerate import _arrangements
+    from polyloops.generate.loops import _arrangements
 
     rot, twin = mirror_and_renumber(a, rng)
     code, candidate = _arrangements.canonical(bytes_of(rot), bytes_of(twin))
@@ -208,7 +208,7 @@ def test_shares_partition_the_search():
 
 
 def test_bad_arrays_are_refused():
-    from polyloops.enumerate import _arrangements
+    from polyloops.generate.loops import _arrangements
 
     for rot, twin in [([0, 0], [1, 0]), ([1, 0], [0, 1]), ([1, 2, 0], [1, 0, 2]), ([], [])]:
         with pytest.raises(ValueError):
@@ -234,7 +234,7 @@ def test_bad_maps_are_refused():
 
 
 def _all_maps(n: int):
-    from polyloops.enumerate.quadrangulations import Batch, plantri_batches
+    from polyloops.generate.plantri.quadrangulations import Batch, plantri_batches
 
     for rows in plantri_batches(n, find_plantri()):
         batch = Batch(rows)
@@ -287,7 +287,7 @@ def test_catalog_resumes_loops_shares(tmp_path):
 
 
 def test_loops_generator_needs_its_compiled_search(tmp_path, monkeypatch):
-    import polyloops.enumerate.arrangements as arrangements_module
+    import polyloops.generate.loops.arrangements as arrangements_module
 
     monkeypatch.setattr(arrangements_module, "compiled_generator_available", lambda: False)
     with pytest.raises(CatalogRunError, match="--generator plantri"):
@@ -298,7 +298,7 @@ def test_loops_generator_needs_its_compiled_search(tmp_path, monkeypatch):
 
 @pytest.mark.slow
 def test_catalog_from_loops_through_28_is_the_shipped_one(tmp_path):
-    from polyloops.enumerate.census import default_catalog
+    from polyloops.catalog.census import default_catalog
 
     built = build_catalog(tmp_path / "c", 28, generator="loops", workers=2)
     shipped = [line for line in (default_catalog() / "catalog.jsonl").read_text().splitlines()
@@ -326,7 +326,7 @@ def test_a_spilled_top_gives_each_share_its_part(tmp_path):
     """The top of the search written to a file and read back share by share holds the same
     roots, in the same order, and the same shallow candidates, as the top in memory; a second
     run reads the file instead of computing the top again."""
-    from polyloops.enumerate.generators import loops_frontier, read_frontier_share, share_of, spill_frontier
+    from polyloops.generate.loops import loops_frontier, read_frontier_share, share_of, spill_frontier
 
     top, search = loops_frontier(20)
     path = spill_frontier(20, 1, None, tmp_path)

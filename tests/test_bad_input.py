@@ -79,7 +79,7 @@ def test_sample_and_count_are_bounded(capsys):
 
 def test_the_time_limit_is_shared_across_axes(capsys):
     """On a structure whose X-additions take long to list, Y and Z still get their share."""
-    from polyloops.enumerate.listing import count_additions_within
+    from polyloops.reach.listing import count_additions_within
 
     ls = pl.polycube_from_voxels([(0, y, z) for y in range(6) for z in range(6)]).dualize()
     counted = count_additions_within(ls, seconds=0.6)  # X alone would take minutes

@@ -220,7 +220,7 @@ def test_one_default_mode_everywhere(capsys, tmp_path):
     import json
 
     import polyloops as pl
-    from polyloops.enumerate.census import default_catalog
+    from polyloops.catalog.census import default_catalog
 
     assert main(["signature", "example:l-shape", "--json"]) == 0
     printed = json.loads(capsys.readouterr().out)

@@ -11,14 +11,14 @@ from pathlib import Path
 
 import pytest
 
+from polyloops.catalog.classes import MODES
 from polyloops.cli import main
 from polyloops.core.canonical import canonical_form
 from polyloops.core.directions import Axis
 from polyloops.core.halfedge import HalfEdgeMap
 from polyloops.core.structure import LoopStructure
-from polyloops.enumerate.catalog import MODES
-from polyloops.enumerate.generators import GENERATORS, Generator, Job, register
-from polyloops.enumerate.quadrangulations import find_plantri, plantri_batches, plantri_count
+from polyloops.generate.base import Generator, Job, generators, register
+from polyloops.generate.plantri.quadrangulations import find_plantri, plantri_batches, plantri_count
 from polyloops.io.examples import load_example
 from polyloops.solvers import OrientationProblem, make_solver
 from polyloops.verify import check_polycube_loop_structure
@@ -184,7 +184,7 @@ def test_slices_and_workers_agree(tmp_path):
 def test_dask_local(tmp_path, generator):
     pytest.importorskip("distributed")
     if generator == "loops":
-        pytest.importorskip("polyloops.enumerate._arrangements")
+        pytest.importorskip("polyloops.generate.loops._arrangements")
     out, ref = tmp_path / "d", tmp_path / "r"
     assert main(["catalog", "--max-corners", "16", "--dask", "local", "--generator", generator,
                  "-o", str(out)]) == 0
@@ -307,7 +307,7 @@ def test_irreducible_records_include_the_non_incremental_polycube(capsys):
 
 
 def test_degree_filter_equals_decoded_degrees():
-    from polyloops.enumerate.quadrangulations import Batch, max_degrees
+    from polyloops.generate.plantri.quadrangulations import Batch, max_degrees
 
     for n in (12, 14, 16):
         for rows in plantri_batches(n, plantri(), batch=50):
@@ -319,7 +319,7 @@ def test_degree_filter_equals_decoded_degrees():
 
 def test_no_quadrangulation_with_odd_corners_has_only_simple_loops():
     """The theorem behind skipping odd corner counts, checked where plantri is quick."""
-    from polyloops.enumerate.quadrangulations import Batch, odd_corners_have_no_polycube
+    from polyloops.generate.plantri.quadrangulations import Batch, odd_corners_have_no_polycube
 
     for n in (9, 11, 13, 15, 17, 19, 21):
         assert odd_corners_have_no_polycube(n)
@@ -328,9 +328,9 @@ def test_no_quadrangulation_with_odd_corners_has_only_simple_loops():
 
 
 def test_odd_counts_are_not_generated(tmp_path):
-    from polyloops.enumerate.generators import GENERATORS
+    from polyloops.generate.base import generators
 
-    assert {j.n for j in GENERATORS["plantri"].plan(8, 21, None, 2)} == {8, 10, 12, 14, 16, 18, 20}
+    assert {j.n for j in generators()["plantri"].plan(8, 21, None, 2)} == {8, 10, 12, 14, 16, 18, 20}
     assert main(["catalog", "--min-corners", "9", "--max-corners", "11", "--generator", "plantri",
                  "-o", str(tmp_path / "c")]) == 0
     summary = json.loads((tmp_path / "c" / "summary.json").read_text())
@@ -345,9 +345,9 @@ def test_names_and_identify_every_shipped_record(tmp_path, capsys, every):
     its name from a renumbered, mirrored, moved copy."""
     import random
 
+    from polyloops.catalog.census import identify, read_catalog
     from polyloops.core.canonical import from_signature, transformed
     from polyloops.core.symmetry import SIGNED_PERMUTATIONS
-    from polyloops.enumerate.census import identify, read_catalog
     from polyloops.io.formats import dumps
     from test_canonical import mirror, renumber
 
@@ -409,7 +409,7 @@ def test_maps_by_classes_agree_with_the_records():
     from collections import Counter
 
     from polyloops.core.canonical import from_signature
-    from polyloops.enumerate.arrangements import Arrangement
+    from polyloops.generate.loops.arrangements import Arrangement
 
     summary = json.loads((ROOT / "catalogs" / "genus0" / "summary.json").read_text())
     per_map: Counter[tuple[int, bytes]] = Counter()
@@ -436,9 +436,9 @@ def test_counts_page_and_bfiles_are_the_summary():
 
 
 def test_long_corner_counts_are_sliced():
-    from polyloops.enumerate.generators import GENERATORS, Job
+    from polyloops.generate.base import Job, generators
 
-    plantri = GENERATORS["plantri"]
+    plantri = generators()["plantri"]
     jobs = plantri.plan(24, 26, None, 2)
     assert set(jobs) == ({Job("plantri", 24, 24, r, 4) for r in range(4)}
                          | {Job("plantri", 26, 26, r, 8) for r in range(8)})
@@ -449,7 +449,7 @@ def test_long_corner_counts_are_sliced():
 @pytest.mark.parametrize("n", [24, 26, 28])
 def test_compiled_and_numpy_filters_agree_on_large_counts(n):
     """The two strip filters keep the same maps, in order (28 corners: about 30 minutes)."""
-    from polyloops.enumerate.quadrangulations import compiled_filter_available, filtered_batches
+    from polyloops.generate.plantri.quadrangulations import compiled_filter_available, filtered_batches
 
     if not compiled_filter_available():
         pytest.skip("the compiled strip filter was not built")
@@ -485,7 +485,7 @@ def test_orbit_stabiliser_ties_the_three_columns_of_the_shipped_catalog():
     orders 48 and 24), the orbit-stabiliser theorem predicts the labelled and rotation counts
     that summary.json states from separate canonical forms; and a class is chiral exactly when
     it splits into two rotation classes."""
-    from polyloops.enumerate.census import orbit_counts, read_catalog
+    from polyloops.catalog.census import orbit_counts, read_catalog
 
     census = read_catalog(SHIPPED)
     derived = orbit_counts(census)
@@ -538,8 +538,8 @@ def test_a_share_and_an_unreadable_catalog(tmp_path, capsys):
 
 
 def test_generator_default_and_plantri_options(capsys, tmp_path):
-    from polyloops.enumerate.arrangements import compiled_generator_available
-    from polyloops.enumerate.catalog_run import choose_generator
+    from polyloops.catalog.run import choose_generator
+    from polyloops.generate.loops.arrangements import compiled_generator_available
 
     assert choose_generator(None) == ("loops", None) if compiled_generator_available() else \
         choose_generator(None)[0] == "plantri"
@@ -609,14 +609,14 @@ class ToyGenerator(Generator):
 def test_a_toy_generator_builds_a_catalog_through_the_pipeline(tmp_path):
     """Implementing the interface is all a generator needs: the pipeline plans, runs, keeps
     parts, names and stores the records, and sums the generator's statistics."""
-    from polyloops.enumerate.catalog_run import build_catalog
+    from polyloops.catalog.run import build_catalog
 
     register(ToyGenerator())
     try:
         built = build_catalog(tmp_path / "toy", 16, generator="toy")
         again = build_catalog(tmp_path / "toy", 16, generator="toy")  # resumed from its parts
     finally:
-        GENERATORS.pop("toy")
+        generators().pop("toy")
     reference = build_catalog(tmp_path / "ref", 16, generator="plantri")
     known = {json.loads(line)["signature"]: json.loads(line)["name"]
              for line in (tmp_path / "ref" / "catalog.jsonl").read_text().splitlines()}
@@ -636,7 +636,7 @@ def test_crosschecks_agree_with_the_shipped_catalog_and_catch_a_gap(tmp_path):
     """The sampled plantri comparison and the reachability comparison find nothing missing in
     the shipped catalog, and both notice a class taken out of a copy of it."""
 
-    from polyloops.enumerate.crosscheck import plantri_sample, reach_agreement
+    from polyloops.reach.crosscheck import plantri_sample, reach_agreement
 
     assert plantri_sample(SHIPPED, 20, mod=4, k=4, seed=7).agrees
     reach = reach_agreement(SHIPPED, 20)
@@ -644,9 +644,9 @@ def test_crosschecks_agree_with_the_shipped_catalog_and_catch_a_gap(tmp_path):
         json.loads((SHIPPED / "summary.json").read_text())["counts"][str(n)]["full"] for n in range(8, 21))
     # A copy without P20.3 that is consistent in itself (renamed, recounted, digested again):
     # no reader's check can see the gap; the two independent methods do.
-    from polyloops.enumerate.catalog_run import write_census
-    from polyloops.enumerate.census import Census, read_catalog
-    from polyloops.enumerate.records import CatalogEntry, class_names
+    from polyloops.catalog.census import Census, read_catalog
+    from polyloops.catalog.records import CatalogEntry, class_names
+    from polyloops.catalog.run import write_census
 
     census = read_catalog(SHIPPED)
     gone = census["P20.3"]
@@ -667,8 +667,8 @@ def test_shipping_a_larger_run_keeps_the_old_counts_and_checks_everything(tmp_pa
     import importlib.util
     import shutil
 
-    from polyloops.enumerate.catalog_run import build_catalog
-    from polyloops.enumerate.conjecture import check_certificate
+    from polyloops.catalog.run import build_catalog
+    from polyloops.reach.conjecture import check_certificate
 
     spec = importlib.util.spec_from_file_location("ship_catalog", ROOT / "tools" / "ship_catalog.py")
     tool = importlib.util.module_from_spec(spec)

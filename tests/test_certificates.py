@@ -9,10 +9,10 @@ from pathlib import Path
 
 import pytest
 
+from polyloops.catalog.census import default_catalog, read_catalog
+from polyloops.catalog.run import build_catalog, write_census
 from polyloops.cli import main
-from polyloops.enumerate.catalog_run import build_catalog, write_census
-from polyloops.enumerate.census import default_catalog, read_catalog
-from polyloops.enumerate.conjecture import (
+from polyloops.reach.conjecture import (
     ConjectureError,
     certificate_lines,
     check_certificate,

@@ -42,11 +42,12 @@ def test_huge_sizes_are_usage_errors(tmp_path, capsys, argv, monkeypatch):
 
 
 def test_the_compiled_searches_check_their_bound():
-    from polyloops.enumerate import arrangements
+    from polyloops.generate.loops import arrangements
 
     if not arrangements.compiled_generator_available():
         pytest.skip("the compiled searches were not built")
-    from polyloops.enumerate import _arrangements, _torus
+    from polyloops.generate.loops import _arrangements
+    from polyloops.generate.torus import _torus
 
     for call in (lambda: _arrangements.children(b"", bytes(8), 10**6),
                  lambda: _torus.children(bytes(8), bytes(4), 10**6),
@@ -56,7 +57,7 @@ def test_the_compiled_searches_check_their_bound():
 
 
 def test_the_library_refuses_a_huge_catalog(tmp_path):
-    from polyloops.enumerate.catalog_run import CatalogRunError, build_catalog
+    from polyloops.catalog.run import CatalogRunError, build_catalog
 
     with pytest.raises(CatalogRunError, match="at most 96"):
         build_catalog(tmp_path / "c", 10**9)
@@ -76,8 +77,8 @@ def test_path_answers_from_the_invariants_at_once(capsys):
 def test_the_invariant_is_one_a_search_confirms():
     """Where the invariants agree a path can exist; where they differ the bounded search finds
     none (a check that no_path_reason does not refuse a reachable pair)."""
-    from polyloops.enumerate.reach import no_path_reason, shortest_path
     from polyloops.io.examples import load_example
+    from polyloops.reach.search import no_path_reason, shortest_path
 
     cube, l_shape = load_example("cube").dualize(), load_example("l-shape").dualize()
     assert no_path_reason(cube, l_shape) is None and shortest_path(cube, l_shape, 16) is not None
@@ -162,7 +163,7 @@ def test_reach_into_a_directory_it_cannot_write_is_bad_input(tmp_path, capsys, m
     may write anywhere) is exit 2 in one line."""
     import sqlite3
 
-    import polyloops.enumerate.reach as reach
+    import polyloops.reach.search as reach
 
     def refuse(path):
         raise sqlite3.OperationalError("attempt to write a readonly database")
@@ -173,7 +174,7 @@ def test_reach_into_a_directory_it_cannot_write_is_bad_input(tmp_path, capsys, m
 
 
 def test_a_catalog_run_into_a_directory_it_cannot_write_is_bad_input(tmp_path, capsys, monkeypatch):
-    import polyloops.enumerate.catalog_run as catalog_run
+    import polyloops.catalog.run as catalog_run
 
     def refuse(*args, **kw):
         raise PermissionError(13, "Permission denied")

@@ -12,7 +12,7 @@ from polyloops.cli import main
 from polyloops.core.corners import CATEGORIES, classify, corner_configurations, corner_histogram, transform
 from polyloops.core.directions import Direction
 from polyloops.core.symmetry import ROTATIONS, SIGNED_PERMUTATIONS, SYMMETRY_MODES
-from polyloops.enumerate.corners import corner_classes, witness
+from polyloops.generate.corners import corner_classes, witness
 from polyloops.verify import check_polycube, check_polycube_loop_structure
 from strategies import perturbed_structures, polycubes
 
@@ -164,7 +164,7 @@ def test_classes_by_burnside_and_by_sympy_orbits(mode):
     """Three derivations of the number of corner classes agree: walking orbits
     (corner_classes), the orbits sympy finds of the group acting on the 126 ids, and Burnside's
     average number of fixed configurations."""
-    from polyloops.enumerate.corners import burnside_count, corner_action
+    from polyloops.generate.corners import burnside_count, corner_action
 
     G = corner_action(mode)
     orbits = sorted(sorted(o) for o in G.orbits())

@@ -6,19 +6,19 @@ from pathlib import Path
 
 import pytest
 
+from polyloops.catalog.census import default_catalog, read_catalog
+from polyloops.catalog.classes import map_classes
 from polyloops.cli import main
 from polyloops.core.canonical import canonical_form, from_signature
-from polyloops.enumerate.catalog import map_classes
-from polyloops.enumerate.census import default_catalog, read_catalog
-from polyloops.enumerate.conjecture import (
+from polyloops.io.examples import load_example
+from polyloops.reach.conjecture import (
     CERTIFICATE_KINDS,
     ConjectureError,
     check_certificate,
     complete_range,
     orientation_type,
 )
-from polyloops.enumerate.reach import explore, stored_signatures
-from polyloops.io.examples import load_example
+from polyloops.reach.search import explore, stored_signatures
 
 G1 = default_catalog(1)
 CERT = G1 / "reachability-certificate.jsonl"
@@ -182,7 +182,7 @@ def test_a_genus_one_certificate_claims_only_what_it_checked(extended):
 def test_the_gallery_walks_to_the_base_of_each_orientation(tmp_path):
     """A genus-1 gallery: each class page leads to the base of its orientation type (no class
     of genus 1 reaches the cube), and the move graph starts at the certificate's bases."""
-    from polyloops.enumerate.move_graph import move_graph
+    from polyloops.reach.move_graph import move_graph
 
     graph = move_graph(read_catalog(G1))
     assert graph.bases[0] == "T32.1" and len(graph.bases) == 2 and graph.genus == 1

@@ -13,8 +13,8 @@ from polyloops.core.holes import PAIRS, hole_orientation, intersection_matrix, i
 from polyloops.core.moves import add_loop, additions, removals, remove_loop
 from polyloops.core.symmetry import SIGNED_PERMUTATIONS
 from polyloops.core.voxels import polycube_from_voxels
-from polyloops.enumerate.reach import explore, from_signature, neighbours
 from polyloops.io.examples import load_example
+from polyloops.reach.search import explore, from_signature, neighbours
 from strategies import handle_zone_polycubes, polycubes, transform_cells
 
 RING = {(x, y, 0) for x in range(3) for y in range(3) if (x, y) != (1, 1)}

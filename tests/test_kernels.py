@@ -341,7 +341,7 @@ def test_removal_arrays_meet_every_reason():
     import random
 
     from polyloops.core import moves
-    from polyloops.enumerate.quadrangulations import find_plantri, plantri_batches
+    from polyloops.generate.plantri.quadrangulations import find_plantri, plantri_batches
     from polyloops.io.planar_code import HEADER, read_planar_code
 
     def variants(ls):

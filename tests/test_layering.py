@@ -2,8 +2,9 @@
 or inside a function (read from the source, so a lazy import counts too), so there is no import
 cycle between subpackages; and no module imports one that imports it back.
 
-The layers, lowest first: ``core`` (the kernel), ``io`` (files and formats), ``verify``,
-``solvers``, ``enumerate``, ``segmentation``, ``render``, ``cli``."""
+The layers, lowest first: ``core`` (the kernel), ``parallel`` (workers), ``io`` (files and
+formats), ``verify``, ``solvers``, ``generate`` (candidate maps), ``catalog`` (the pipeline,
+records, census), ``reach`` (moves, the conjecture), ``segmentation``, ``render``, ``cli``."""
 
 import ast
 import subprocess
@@ -12,7 +13,8 @@ from pathlib import Path
 
 PACKAGE = Path(__file__).resolve().parent.parent / "src" / "polyloops"
 CORE = PACKAGE / "core"
-ABOVE = ("io", "verify", "solvers", "enumerate", "segmentation", "render", "cli")
+ABOVE = ("parallel", "io", "verify", "solvers", "generate", "catalog", "reach", "segmentation", "render",
+         "cli")
 LAYERS = ("core", *ABOVE)
 
 

@@ -6,11 +6,11 @@ from itertools import pairwise
 
 import pytest
 
+from polyloops.catalog.census import read_catalog
 from polyloops.core.canonical import canonical_form
 from polyloops.core.moves import remove_loop
-from polyloops.enumerate.census import read_catalog
-from polyloops.enumerate.move_graph import move_graph
 from polyloops.io.formats import to_data
+from polyloops.reach.move_graph import move_graph
 from polyloops.verify import check_polycube_loop_structure
 
 THROUGH = 26  # includes the non-incremental polycube P26.20, whose way down is a detour
@@ -81,8 +81,8 @@ def test_distances_from_the_cube_are_the_search_s():
     number of classes at each distance; each path's steps are one move apart."""
     from collections import Counter
 
-    from polyloops.enumerate.reach import explore
     from polyloops.io.examples import load_example
+    from polyloops.reach.search import explore
 
     census = read_catalog().through(22)
     g = move_graph(census)

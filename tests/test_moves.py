@@ -334,7 +334,7 @@ def test_counting_within_a_time_limit_on_a_large_slab():
     import time
 
     from polyloops.core.builders import box
-    from polyloops.enumerate.listing import count_additions_within
+    from polyloops.reach.listing import count_additions_within
 
     ls = box(8, 8, 1).dualize()  # 162 corners; Z-loops: every cycle of a 9x9 grid
     start = time.monotonic()

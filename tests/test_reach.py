@@ -15,9 +15,9 @@ from polyloops.cli import main
 from polyloops.core.canonical import from_signature, signature
 from polyloops.core.directions import Axis
 from polyloops.core.moves import Addition, add_loop, canonical_cycle, try_remove
-from polyloops.enumerate.conjecture import certificate_lines, check_certificate, settle_catalog
-from polyloops.enumerate.reach import MoveKind, check_path, explore, neighbours, path_steps, shortest_path
 from polyloops.io.examples import load_example
+from polyloops.reach.conjecture import certificate_lines, check_certificate, settle_catalog
+from polyloops.reach.search import MoveKind, check_path, explore, neighbours, path_steps, shortest_path
 from polyloops.verify import check_polycube_loop_structure
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -147,7 +147,7 @@ def test_workers_and_resume_give_the_same_rows(tmp_path):
 
 
 def test_stored_paths_replay(tmp_path):
-    from polyloops.enumerate.reach import path_to
+    from polyloops.reach.search import path_to
 
     explore(CUBE, 20, directory=tmp_path)
     con = sqlite3.connect(tmp_path / "reach.sqlite")
@@ -197,8 +197,8 @@ def test_path_tells_its_moves_and_the_file_replays_them(tmp_path, capsys):
     """``path`` prints each move; the path file stores the moves beside the steps, in the
     certificate's move format, and replaying them from the first step gives every stored step
     exactly; ``verify`` checks the moves, and still reads a path file without them."""
-    from polyloops.enumerate.reach import Move
     from polyloops.io.formats import to_data
+    from polyloops.reach.search import Move
 
     out = tmp_path / "p.json"
     assert main(["path", "example:cube", "example:non-incremental", "--max-corners", "34",

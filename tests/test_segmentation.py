@@ -19,7 +19,7 @@ from polyloops.core.corners import canonical_rotation
 from polyloops.core.directions import Direction
 from polyloops.core.polycube import Polycube
 from polyloops.core.voxels import VoxelError, polycube_from_voxels
-from polyloops.enumerate.corners import OCTANT_CELLS, chart_corners
+from polyloops.generate.corners import OCTANT_CELLS, chart_corners
 from polyloops.io.examples import EXAMPLES, LABELLED_EXAMPLES, labelled_mesh_example, load_example
 from polyloops.io.labelled_mesh import (
     LabelledMesh,

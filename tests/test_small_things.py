@@ -71,11 +71,11 @@ def test_a_limited_gallery_titles_what_it_shows(tmp_path, capsys):
 
 
 def test_the_torus_search_without_its_compiled_part_says_so(monkeypatch, tmp_path, capsys):
-    import polyloops.enumerate.torus as torus
-    from polyloops.enumerate.generators import GENERATORS
+    import polyloops.generate.torus.search as torus
+    from polyloops.generate.base import generators
 
     monkeypatch.setattr(torus, "compiled_search_available", lambda: False)
-    (note,) = GENERATORS["torus"].notes()
+    (note,) = generators()["torus"].notes()
     assert "compiled torus search was not built" in note
     monkeypatch.setattr(torus, "COMPILED_SEARCH", False)
     assert main(["catalog", "--genus", "1", "--max-corners", "8", "-o", str(tmp_path / "g1")]) == 0

@@ -9,8 +9,8 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from polyloops.cli import main
-from polyloops.enumerate import quadrangulations as quads
-from polyloops.enumerate.quadrangulations import (
+from polyloops.generate.plantri import quadrangulations as quads
+from polyloops.generate.plantri.quadrangulations import (
     MAX_DEGREE,
     Batch,
     compiled_filter_available,
@@ -74,7 +74,7 @@ def test_filter_equals_a_per_map_count(n):
 @needs_compiled
 @given(st.data())
 def test_compiled_filter_refuses_damaged_records(data):
-    from polyloops.enumerate._strips import filter_maps
+    from polyloops.generate.plantri._strips import filter_maps
 
     n = data.draw(st.sampled_from([12, 16, 18]))
     rows = all_rows(n)
@@ -93,7 +93,7 @@ def test_compiled_filter_refuses_damaged_records(data):
 
 @needs_compiled
 def test_compiled_filter_refuses_partial_records():
-    from polyloops.enumerate._strips import filter_maps
+    from polyloops.generate.plantri._strips import filter_maps
 
     record = all_rows(12)[0].tobytes()
     with pytest.raises(ValueError, match="whole planar-code records"):
@@ -126,7 +126,7 @@ def test_cli_says_when_the_compiled_filter_is_missing(monkeypatch, tmp_path, cap
 
 def test_the_fallback_filter_is_announced(monkeypatch, capsys, tmp_path):
     """Without the compiled filter, plantri's generator says once that the numpy twin runs."""
-    import polyloops.enumerate.quadrangulations as quadrangulations
+    import polyloops.generate.plantri.quadrangulations as quadrangulations
 
     monkeypatch.setattr(quadrangulations, "compiled_filter_available", lambda: False)
     assert main(["catalog", "--max-corners", "12", "--generator", "plantri", "-o", str(tmp_path / "c")]) == 0

@@ -7,8 +7,7 @@ import pytest
 from polyloops.core.canonical import from_signature
 from polyloops.core.directions import Axis
 from polyloops.core.labellings import polycube_structures, proper_colourings
-from polyloops.enumerate.reach import explore, stored_signatures
-from polyloops.enumerate.torus import (
+from polyloops.generate.torus.search import (
     TorusArrangement,
     canonical,
     compiled_search_available,
@@ -16,8 +15,9 @@ from polyloops.enumerate.torus import (
     torus_arrangements,
     two_stage_decompositions,
 )
-from polyloops.enumerate.torus_brute import _least_code, torus_maps_by_brute_force
 from polyloops.io.examples import load_example
+from polyloops.reach.search import explore, stored_signatures
+from reference.torus_brute import _least_code, torus_maps_by_brute_force
 
 
 def by_size(arrangements, n):
@@ -31,7 +31,7 @@ def test_the_search_lists_what_brute_force_lists(n, compiled, monkeypatch):
     canonical construction path over marked maps, in Python and compiled, against a brute
     force over all pairings of darts (the same arrangements, compared by the twin's own
     canonical code)."""
-    import polyloops.enumerate.torus as torus
+    import polyloops.generate.torus.search as torus
 
     if compiled and not compiled_search_available():
         pytest.skip("the compiled torus search was not built")
@@ -69,7 +69,7 @@ def _rot(d):
 def test_canonical_codes_do_not_depend_on_numbering_or_mirror():
     """Renumbered and mirrored copies of arrangements, cellular or marked, get the same code;
     different arrangements get different ones."""
-    from polyloops.enumerate.torus import torus_children
+    from polyloops.generate.torus.search import torus_children
 
     rng = random.Random(7)
     states = [kid for root in (0, 1) for kid, _ in torus_children(root, 4)]
@@ -174,7 +174,7 @@ def test_the_two_stages_list_what_the_direct_search_lists():
     n = 12
     direct = list(torus_arrangements(n, colours=3, regions=True))
     want = {canonical(TorusArrangement(a.twin))[0] for a in direct if two_stage_decompositions(a, n)}
-    from polyloops.enumerate import torus
+    from polyloops.generate.torus import search as torus
 
     with pytest.MonkeyPatch.context() as patch:
         patch.setattr(torus, "SECOND_STAGE", "loops")
@@ -194,10 +194,10 @@ def test_layered_need_counts_sides_of_each_class():
 def test_genus_one_records_carry_the_hole_invariant_and_torus_names():
     """The ring's map gives one class in each mode, named T32.1 up to all symmetries; each
     record carries the hole-orientation invariant of the structure its signature names."""
+    from polyloops.catalog.classes import map_classes
+    from polyloops.catalog.records import class_names
     from polyloops.core.canonical import canonical_form
     from polyloops.core.holes import hole_orientation
-    from polyloops.enumerate.catalog import map_classes
-    from polyloops.enumerate.records import class_names
 
     ring = load_example("ring").dualize()
     classes = map_classes(ring.map)
@@ -235,8 +235,8 @@ def test_each_map_comes_from_its_canonical_decomposition_and_none_is_lost(monkey
     """Listing each map from its canonical decomposition only (so that shares never repeat a
     map) keeps every map the second stage reaches: the same maps as the whole search with
     duplicates removed by code, at 20 crossings."""
-    from polyloops.enumerate import torus
-    from polyloops.enumerate.torus import torus_children, two_axis_bases
+    from polyloops.generate.torus import search as torus
+    from polyloops.generate.torus.search import torus_children, two_axis_bases
 
     monkeypatch.setattr(torus, "SECOND_STAGE", "loops")
 
@@ -257,8 +257,8 @@ def test_each_map_comes_from_its_canonical_decomposition_and_none_is_lost(monkey
 def test_the_second_stage_orients_the_third_axis(monkeypatch):
     """The orientation cut drops states (so it can fail), and every map listed has a
     decomposition whose third-axis loops it can orient."""
-    from polyloops.enumerate import torus
-    from polyloops.enumerate.torus import third_sides_consistent
+    from polyloops.generate.torus import search as torus
+    from polyloops.generate.torus.search import third_sides_consistent
 
     monkeypatch.setattr(torus, "SECOND_STAGE", "loops")
     stats = []
@@ -275,7 +275,7 @@ def test_the_second_stage_orients_the_third_axis(monkeypatch):
 def _second_stage_states(n: int, compiled: bool, monkeypatch) -> tuple[dict, set]:
     """Every state the second stage keeps up to ``n`` crossings, by Python canonical code, and
     the targets among them."""
-    import polyloops.enumerate.torus as torus
+    import polyloops.generate.torus.search as torus
 
     monkeypatch.setattr(torus, "COMPILED_SEARCH", compiled)
     states, targets = {}, set()
@@ -309,7 +309,7 @@ def test_the_compiled_second_stage_keeps_the_python_states(n, monkeypatch):
 def test_the_compiled_search_lists_the_python_candidate_maps(n, monkeypatch):
     """Both stages and the decomposition test, compiled and in Python: the same candidate
     maps, each once."""
-    from polyloops.enumerate import torus
+    from polyloops.generate.torus import search as torus
 
     monkeypatch.setattr(torus, "SECOND_STAGE", "loops")
     monkeypatch.setattr(torus, "COMPILED_SEARCH", True)
@@ -334,7 +334,7 @@ def test_the_second_stage_never_crosses_its_start_edge_again(monkeypatch):
 def test_the_compiled_first_stage_keeps_the_python_states(n, colours, monkeypatch):
     """The compiled marked search keeps exactly the states of the Python one (marked states
     included, by canonical code), each once."""
-    import polyloops.enumerate.torus as torus
+    import polyloops.generate.torus.search as torus
 
     def states(compiled: bool) -> list:
         monkeypatch.setattr(torus, "COMPILED_SEARCH", compiled)
@@ -356,7 +356,7 @@ def test_decompositions_are_tried_over_every_set_of_loops():
     bipartite crossing graph: checked against every set of loops."""
     from itertools import combinations
 
-    from polyloops.enumerate.torus import _independent_with_bipartite_rest
+    from polyloops.generate.torus.search import _independent_with_bipartite_rest
 
     arrangements = list(torus_arrangements(5)) + list(torus_arrangements(9, 3, True))
     assert len(arrangements) > 50
@@ -377,8 +377,8 @@ def test_new_third_axis_loops_turn_at_least_four_times():
     of the third axis crosses the two classes of B in four runs at least; the polycube
     structures of the examples have that property on every loop and axis pair."""
     from polyloops.core.directions import Axis as A
-    from polyloops.enumerate import torus
-    from polyloops.enumerate.torus import axis_runs
+    from polyloops.generate.torus import search as torus
+    from polyloops.generate.torus.search import axis_runs
 
     stats = []
     with pytest.MonkeyPatch.context() as patch:
@@ -399,8 +399,8 @@ def test_new_third_axis_loops_turn_at_least_four_times():
 def test_every_loop_of_every_catalog_class_crosses_the_other_axes_in_four_runs():
     """The four-runs lemma on independent data: every loop of every genus-0 class through 32
     corners and of the genus-1 catalog, the axes crossed along it counted in runs."""
-    from polyloops.enumerate.census import default_catalog, read_catalog
-    from polyloops.enumerate.torus import axis_runs
+    from polyloops.catalog.census import default_catalog, read_catalog
+    from polyloops.generate.torus.search import axis_runs
 
     checked = 0
     for genus, top in ((0, 32), (1, 99)):
@@ -422,9 +422,9 @@ def test_real_polycubes_are_orientable_with_any_axis_third():
     """The orientation cut never refuses a real structure: every genus-0 class through 30
     corners and every genus-1 class, with each axis taken as the third, passes
     :func:`orientable` (each of its constraints is Condition 3 at a corner of the polycube)."""
+    from polyloops.catalog.census import default_catalog, read_catalog
     from polyloops.core.directions import Axis as A
-    from polyloops.enumerate.census import default_catalog, read_catalog
-    from polyloops.enumerate.torus import orientable
+    from polyloops.generate.torus.search import orientable
 
     checked = 0
     for genus, top in ((0, 30), (1, 99)):

@@ -1,4 +1,4 @@
-"""The region search of the torus's second stage (``polyloops.enumerate.torus_regions``): its
+"""The region search of the torus's second stage (``polyloops.generate.torus.regions``): its
 compiled and Python forms agree, without its level-graph cut it lists what the loop-by-loop
 search lists (both cut by Condition 3), and with the cut it still builds every genus-1 polycube
 at hand from the decomposition through its axis of fewest crossings."""
@@ -7,12 +7,12 @@ from __future__ import annotations
 
 import pytest
 
-import polyloops.enumerate.torus as torus
-import polyloops.enumerate.torus_regions as regions
+import polyloops.generate.torus.regions as regions
+import polyloops.generate.torus.search as torus
 from polyloops.core.directions import Axis
 from polyloops.core.disjoint_sets import ParitySets
 from polyloops.core.labellings import admits_polycube, polycube_structures, proper_colourings, sign_components
-from polyloops.enumerate.torus import TorusArrangement, TorusSearchStats
+from polyloops.generate.torus.search import TorusArrangement, TorusSearchStats
 from polyloops.io.examples import load_example
 from test_torus import genus_one_polycubes
 
@@ -164,8 +164,8 @@ def test_the_first_stage_is_spilled_once_and_read_back(tmp_path):
     """A catalog run lists the first stage once, in its ``parts/``: the file holds the same
     arrangements and statistics, a rerun reads it instead of listing them again, and a damaged
     file is refused and written again."""
-    from polyloops.enumerate.generators import read_bases, spill_bases
-    from polyloops.enumerate.spill import SpillMismatch
+    from polyloops.generate.spill import SpillMismatch
+    from polyloops.generate.torus import read_bases, spill_bases
 
     path = spill_bases(8, tmp_path)
     bases, stats = read_bases(str(path), 8)

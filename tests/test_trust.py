@@ -15,13 +15,13 @@ from pathlib import Path
 
 import pytest
 
+from polyloops.catalog.census import Census, read_catalog
+from polyloops.catalog.records import CatalogEntry, CatalogError, CatalogMismatchError
+from polyloops.catalog.run import build_catalog, write_census
 from polyloops.cli import main
-from polyloops.enumerate import torus
-from polyloops.enumerate.catalog_run import build_catalog, write_census
-from polyloops.enumerate.census import Census, read_catalog
-from polyloops.enumerate.generators import read_bases, spill_bases
-from polyloops.enumerate.records import CatalogEntry, CatalogError, CatalogMismatchError
-from polyloops.enumerate.spill import SpillMismatch, SpillRefused, SpillTag, read_spill, write_spill
+from polyloops.generate.spill import SpillMismatch, SpillRefused, SpillTag, read_spill, write_spill
+from polyloops.generate.torus import read_bases, spill_bases
+from polyloops.generate.torus import search as torus
 
 
 def run(capsys, *argv: str) -> tuple[int, str, str]:
@@ -53,7 +53,7 @@ def test_a_smaller_runs_top_is_not_taken_for_this_runs(tmp_path, capsys):
 
 
 def _top_version():
-    from polyloops.enumerate.generators import frontier_tag
+    from polyloops.generate.loops import frontier_tag
 
     return frontier_tag(0).version
 
@@ -252,7 +252,7 @@ def test_a_link_inside_the_site_is_not_written_through(tmp_path, capsys):
 
 def test_a_second_run_into_the_same_directory_is_refused(tmp_path):
     """While a run holds its directory, another run into it is refused at once."""
-    from polyloops.enumerate.catalog_run import CatalogRunError, locked
+    from polyloops.catalog.run import CatalogRunError, locked
 
     cat = tmp_path / "cat"
     cat.mkdir()
@@ -281,7 +281,7 @@ def test_two_runs_at_once_leave_the_larger_catalog(tmp_path):
 
 def _stop_before_the_summary(monkeypatch) -> None:
     """Make the next merge stop (as Ctrl-C would) when it comes to write ``summary.json``."""
-    import polyloops.enumerate.catalog_run as catalog_run
+    import polyloops.catalog.run as catalog_run
 
     real = catalog_run.write_atomic
 

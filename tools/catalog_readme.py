@@ -76,8 +76,8 @@ def render(template: str, summary: dict, reach_rows: list[dict] | None = None,
 
 def certificate_rows(path: Path) -> list[dict]:
     """The per-corner table of a certificate, recomputed from its records."""
-    from polyloops.enumerate.conjecture import ClassRecord, ConjectureResult
-    from polyloops.enumerate.reach import Move
+    from polyloops.reach.conjecture import ClassRecord, ConjectureResult
+    from polyloops.reach.search import Move
 
     lines = path.read_text().splitlines()
     header = json.loads(lines[0])

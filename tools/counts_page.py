@@ -136,7 +136,7 @@ def orientation_counts(catalog: Path) -> dict[str, dict[int, int]]:
     """Per hole-orientation type (the invariant up to the axes' symmetries), the classes up to
     all symmetries by corners, from a catalog's records (computed from their signatures)."""
     from polyloops.core.canonical import from_signature
-    from polyloops.enumerate.conjecture import orientation_type
+    from polyloops.reach.conjecture import orientation_type
 
     out: dict[str, dict[int, int]] = {}
     for line in (catalog / "catalog.jsonl").read_text().splitlines():

@@ -10,7 +10,7 @@ import argparse
 import time
 from pathlib import Path
 
-from polyloops.enumerate.crosscheck import plantri_sample, reach_agreement
+from polyloops.reach.crosscheck import plantri_sample, reach_agreement
 
 
 def main() -> None:

@@ -52,7 +52,7 @@ def merged_summary(old: dict, new: dict) -> dict:
 def shipped_summary(summary: dict, into: Path) -> dict:
     """The summary as shipped: the records' mode and the digest of the one file that ships
     (catalog.jsonl; queries build the database from it)."""
-    from polyloops.enumerate.catalog_run import file_digest
+    from polyloops.catalog.run import file_digest
 
     first = (into / "catalog.jsonl").read_text().partition("\n")[0]
     mode = json.loads(first)["symmetry"] if first else "full"
@@ -71,8 +71,8 @@ def check_records(old_dir: Path, new_dir: Path) -> None:
 def ship(run: Path, into: Path = SHIPPED, slack: int = 10, workers: int = 1) -> dict:
     """Check ``run`` against ``into`` and replace ``into``'s catalog with it; returns the
     certificate check's summary."""
-    from polyloops.enumerate.conjecture import certificate_lines, check_certificate, settle_catalog
     from polyloops.io.files import write_atomic
+    from polyloops.reach.conjecture import certificate_lines, check_certificate, settle_catalog
 
     new = json.loads((run / "summary.json").read_text())
     if (into / "summary.json").exists():

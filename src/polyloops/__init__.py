@@ -2,7 +2,8 @@
 
 The kernel is :mod:`polyloops.core` (one half-edge map; polycubes and loop structures are
 views of it).  Checkers live in :mod:`polyloops.verify`, orientation solvers in
-:mod:`polyloops.solvers`, catalogs and reachability in :mod:`polyloops.enumerate`.  The names
+:mod:`polyloops.solvers`, generators in :mod:`polyloops.generate`, catalogs in
+:mod:`polyloops.catalog` and reachability in :mod:`polyloops.reach`.  The names
 below are the public API; the heavier ones (solvers, catalogs, reachability) load on first use.
 
 >>> import polyloops as pl
@@ -47,12 +48,12 @@ _register_pictures()
 _LAZY = {
     "orient": "polyloops.solvers",
     "count_orientations": "polyloops.solvers",
-    "identify": "polyloops.enumerate.census",
-    "read_catalog": "polyloops.enumerate.census",
-    "read_certificate": "polyloops.enumerate.conjecture",
-    "build_catalog": "polyloops.enumerate.catalog_run",
-    "explore": "polyloops.enumerate.reach",
-    "shortest_path": "polyloops.enumerate.reach",
+    "identify": "polyloops.catalog.census",
+    "read_catalog": "polyloops.catalog.census",
+    "read_certificate": "polyloops.reach.conjecture",
+    "build_catalog": "polyloops.catalog.run",
+    "explore": "polyloops.reach.search",
+    "shortest_path": "polyloops.reach.search",
     "read": "polyloops.io.registry",
     "write": "polyloops.io.registry",
 }

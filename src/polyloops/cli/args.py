@@ -156,6 +156,6 @@ def catalog_dir(given: str | None, genus: int | None) -> Any:
     (installed with the package)."""
     from pathlib import Path
 
-    from polyloops.enumerate.census import default_catalog
+    from polyloops.catalog.census import default_catalog
 
     return Path(given) if given else default_catalog(genus or 0)

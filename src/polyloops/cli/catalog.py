@@ -20,7 +20,7 @@ from polyloops.cli.args import (
     written,
 )
 from polyloops.cli.load import EXIT_OK, CliError, write_text
-from polyloops.enumerate.bounds import MAX_CATALOG_CORNERS
+from polyloops.generate.bounds import MAX_CATALOG_CORNERS
 
 
 def cmd_catalog(args: argparse.Namespace) -> int:
@@ -34,21 +34,22 @@ def cmd_catalog(args: argparse.Namespace) -> int:
         raise CliError(f"the following arguments are required: {', '.join(missing)} (see --help)")
     from tqdm import tqdm
 
-    from polyloops.enumerate.catalog_run import (
+    from polyloops.catalog.jobs import JobResult
+    from polyloops.catalog.run import (
         CatalogRunError,
         WouldLoseResultsError,
         build_catalog,
         choose_generator,
     )
-    from polyloops.enumerate.generators import GENERATORS, JobResult
-    from polyloops.enumerate.quadrangulations import PlantriError
+    from polyloops.generate.base import generators
+    from polyloops.generate.plantri.quadrangulations import PlantriError
 
     try:
         generator, note = choose_generator(args.generator, args.method, args.plantri, args.genus)
     except CatalogRunError as err:
         raise CliError(f"--generator {args.generator}: {err}" if args.generator else str(err)) from None
     try:
-        configured = GENERATORS[generator].with_options(plantri=args.plantri, method=args.method)
+        configured = generators()[generator].with_options(plantri=args.plantri, method=args.method)
     except (KeyError, ValueError):
         configured = None  # build_catalog names the problem
     for line in [note, *(configured.notes() if configured else [])]:
@@ -61,7 +62,7 @@ def cmd_catalog(args: argparse.Namespace) -> int:
     def planned(jobs: list[Any]) -> None:
         bar.reset(total=len(jobs))
 
-    visits = GENERATORS[generator].visits
+    visits = generators()[generator].visits
 
     def progress(result: JobResult) -> None:
         maps[0] += result.visited  # what the generator visits: maps read, arrangements built
@@ -89,7 +90,7 @@ def cmd_catalog(args: argparse.Namespace) -> int:
             for k, v in summary["counts"].items()]
     text = "corners  quadrangulations  simple strips  labelled  rotation  full\n" + "\n".join(
         f"{r[0]:>7}  {r[1]:>16}  {r[2]:>13}  {r[3]:>8}  {r[4]:>8}  {r[5]:>4}" for r in rows)
-    key = GENERATORS[generator].statistics_key
+    key = generators()[generator].statistics_key
     search = summary.get(key, {}) if key else {}
     built_count = search.get("arrangements", search.get("states"))
     if built_count is not None:
@@ -99,7 +100,7 @@ def cmd_catalog(args: argparse.Namespace) -> int:
 
 
 def cmd_catalog_query(args: argparse.Namespace) -> int:
-    from polyloops.enumerate.census import CatalogError, query
+    from polyloops.catalog.census import CatalogError, query
 
     try:
         columns, rows = query(catalog_dir(args.dir, args.genus), args.where)
@@ -117,7 +118,7 @@ def cmd_catalog_query(args: argparse.Namespace) -> int:
 
 
 def cmd_catalog_export(args: argparse.Namespace) -> int:
-    from polyloops.enumerate.census import CatalogError, export_csv
+    from polyloops.catalog.census import CatalogError, export_csv
 
     try:
         text = export_csv(catalog_dir(args.dir, args.genus))
@@ -167,9 +168,9 @@ def add_commands(command: AddCommand, hidden: AddCommand) -> None:
                    help="which classes the records list (summary.json counts all three); default full")
     p.add_argument("--workers", type=count_arg(1, MAX_WORKERS), default=1, metavar="K",
                    help="local worker processes")
-    from polyloops.enumerate.generators import GENERATORS
+    from polyloops.generate.base import generators
 
-    p.add_argument("--generator", choices=sorted(GENERATORS), default=None,
+    p.add_argument("--generator", choices=sorted(generators()), default=None,
                    help="where candidate maps come from: loops (arrangements built one loop at a "
                    "time, compiled at install; the default where it was built) or plantri (every "
                    "quadrangulation, filtered; the default otherwise, and when --method or "

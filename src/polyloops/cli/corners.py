@@ -9,7 +9,7 @@ from polyloops.cli.load import EXIT_OK, CliError, picture_output
 
 
 def cmd_corners(args: argparse.Namespace) -> int:
-    from polyloops.enumerate.corners import corner_classes, corner_rows
+    from polyloops.generate.corners import corner_classes, corner_rows
 
     pictures = [(picture_output(path, (f".{draw}",)), draw)
                 for path, draw in ((args.png, "png"), (args.svg, "svg")) if path]  # checked before drawing

@@ -24,7 +24,7 @@ from polyloops.io.formats import to_data
 def _count_additions(ls: Any, axes: list[Axis], args: argparse.Namespace) -> Any:
     from tqdm import tqdm
 
-    from polyloops.enumerate.listing import count_additions_within
+    from polyloops.reach.listing import count_additions_within
 
     bar = tqdm(unit=" loops", desc="counting", disable=None, file=sys.stderr, leave=False)
     shown = dict.fromkeys((a.name for a in axes), 0)
@@ -43,7 +43,7 @@ def _count_additions(ls: Any, axes: list[Axis], args: argparse.Namespace) -> Any
 
 def cmd_moves(args: argparse.Namespace) -> int:
     from polyloops.core.moves import RemovalCheck, check_removal, loop_names, removals
-    from polyloops.enumerate.listing import list_additions
+    from polyloops.reach.listing import list_additions
 
     if sum(map(bool, (args.count, args.shortest is not None, args.sample is not None))) > 1:
         raise CliError("--count, --shortest and --sample are different questions: ask one")
@@ -117,7 +117,7 @@ def cmd_moves(args: argparse.Namespace) -> int:
 def _estimate(ls: Any, axes: list[Axis], want_remove: bool, args: argparse.Namespace) -> int:
     """``moves --count --estimate``: additions estimated by random walks, removals counted."""
     from polyloops.core.moves import estimate_additions, removals
-    from polyloops.enumerate.listing import TimeShares
+    from polyloops.reach.listing import TimeShares
 
     budget = TimeShares(args.time_limit, len(axes))
     data: dict[str, Any] = {"estimates": {}}

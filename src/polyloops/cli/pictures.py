@@ -97,7 +97,7 @@ def cmd_view(args: argparse.Namespace) -> int:
 def cmd_gallery(args: argparse.Namespace) -> int:
     from tqdm import tqdm
 
-    from polyloops.enumerate.census import CatalogError, read_catalog
+    from polyloops.catalog.census import CatalogError, read_catalog
     from polyloops.render.gallery import build_gallery
 
     out = output_dir(args.output)
@@ -133,7 +133,7 @@ def _is_dir(path: Path) -> bool:
 def _caption(source: str, obj: Any) -> str:
     """A structure's catalog name when the shipped catalog has it, else where it came from;
     never a cut-off signature."""
-    from polyloops.enumerate.census import CatalogError, identify
+    from polyloops.catalog.census import CatalogError, identify
 
     try:
         found = identify(obj).name
@@ -147,7 +147,7 @@ def _caption(source: str, obj: Any) -> str:
 
 
 def cmd_sheet(args: argparse.Namespace) -> int:
-    from polyloops.enumerate.census import CatalogError, read_catalog
+    from polyloops.catalog.census import CatalogError, read_catalog
     from polyloops.render.polycube import PictureError
     from polyloops.render.sheet import render_sheet
 

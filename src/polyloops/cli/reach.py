@@ -33,7 +33,7 @@ from polyloops.cli.load import (
 
 
 def _kinds(text: str):
-    from polyloops.enumerate.reach import parse_kinds
+    from polyloops.reach.search import parse_kinds
 
     try:
         return parse_kinds(text)
@@ -44,8 +44,8 @@ def _kinds(text: str):
 def cmd_reach(args: argparse.Namespace) -> int:
     from tqdm import tqdm
 
-    from polyloops.enumerate.reach import ReachError, WouldReplaceSearchError, explore
     from polyloops.io.files import write_atomic
+    from polyloops.reach.search import ReachError, WouldReplaceSearchError, explore
 
     start = read_valid_structure(args.start)
     kinds = _kinds(args.moves)
@@ -90,7 +90,7 @@ def cmd_reach(args: argparse.Namespace) -> int:
 
 
 def cmd_path(args: argparse.Namespace) -> int:
-    from polyloops.enumerate.reach import find_path, no_path_reason
+    from polyloops.reach.search import find_path, no_path_reason
 
     source = read_valid_structure(args.source)
     target = read_valid_structure(args.target)
@@ -124,8 +124,8 @@ def cmd_path(args: argparse.Namespace) -> int:
 def verify_path_file(source: str, data: dict[str, Any], as_json: bool) -> int:
     """``polyloops verify`` on a path file: every step, then every consecutive pair (by its
     move, when the file gives the moves)."""
-    from polyloops.enumerate.reach import check_path, path_moves, path_steps
     from polyloops.io.formats import FormatError
+    from polyloops.reach.search import check_path, path_moves, path_steps
 
     try:
         check = check_path(path_steps(data), path_moves(data))
@@ -148,8 +148,8 @@ def cmd_conjecture_settle(args: argparse.Namespace) -> int:
     """``conjecture genus0`` and ``conjecture genus1``: settle every class of a catalog."""
     from tqdm import tqdm
 
-    from polyloops.enumerate.census import CatalogError, read_catalog
-    from polyloops.enumerate.conjecture import (
+    from polyloops.catalog.census import CatalogError, read_catalog
+    from polyloops.reach.conjecture import (
         ConjectureError,
         catalog_signatures,
         certificate_lines,
@@ -199,8 +199,8 @@ def cmd_conjecture_settle(args: argparse.Namespace) -> int:
 
 
 def cmd_conjecture_check(args: argparse.Namespace) -> int:
-    from polyloops.enumerate.census import CatalogError, read_catalog
-    from polyloops.enumerate.conjecture import Certificate, ConjectureError, read_header, shipped_certificate
+    from polyloops.catalog.census import CatalogError, read_catalog
+    from polyloops.reach.conjecture import Certificate, ConjectureError, read_header, shipped_certificate
 
     given = args.certificate or str(shipped_certificate(args.genus or 0))
     text = read_text_file(given)

@@ -149,7 +149,7 @@ def cmd_signature(args: argparse.Namespace) -> int:
 
 
 def cmd_identify(args: argparse.Namespace) -> int:
-    from polyloops.enumerate.census import CatalogError, identify
+    from polyloops.catalog.census import CatalogError, identify
 
     ls = read_loop_structure(args.file, oriented=True)
     try:

@@ -4,7 +4,7 @@
 leaves, with its thumbnail, and to the viewer with that loop highlighted: ``view/NAME.html#loop-N``),
 the classes one addition above it within the gallery, and its way down to the cube as a strip
 of thumbnails, a detour of the reachability certificate step by step where no loop can be
-removed (:mod:`polyloops.enumerate.move_graph`).  ``moves.html`` draws the whole graph in
+removed (:mod:`polyloops.reach.move_graph`).  ``moves.html`` draws the whole graph in
 layers by corners, removals as edges, every class a link, with a filter by corners.  All
 static: no script loads anything.
 """
@@ -14,10 +14,10 @@ from __future__ import annotations
 import html
 from pathlib import Path
 
+from polyloops.catalog.census import CatalogEntry
 from polyloops.core.words import plural
-from polyloops.enumerate.census import CatalogEntry
-from polyloops.enumerate.move_graph import Descent, MoveGraph
 from polyloops.io.files import write_atomic
+from polyloops.reach.move_graph import Descent, MoveGraph
 
 STYLE = """body { font-family: system-ui, sans-serif; margin: 1.2em; color: #222; max-width: 1100px; }
 h1 { font-size: 1.4em; margin: 0 0 .3em; } h2 { font-size: 1.1em; margin: 1.2em 0 .4em; }

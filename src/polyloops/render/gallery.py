@@ -12,7 +12,7 @@ needs no server and no network: open ``index.html``.  Pictures and viewer pages 
 are kept, so an interrupted run resumes; every file is written through a temporary file.
 
 >>> import tempfile, pathlib
->>> from polyloops.enumerate.census import read_catalog
+>>> from polyloops.catalog.census import read_catalog
 >>> census = read_catalog()
 >>> with tempfile.TemporaryDirectory() as tmp:
 ...     built = build_gallery(census, pathlib.Path(tmp) / "site", limit=2)
@@ -29,8 +29,8 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
+from polyloops.catalog.census import CatalogEntry, Census
 from polyloops.core.corners import CATEGORIES
-from polyloops.enumerate.census import CatalogEntry, Census
 from polyloops.io.files import check_within, write_atomic
 
 
@@ -56,7 +56,7 @@ def build_gallery(census: Census, out: str | Path, limit: int | None = None,
     Parameters
     ----------
     census:
-        A catalog, as :func:`polyloops.enumerate.census.read_catalog` reads it.
+        A catalog, as :func:`polyloops.catalog.census.read_catalog` reads it.
     out:
         The site's directory (made if missing; its parent must exist).
     limit:
@@ -77,8 +77,8 @@ def build_gallery(census: Census, out: str | Path, limit: int | None = None,
     ValueError
         When a record's signature does not decode.
     """
-    from polyloops.enumerate.census import NAME
-    from polyloops.enumerate.parallel import run_jobs
+    from polyloops.catalog.census import NAME
+    from polyloops.parallel import run_jobs
     from polyloops.render.viewer import write_plotly_js
 
     out = Path(out)
@@ -116,7 +116,7 @@ def build_gallery(census: Census, out: str | Path, limit: int | None = None,
     title = f"Genus-{census.genus} polycubes, {span}, up to {up_to[str(census.symmetry)]}"
     full = str(census.symmetry) == "full"  # the move graph names classes by full signature
     if full:
-        from polyloops.enumerate.move_graph import move_graph
+        from polyloops.reach.move_graph import move_graph
         from polyloops.render.class_pages import write_class_pages
 
         listed = Census(census.directory, tuple(entries), census.summary)

@@ -59,7 +59,7 @@ def render_sheet(items: Sequence[tuple[str, Structure]], path: str | os.PathLike
         return
     from PIL import Image
 
-    from polyloops.enumerate.parallel import run_jobs
+    from polyloops.parallel import run_jobs
 
     rows = math.ceil(len(items) / columns)
     canvas = Image.new("RGB", (columns * pixels, rows * (pixels + CAPTION)), (255, 255, 255))

@@ -42,7 +42,7 @@ from polyloops.core.corners import canonical_rotation, cross
 from polyloops.core.directions import Axis, Direction
 from polyloops.core.disjoint_sets import DisjointSets
 from polyloops.core.zones import find_directed_cycle
-from polyloops.enumerate.corners import chart_corners
+from polyloops.generate.corners import chart_corners
 from polyloops.segmentation.charts import Segmentation
 from polyloops.solvers.sat import minimal_core
 

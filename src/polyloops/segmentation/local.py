@@ -8,7 +8,7 @@
   polycube is straight, so cannot close up.
 - ``chart-handle``: a chart with a handle; a region of a plane has none.
 - ``corner``: a corner whose cyclic sequence of chart labels no polycube corner has (the
-  chart views of the 126 configurations, :func:`~polyloops.enumerate.corners.chart_corners`).
+  chart views of the 126 configurations, :func:`~polyloops.generate.corners.chart_corners`).
 """
 
 from __future__ import annotations
@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 
 from polyloops.core.corners import canonical_rotation
 from polyloops.core.directions import Direction
-from polyloops.enumerate.corners import chart_label_cycles
+from polyloops.generate.corners import chart_label_cycles
 from polyloops.segmentation.charts import Segmentation
 
 

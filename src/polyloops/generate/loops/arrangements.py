@@ -48,7 +48,7 @@ class ArrangementError(PolyloopsError, ValueError):
 def compiled_generator_available() -> bool:
     """Whether the install built the compiled arrangement search (it needs a C compiler)."""
     try:
-        import polyloops.enumerate._arrangements  # noqa: F401
+        import polyloops.generate.loops._arrangements  # noqa: F401
     except ImportError:
         return False
     return True
@@ -56,7 +56,7 @@ def compiled_generator_available() -> bool:
 
 def _module():
     try:
-        import polyloops.enumerate._arrangements as _arrangements
+        import polyloops.generate.loops._arrangements as _arrangements
     except ImportError:
         raise ArrangementError("the compiled arrangement search was not built (a C compiler and the "
                                "Python headers are needed at install time): reinstall with them, "

@@ -1,6 +1,6 @@
 """Reading a catalog directory as a census: typed entries, names, identification, queries.
 
-A catalog directory (written by :func:`polyloops.enumerate.catalog_run.build_catalog`) holds
+A catalog directory (written by :func:`polyloops.catalog.run.build_catalog`) holds
 ``catalog.jsonl`` (one record per class, in one symmetry mode), ``catalog.sqlite`` (the same
 rows as a table, for SQL queries; the shipped catalog leaves it out and its queries build the
 table in memory) and ``summary.json`` (counts in every mode).  This module
@@ -23,9 +23,9 @@ from functools import cached_property
 from pathlib import Path
 from typing import Any
 
+from polyloops.catalog import records
+from polyloops.catalog.records import CatalogEntry, CatalogError, CatalogMismatchError
 from polyloops.core.symmetry import Symmetry
-from polyloops.enumerate import records
-from polyloops.enumerate.records import CatalogEntry, CatalogError, CatalogMismatchError
 from polyloops.io.files import InputError, read_bytes, read_text
 
 
@@ -175,7 +175,7 @@ def catalog_problem(directory: Path, entries: list[CatalogEntry], summary: dict[
                     darts: list[int]) -> str | None:
     """What makes the records of a catalog not prove what its summary claims, or ``None``:
     the files differ from the digests the summary records; two modes; the records out of
-    catalog order or their names not the ones :func:`~polyloops.enumerate.records.class_names`
+    catalog order or their names not the ones :func:`~polyloops.catalog.records.class_names`
     gives; a signature twice; a record whose corners or faces its signature contradicts; a
     count per corner count that differs from the summary's.  ``darts`` gives the size of the
     map each record's signature names (read from its head, after its check characters,
@@ -233,7 +233,7 @@ def read_catalog(directory: Path | str | None = None, *, genus: int | None = Non
     Parameters
     ----------
     directory:
-        A directory written by :func:`~polyloops.enumerate.catalog_run.build_catalog`.
+        A directory written by :func:`~polyloops.catalog.run.build_catalog`.
     genus:
         Without ``directory``: the shipped catalog of this genus (default 0); with it, the
         genus the catalog must have.
@@ -306,7 +306,7 @@ def summary_problem(summary: Any) -> str | None:
 
 
 def query(out: Path, where: str) -> tuple[list[str], list[tuple[Any, ...]]]:
-    """Rows of a catalog matching an SQL WHERE clause (:func:`polyloops.enumerate.records.query`),
+    """Rows of a catalog matching an SQL WHERE clause (:func:`polyloops.catalog.records.query`),
     after the catalog is read and checked (:func:`read_catalog`): from ``DIR/catalog.sqlite``
     (its digest checked too), or, where the directory has none, from the same table built in
     memory from the records.

@@ -1,5 +1,5 @@
 /* One step of the canonical construction of arrangements of simple closed curves
- * (polyloops/enumerate/arrangements.py explains the method and proves the cuts).
+ * (polyloops/generate/loops/arrangements.py explains the method and proves the cuts).
  *
  * An arrangement is a connected 4-regular map on the sphere whose straight-ahead walks (its
  * loops) are simple closed curves; its faces are the regions, its vertices the crossings.

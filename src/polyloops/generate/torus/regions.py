@@ -23,7 +23,7 @@ final as soon as it is chosen:
 Each constraint is a property of every polycube loop structure with that decomposition, and
 constraints only accumulate as regions are chosen, so no polycube is lost.  At the end the
 loops must cross each region at most once and the map must pass the same final test as the
-loop-by-loop search (:func:`polyloops.enumerate.torus.decomposes`) and carry a polycube with
+loop-by-loop search (:func:`polyloops.generate.torus.search.decomposes`) and carry a polycube with
 the decomposition's labelling.
 """
 
@@ -36,7 +36,7 @@ from typing import TYPE_CHECKING
 from polyloops.core.disjoint_sets import DisjointSets, ParitySets
 
 if TYPE_CHECKING:
-    from polyloops.enumerate.torus import TorusArrangement, TorusSearchStats
+    from polyloops.generate.torus.search import TorusArrangement, TorusSearchStats
 
 __all__ = ["AxisCycle", "axis_cycles", "forced_one_way", "third_axis_systems"]
 
@@ -54,7 +54,7 @@ def axis_cycles(base: TorusArrangement, klass: list[int]) -> list[AxisCycle]:
     """The cycles of the two level graphs of ``B`` (zones: the regions joined across the
     other axis's edges; an arc per loop).  A level graph with more than one independent cycle
     gets none here (nothing is cut for it)."""
-    from polyloops.enumerate.torus import _walk_forward
+    from polyloops.generate.torus.search import _walk_forward
 
     forward = _walk_forward(base)
     out = []
@@ -135,7 +135,7 @@ COMPILED = True  # False runs the Python search (the twin of ``_regions.c``)
 def compiled_available() -> bool:
     """Whether the install built the compiled region search."""
     try:
-        from polyloops.enumerate import _regions  # noqa: F401
+        from polyloops.generate.torus import _regions  # noqa: F401
     except ImportError:
         return False
     return True
@@ -151,7 +151,7 @@ class _Setup:
 
 
 def _setup(base: TorusArrangement, cut_one_way: bool) -> _Setup:
-    from polyloops.enumerate.torus import _classes, _walk_forward, layered_need
+    from polyloops.generate.torus.search import _classes, _walk_forward, layered_need
 
     klass = _classes(base)
     forward = _walk_forward(base)
@@ -173,7 +173,7 @@ def third_axis_systems(base: TorusArrangement, max_crossings: int, stats: TorusS
     ``(twin, layer)`` of the whole arrangement (``B``'s darts first, then four darts a new
     crossing), before the final test.  With ``cut_one_way`` false the level-graph cut is left
     out (for the tests).  Runs in C when the install built it (:data:`COMPILED`)."""
-    from polyloops.enumerate.torus import TorusSearchStats
+    from polyloops.generate.torus.search import TorusSearchStats
 
     stats = stats if stats is not None else TorusSearchStats()
     if max_crossings < base.crossings:
@@ -189,7 +189,7 @@ def _compiled_systems(base: TorusArrangement, max_crossings: int, setup: _Setup,
                       ) -> Iterator[tuple[tuple[int, ...], tuple[int, ...]]]:
     import array
 
-    from polyloops.enumerate import _regions
+    from polyloops.generate.torus import _regions
 
     edges = sorted({side.edge for region in setup.sides for side in region})
     index = {e: i for i, e in enumerate(edges)}

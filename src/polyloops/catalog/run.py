@@ -1,12 +1,12 @@
 """Running a catalog: jobs, workers, resuming, merging, storage.
 
-The candidate maps come from a :class:`~polyloops.enumerate.generators.Generator` (``loops``
+The candidate maps come from a :class:`~polyloops.generate.base.Generator` (``loops``
 by default where it was built, or ``plantri``; a new generator plugs in with
-:func:`~polyloops.enumerate.generators.register`).  The generator cuts the run into jobs; each
+:func:`~polyloops.generate.base.register`).  The generator cuts the run into jobs; each
 finished job is written to ``DIR/parts/`` as a typed result, atomically, so an interrupted run
 resumes where it stopped.  When all jobs are done, the parts are merged into
 ``DIR/catalog.jsonl``, ``DIR/catalog.sqlite`` (records of the chosen symmetry mode; the record
-format is :mod:`polyloops.enumerate.records`) and ``DIR/summary.json`` (counts in every mode),
+format is :mod:`polyloops.catalog.records`) and ``DIR/summary.json`` (counts in every mode),
 each written through a temporary file and a rename.
 """
 
@@ -22,14 +22,15 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from polyloops.catalog.classes import MODES
+from polyloops.catalog.jobs import JobResult, run_job
+from polyloops.catalog.records import CatalogEntry, class_names, write_jsonl, write_sqlite
 from polyloops.core.errors import PolyloopsError
 from polyloops.core.symmetry import Symmetry
-from polyloops.enumerate.bounds import MAX_CATALOG_CORNERS
-from polyloops.enumerate.catalog import MODES
-from polyloops.enumerate.generators import GENERATORS, Generator, Job, JobResult, run_job
-from polyloops.enumerate.parallel import run_jobs
-from polyloops.enumerate.records import CatalogEntry, class_names, write_jsonl, write_sqlite
+from polyloops.generate.base import Generator, Job, generators
+from polyloops.generate.bounds import MAX_CATALOG_CORNERS
 from polyloops.io.files import InputError, OutputError, check_within, read_text, write_atomic
+from polyloops.parallel import run_jobs
 
 
 def choose_generator(generator: str | None, method: str = "auto",
@@ -47,20 +48,20 @@ def choose_generator(generator: str | None, method: str = "auto",
     >>> choose_generator("loops", method="numpy")  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    polyloops.enumerate.catalog_run.CatalogRunError: the strip filter method and plantri's binary ...
+    polyloops.catalog.run.CatalogRunError: the strip filter method and plantri's binary ...
     """
     given = {k for k, v in (("method", method), ("plantri", plantri)) if v not in (None, "auto")}
     if generator is not None:
-        chosen = GENERATORS.get(generator)
+        chosen = generators().get(generator)
         if chosen is not None and chosen.genus != genus:
             raise CatalogRunError(f"the {generator} generator makes maps of genus {chosen.genus}, "
                                   f"not {genus}")
         if chosen is not None and not given <= chosen.options:
-            takers = " and ".join(sorted(g.name for g in GENERATORS.values() if given <= g.options))
+            takers = " and ".join(sorted(g.name for g in generators().values() if given <= g.options))
             raise CatalogRunError(f"the strip filter method and plantri's binary are options of the {takers} "
                                   f"generator; the {generator} generator takes none of them")
         return generator, None
-    ranked = sorted((g for g in GENERATORS.values() if given <= g.options and g.genus == genus),
+    ranked = sorted((g for g in generators().values() if given <= g.options and g.genus == genus),
                     key=lambda g: -g.preference)
     skipped: list[tuple[str, str]] = []
     for g in ranked:
@@ -347,16 +348,16 @@ def build_catalog(out: Path | str, max_corners: int, min_corners: int = 8,
         of ``mod``; the bytes written do not depend on the split.
     generator:
         ``plantri`` (filter every quadrangulation) or ``loops`` (build arrangements of loops,
-        :mod:`polyloops.enumerate.arrangements`); the records and their counts are the same,
+        :mod:`polyloops.generate.loops.arrangements`); the records and their counts are the same,
         ``summary.json`` says which maps each visited.  ``None``: the best one built
         (:func:`choose_generator`).
     plantri, method:
         Which plantri binary and which strip filter (see
-        :func:`polyloops.enumerate.quadrangulations.filtered_batches`), for ``plantri``.
+        :func:`polyloops.generate.plantri.quadrangulations.filtered_batches`), for ``plantri``.
     progress, on_plan:
         Called with each finished job's result, and once with the list of jobs.
     genus:
-        0 (the sphere) or 1 (the torus: the ``torus`` generator, :mod:`polyloops.enumerate.torus`).
+        0 (the sphere) or 1 (the torus: the ``torus`` generator, :mod:`polyloops.generate.torus.search`).
     overwrite:
         Replace a catalog in ``out`` that covers more than this build (more corner counts,
         another mode, the whole search where this is a share); without it such a build is
@@ -394,10 +395,10 @@ def build_catalog(out: Path | str, max_corners: int, min_corners: int = 8,
         raise CatalogRunError("--workers must be at least 1")
     symmetry = Symmetry.parse(symmetry)
     name, _ = choose_generator(generator, method, plantri, genus)
-    if name not in GENERATORS:
-        raise CatalogRunError(f"unknown generator {name!r}: choose one of {', '.join(sorted(GENERATORS))}")
+    if name not in generators():
+        raise CatalogRunError(f"unknown generator {name!r}: choose one of {', '.join(sorted(generators()))}")
     try:
-        chosen = GENERATORS[name].with_options(plantri=plantri, method=method)
+        chosen = generators()[name].with_options(plantri=plantri, method=method)
     except ValueError as err:
         raise CatalogRunError(str(err)) from None
     why = chosen.unavailable()
@@ -440,13 +441,13 @@ def _refuse_less(out: Path, new: Extent, overwrite: bool) -> None:
 
 
 def write_census(census: Any, out: Path | str) -> Path:
-    """Write a :class:`~polyloops.enumerate.census.Census` (a catalog read, or cut with
-    :meth:`~polyloops.enumerate.census.Census.through`) as a catalog directory ``out``: its
+    """Write a :class:`~polyloops.catalog.census.Census` (a catalog read, or cut with
+    :meth:`~polyloops.catalog.census.Census.through`) as a catalog directory ``out``: its
     records, then its summary with the mode and the records' digest, so that readers accept
     exactly these records.  The summary's other tables are cut to its counts' range.
 
     >>> import tempfile
-    >>> from polyloops.enumerate.census import read_catalog
+    >>> from polyloops.catalog.census import read_catalog
     >>> with tempfile.TemporaryDirectory() as tmp:
     ...     small = read_catalog(write_census(read_catalog().through(20), Path(tmp) / "small"))
     >>> len(small), small.max_corners

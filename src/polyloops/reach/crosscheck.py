@@ -10,7 +10,7 @@
 Each returns what it checked and what disagreed, so the docs can state exactly what was
 compared at each size.
 
->>> from polyloops.enumerate.census import default_catalog
+>>> from polyloops.catalog.census import default_catalog
 >>> check = plantri_sample(default_catalog(), 16, mod=2, k=2, seed=1)
 >>> check.slices, check.found, check.missing
 ((0, 1), 2, ())
@@ -22,9 +22,9 @@ import random
 from dataclasses import dataclass
 from pathlib import Path
 
+from polyloops.catalog.census import Census, read_catalog
 from polyloops.core.polycube import Polycube
 from polyloops.core.symmetry import Symmetry
-from polyloops.enumerate.census import Census, read_catalog
 
 __all__ = ["ReachAgreement", "SampleCheck", "plantri_sample", "reach_agreement"]
 
@@ -68,7 +68,9 @@ def plantri_sample(catalog: Path | Census, n: int, mod: int, k: int = 1, seed: i
     ValueError
         When ``k`` is not in ``1..mod``, or the catalog is not of full classes.
     """
-    from polyloops.enumerate.generators import Job, PlantriGenerator, run_job
+    from polyloops.catalog.jobs import run_job
+    from polyloops.generate.base import Job
+    from polyloops.generate.plantri import PlantriGenerator
 
     if not 1 <= k <= mod:
         raise ValueError(f"choose 1 to {mod} slices, not {k}")
@@ -115,8 +117,8 @@ def reach_agreement(catalog: Path | Census, max_corners: int, workers: int = 1) 
     """
     import tempfile
 
-    from polyloops.enumerate.reach import explore, stored_signatures
     from polyloops.io.examples import load_example
+    from polyloops.reach.search import explore, stored_signatures
 
     census = catalog if isinstance(catalog, Census) else read_catalog(catalog)
     if census.symmetry != Symmetry.FULL:

@@ -1,7 +1,7 @@
 """The slow twin of the torus search: every 4-regular map, by brute force.
 
 An independent and plainly complete enumeration for small sizes, sharing no code with
-:mod:`polyloops.enumerate.torus`.  A connected 4-regular map with ``n`` vertices is a pairing of
+:mod:`polyloops.generate.torus.search`.  A connected 4-regular map with ``n`` vertices is a pairing of
 its ``4 n`` darts (each vertex's four darts in counter-clockwise order).  Numbered breadth first
 from a root dart (a vertex's darts in rotation order from the dart by which it is first
 reached), every rooted map has exactly one numbering, and the numberings are exactly the

@@ -26,7 +26,7 @@ neither read nor written through: :class:`SpillRefused`, one line naming it.
 ...     read_spill(path, SpillTag("example", 1, 14))
 Traceback (most recent call last):
 ...
-polyloops.enumerate.spill.SpillMismatch: ...x.bin: made for bound 12, not 14
+polyloops.generate.spill.SpillMismatch: ...x.bin: made for bound 12, not 14
 """
 
 from __future__ import annotations
@@ -44,8 +44,12 @@ from typing import Any
 from polyloops.core.errors import PolyloopsError
 from polyloops.io.files import OutputError, writing
 
-__all__ = ["FORMAT_VERSION", "MAGIC", "Spill", "SpillMismatch", "SpillRefused", "SpillTag",
+__all__ = ["FORMAT_VERSION", "MAGIC", "SPILL_VERSION", "Spill", "SpillMismatch", "SpillRefused", "SpillTag",
            "iter_spill", "read_spill", "spill_state", "write_spill"]
+
+# The searches' own version, in every tag (``{"schema": SPILL_VERSION, ...}``): raised when a
+# search changes what it spills, so that files of an older search are computed again.
+SPILL_VERSION = 6
 
 MAGIC = b"polyloops spill\n"
 FORMAT_VERSION = 1

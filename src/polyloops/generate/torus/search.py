@@ -4,7 +4,7 @@ The dual of a genus-1 quad mesh is a *cellular* arrangement of simple closed cur
 torus: a 4-regular map whose crossings are the quads and whose regions (all discs) are the
 corners; on the torus there are as many corners as crossings.
 
-**Any connected arrangement.**  As on the sphere (:mod:`polyloops.enumerate.arrangements`),
+**Any connected arrangement.**  As on the sphere (:mod:`polyloops.generate.loops.arrangements`),
 every connected arrangement with at least two loops has a loop whose deletion leaves it
 connected, so it is reached from a single loop by adding curves, and McKay's canonical
 construction path makes the search a tree.  What is new on the torus is that the arrangements
@@ -36,7 +36,7 @@ is bipartite), and the deleted loops are pairwise disjoint, each crossing every 
 at most once.  Taking the axis whose deletion leaves fewest crossings, ``B`` has at most a third
 of the crossings.  :func:`candidate_torus_arrangements` lists every such ``B`` with the search
 above, and then its third axis: region by region
-(:func:`polyloops.enumerate.torus_regions.third_axis_systems`, where the level graphs of ``B``
+(:func:`polyloops.generate.torus.regions.third_axis_systems`, where the level graphs of ``B``
 cut early), or, as the twin kept for the tests, one loop at a time, each child kept when its new
 loop is the canonical third-axis loop to delete (every state of this stage is cellular).
 
@@ -777,7 +777,7 @@ COMPILED_SEARCH = True
 def compiled_search_available() -> bool:
     """Whether the install built the compiled torus search (it needs a C compiler)."""
     try:
-        import polyloops.enumerate._torus  # noqa: F401
+        import polyloops.generate.torus._torus  # noqa: F401
     except ImportError:
         return False
     return True
@@ -805,7 +805,7 @@ def _layered_children(twin: bytes, layer: bytes, max_crossings: int, stats: Toru
                       ) -> list[tuple[tuple[bytes, bytes], int]]:
     """The compiled second stage's children of one state, one of each, ordered by code, as
     ``((twin, layer), flags)``; its counts added to ``stats``."""
-    from polyloops.enumerate import _torus
+    from polyloops.generate.torus import _torus
 
     found, counts = _torus.children(twin, layer, max_crossings)
     _, closed, over, inconsistent, rejected, straight = counts
@@ -826,7 +826,7 @@ def _compiled_first_children(parent: TorusArrangement | int, max_crossings: int,
     the compiled search (one of each child, ordered by its code)."""
     import array
 
-    from polyloops.enumerate import _torus
+    from polyloops.generate.torus import _torus
 
     if isinstance(parent, int):
         found, counts = _torus.first_children(b"", parent, max_crossings, colours)
@@ -907,7 +907,7 @@ def candidate_torus_arrangements(max_crossings: int, res: int = 0, mod: int = 1,
     """Every map of genus 1 with at most ``max_crossings`` crossings that carries a polycube
     loop structure, once up to homeomorphism, through the two stages: each ``B`` with at most
     a third of the crossings, then its third axis (:data:`SECOND_STAGE`: region by region,
-    :func:`polyloops.enumerate.torus_regions.third_axis_systems`, or loop by loop); a map is
+    :func:`polyloops.generate.torus.regions.third_axis_systems`, or loop by loop); a map is
     listed from its canonical decomposition (:func:`polycube_decompositions`).  ``res``/``mod``
     keeps the ``B`` whose rank is ``res`` modulo ``mod`` (independent shares).  With
     ``polycubes`` false (the loop-by-loop stage only) every map with a decomposition is listed,
@@ -938,7 +938,7 @@ def _third_axes(base: TorusArrangement, max_crossings: int, stats: TorusSearchSt
     if SECOND_STAGE == "loops":
         yield from (_second_stage_compiled if _compiled() else _second_stage)(base, max_crossings, stats)
         return
-    from polyloops.enumerate.torus_regions import third_axis_systems
+    from polyloops.generate.torus.regions import third_axis_systems
 
     seen: set[bytes | tuple] = set()
     code = _layered_code if _compiled() else (lambda a: canonical(a)[0])
@@ -1062,7 +1062,7 @@ def _layered_code(a: TorusArrangement) -> bytes:
     """The compiled search's canonical code of a layered arrangement (its own order)."""
     import array
 
-    from polyloops.enumerate import _torus
+    from polyloops.generate.torus import _torus
 
     return _torus.layered_code(array.array("H", a.twin).tobytes(), bytes(a.layer))
 

@@ -15,10 +15,10 @@ backwards), so a shortest path that stays within the catalog's range of corners;
 reached only through larger structures has none.
 
 At genus 1 the ways start at the *bases* of the reachability certificate instead, one class
-per hole-orientation type (:mod:`polyloops.enumerate.conjecture`), since no move changes the
+per hole-orientation type (:mod:`polyloops.reach.conjecture`), since no move changes the
 type: each class's distance and way down lead to the base of its type.
 
->>> from polyloops.enumerate.census import read_catalog
+>>> from polyloops.catalog.census import read_catalog
 >>> graph = move_graph(read_catalog().through(16))
 >>> [(r.loop, r.axis, r.leaves) for r in graph.removals["P12.1"]]
 [(1, 'Y', 'P8.1'), (3, 'Y', 'P8.1')]
@@ -33,11 +33,11 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from functools import cached_property
 
+from polyloops.catalog.census import Census
 from polyloops.core.canonical import canonical_form
 from polyloops.core.moves import check_removal, remove_loop
 from polyloops.core.structure import LoopStructure
-from polyloops.enumerate.census import Census
-from polyloops.enumerate.reach import Move
+from polyloops.reach.search import Move
 
 CERTIFICATE = "reachability-certificate.jsonl"
 
@@ -151,7 +151,7 @@ def _bases(census: Census) -> tuple[str, ...]:
         based = {json.loads(line)["signature"] for line in path.read_text(encoding="utf-8").splitlines()[1:]
                  if '"base"' in line}
         return tuple(e.name for e in entries if e.signature in based)
-    from polyloops.enumerate.conjecture import orientation_bases, orientation_type
+    from polyloops.reach.conjecture import orientation_bases, orientation_type
 
     types = {e.signature: orientation_type(e.structure()) for e in entries}
     chosen = set(orientation_bases(types, {e.signature: e.corners for e in entries}).values())
@@ -187,7 +187,7 @@ def move_graph(census: Census, progress: Callable[[str], None] | None = None,
     """The move graph of ``census`` (a catalog in full symmetry); ``progress`` is called with
     each class's name once its removals are known; the removals are worked out in ``workers``
     local processes."""
-    from polyloops.enumerate.parallel import run_jobs
+    from polyloops.parallel import run_jobs
 
     def named(signature: str) -> str | None:
         entry = census.by_signature.get(signature)

@@ -1,5 +1,5 @@
 /* The second stage of the torus search region by region (the compiled twin of
- * polyloops/enumerate/torus_regions.py: the same walks, cuts and order).
+ * polyloops/generate/torus/regions.py: the same walks, cuts and order).
  *
  * The regions of B are chosen one at a time, in an order fixed by the caller.  A region's
  * chords are parallel; they are walked from one cap (two chord ends on different sides) with

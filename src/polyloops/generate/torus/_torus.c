@@ -1,4 +1,4 @@
-/* The second stage of the torus search, compiled (polyloops/enumerate/torus.py describes the
+/* The second stage of the torus search, compiled (polyloops/generate/torus/search.py describes the
  * search and is the reference; docs/catalog.md, "Genus 1: the torus search", proves it).
  *
  * A state is a cellular arrangement on the torus, darts four a crossing counter-clockwise

@@ -44,8 +44,8 @@ from polyloops.core.moves import (
 )
 from polyloops.core.structure import LoopStructure
 from polyloops.core.symmetry import Symmetry
-from polyloops.enumerate.parallel import run_jobs
 from polyloops.io.files import InputError, check_regular, read_only_uri
+from polyloops.parallel import run_jobs
 
 MODES = tuple(Symmetry)
 

@@ -33,12 +33,12 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, TypeGuard
 
+from polyloops.catalog.census import Census, read_catalog
 from polyloops.core.canonical import canonical_form, from_signature
 from polyloops.core.errors import PolyloopsError
 from polyloops.core.moves import check_removal
 from polyloops.core.structure import LoopStructure
-from polyloops.enumerate.census import Census, read_catalog
-from polyloops.enumerate.reach import Move, neighbours
+from polyloops.reach.search import Move, neighbours
 
 CERTIFICATE_KINDS = {0: "genus0-reachability-certificate", 1: "genus1-reachability-certificate"}
 CERTIFICATE_KIND = CERTIFICATE_KINDS[0]
@@ -251,7 +251,7 @@ def complete_range(census: Census, genus: int = 0) -> int:
     ConjectureError
         For a partial catalog, one of another genus, or one that starts above 8 corners.
 
-    >>> from polyloops.enumerate.census import read_catalog
+    >>> from polyloops.catalog.census import read_catalog
     >>> complete_range(read_catalog()) >= 28
     True
     """
@@ -287,7 +287,7 @@ def settle_catalog(directory: Path, max_corners: int, slack: int, workers: int =
         When ``max_corners`` goes beyond the catalog's complete range (:func:`complete_range`):
         classes the catalog does not hold cannot be settled.
     """
-    from polyloops.enumerate.parallel import run_jobs
+    from polyloops.parallel import run_jobs
 
     census = read_catalog(directory)
     genus = census.genus
@@ -594,7 +594,7 @@ def shipped_certificate(genus: int = 0) -> Path:
     >>> shipped_certificate(1).name
     'reachability-certificate.jsonl'
     """
-    from polyloops.enumerate.census import default_catalog
+    from polyloops.catalog.census import default_catalog
 
     return default_catalog(genus) / CERTIFICATE_NAME
 

@@ -175,7 +175,7 @@ METHODS = ("auto", "compiled", "numpy")
 def compiled_filter_available() -> bool:
     """Whether the install built the compiled strip filter (it needs a C compiler)."""
     try:
-        from polyloops.enumerate import _strips  # noqa: F401
+        from polyloops.generate.plantri import _strips  # noqa: F401
     except ImportError:
         return False
     return True
@@ -222,7 +222,7 @@ def filtered_batches(n: int, plantri: str, res: int = 0, mod: int = 1,
         for rows in plantri_batches(n, plantri, res, mod):
             yield _filter_numpy(rows)
         return
-    from polyloops.enumerate._strips import filter_maps
+    from polyloops.generate.plantri._strips import filter_maps
 
     size = record_size(n)
     for rows in plantri_batches(n, plantri, res, mod, batch=1 << 16):

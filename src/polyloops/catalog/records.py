@@ -7,7 +7,7 @@ per entry, columns :data:`COLUMNS`; table ``meta`` with the mode) and ``summary.
 writer and reader of the first two goes through this module.
 
 >>> from polyloops.io.examples import load_example
->>> from polyloops.enumerate.catalog import map_classes
+>>> from polyloops.catalog.classes import map_classes
 >>> record = map_classes(load_example("cube").map)["full"][0]
 >>> entry = CatalogEntry("P8.1", Symmetry.FULL, record)
 >>> CatalogEntry.from_json(entry.to_json()) == entry, row(entry)[2:7]

@@ -22,6 +22,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from polyloops.catalog.records import CatalogRecord
 from polyloops.core.canonical import CanonicalForm, canonical_form
 from polyloops.core.corners import CATEGORIES, corner_histogram
 from polyloops.core.directions import Axis
@@ -36,7 +37,6 @@ from polyloops.core.labellings import (  # re-exported: the catalog's step 3 liv
 from polyloops.core.moves import removals
 from polyloops.core.structure import LoopStructure
 from polyloops.core.symmetry import Symmetry
-from polyloops.enumerate.records import CatalogRecord
 
 __all__ = ["MODES", "CatalogRecord", "MapStructureError", "map_classes", "only_structure_on",
            "polycube_classes_on", "polycube_structures"]

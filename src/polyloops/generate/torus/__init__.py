@@ -1,0 +1,131 @@
+"""The ``torus`` generator (genus 1): the two-axis arrangements of the first stage, listed once a
+run and spilled, then the third axis region by region (:mod:`~polyloops.generate.torus.search`,
+:mod:`~polyloops.generate.torus.regions`, compiled in ``_torus.c`` and ``_regions.c``)."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator, Sequence
+from functools import lru_cache
+from pathlib import Path
+from typing import Any
+
+from polyloops.core.halfedge import HalfEdgeMap
+from polyloops.generate.base import Generator, Job, Tally, register
+from polyloops.generate.spill import SPILL_VERSION
+
+
+class TorusGenerator(Generator):
+    """The maps of genus 1 that carry a polycube
+    (:func:`polyloops.generate.torus.search.candidate_torus_arrangements`): a job is share ``res/mod``
+    of the two-axis arrangements of the second stage, covering
+    every corner count at once; it counts the states it builds (the first stage's, and the
+    regions the second cuts)."""
+
+    name = "torus"
+    genus = 1
+    visits = "arrangements"
+    statistics_key = "search"
+
+    def notes(self) -> list[str]:
+        """That the Python search stands in for the compiled one, when that was not built (the
+        same note the genus-0 generators give)."""
+        from polyloops.generate.torus.search import compiled_search_available
+
+        if not compiled_search_available():
+            return ["the compiled torus search was not built (a C compiler and the Python headers are "
+                    "needed at install time); using the Python search, which finds the same classes "
+                    "several times slower"]
+        return []
+
+    def plan(self, low: int, high: int, share: tuple[int, int] | None, workers: int) -> list[Job]:
+        """One search over every corner count, cut into 16 shares (more with more than 16
+        workers): a finished share is kept, so a stopped run loses at most the shares under way
+        and resumes with any number of workers up to 16; each worker process lists the two-axis
+        arrangements once for all its shares."""
+        if share is not None:
+            return [Job(self.name, high, low, *share)]
+        mod = 16 * -(-max(workers, 1) // 16)
+        return [Job(self.name, high, low, r, mod) for r in range(mod)]
+
+    def prepare(self, jobs: Sequence[Job], workers: int = 1, dask: str | None = None,
+                where: Path | None = None) -> list[Any]:
+        """The first stage, listed once for the run and spilled to ``where`` (a run's
+        ``parts/``), so that the workers read it instead of each listing it again (through
+        13 crossings that takes minutes and gigabytes at its peak); a rerun reads the file."""
+        if where is None:
+            return [None] * len(jobs)
+        files = {job.n // 3: str(spill_bases(job.n // 3, where)) for job in jobs}
+        return [files[job.n // 3] for job in jobs]
+
+    def candidates(self, job: Job, context: Any, tally: Tally) -> Iterator[HalfEdgeMap]:
+        """The share's candidate maps; the search's statistics go to ``tally``."""
+        from polyloops.generate.torus.search import TorusSearchStats, candidate_torus_arrangements
+
+        stats: list[TorusSearchStats] = []
+        bases = read_bases(context, job.n // 3) if context is not None else None
+        for a in candidate_torus_arrangements(job.n, job.res, job.mod, on_stats=stats.append, bases=bases):
+            if a.crossings >= job.low:
+                yield a.quad_mesh()
+        total = vars(stats[0]) if stats else {}
+        tally.statistics.update(total)
+        tally.visited += total.get("states", 0) + total.get("region_choices", 0)
+
+
+def bases_tag(max_crossings: int) -> Any:
+    """What a spilled first stage must be to serve a torus run to ``max_crossings``."""
+    from polyloops.generate.spill import SpillTag
+
+    return SpillTag("torus-bases", {"schema": SPILL_VERSION}, max_crossings)
+
+
+def spill_bases(max_crossings: int, where: Path) -> Path:
+    """The first stage of the torus search (:func:`polyloops.generate.torus.search.first_stage`) in
+    ``where/torus-bases-K.bin`` (:mod:`polyloops.generate.spill`; meta: the statistics; one
+    record an arrangement's ``twin`` array).  Kept when the file there is proved to be this
+    run's, computed and written atomically otherwise.
+
+    Raises
+    ------
+    SpillRefused
+        When the name is a link or not a regular file.
+    """
+    from polyloops.generate.spill import SpillMismatch, write_spill
+    from polyloops.generate.torus import search as torus
+
+    path = where / f"torus-bases-{max_crossings}.bin"
+    try:
+        read_bases(str(path), max_crossings)
+        return path
+    except SpillMismatch:
+        pass  # another run's, damaged, or absent: listed again
+    bases, stats = torus.first_stage(max_crossings)
+    write_spill(path, bases_tag(max_crossings), bases, {"search": vars(stats)})
+    torus._bases.cache_clear()  # the workers read the file
+    read_bases.cache_clear()
+    return path
+
+
+@lru_cache(maxsize=2)
+def read_bases(path: str, max_crossings: int) -> tuple[tuple[bytes, ...], Any]:
+    """The arrangements and statistics :func:`spill_bases` wrote for ``max_crossings`` (kept
+    for the process's later shares).
+
+    Raises
+    ------
+    SpillMismatch
+        When the file is not the first stage of a run to ``max_crossings`` (or was changed).
+    """
+    from polyloops.generate.spill import SpillMismatch, read_spill
+    from polyloops.generate.torus.search import TorusSearchStats
+
+    spill = read_spill(Path(path), bases_tag(max_crossings))
+    try:
+        stats = TorusSearchStats(**spill.meta["search"])
+    except (KeyError, TypeError) as exc:  # TypeError: other statistics
+        raise SpillMismatch(f"{path}: no statistics of this search ({exc})") from None
+    if any(len(raw) % 2 or len(raw) > 0xFFFF for raw in spill.records):
+        raise SpillMismatch(f"{path}: an arrangement of the wrong size")
+    return spill.records, stats
+
+
+register(TorusGenerator())
