@@ -22,8 +22,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _common import markdown_table, timed_cpu
 
 from polyloops.core.polycube import Polycube
-from polyloops.io.labelled_mesh import LabelledMesh
 from polyloops.segmentation import check_global, check_local, realise, segment
+from polyloops.surface.mesh import LabelledMesh
 from strategies import random_polycube
 
 

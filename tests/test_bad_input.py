@@ -188,7 +188,8 @@ def test_labelled_meshes_with_a_bom_and_from_stdin(tmp_path):
     import subprocess
     import sys
 
-    from polyloops.io.labelled_mesh import labelled_mesh_from_polycube, labels_text, triangle_obj_text
+    from polyloops.io.labelled_mesh import labels_text, triangle_obj_text
+    from polyloops.surface.construct import labelled_mesh_from_polycube
 
     mesh = labelled_mesh_from_polycube(load_example("l-shape"))
     obj, labels = tmp_path / "m.obj", tmp_path / "m.labels"

@@ -2,9 +2,10 @@
 or inside a function (read from the source, so a lazy import counts too), so there is no import
 cycle between subpackages; and no module imports one that imports it back.
 
-The layers, lowest first: ``core`` (the kernel), ``parallel`` (workers), ``io`` (files and
-formats), ``verify``, ``solvers``, ``generate`` (candidate maps), ``catalog`` (the pipeline,
-records, census), ``reach`` (moves, the conjecture), ``segmentation``, ``render``, ``cli``."""
+The layers, lowest first: ``core`` (the kernel), ``parallel`` (workers), ``surface`` (the
+labelled triangle mesh), ``io`` (files and formats), ``verify``, ``solvers``, ``generate``
+(candidate maps), ``catalog`` (the pipeline, records, census), ``reach`` (moves, the
+conjecture), ``segmentation`` (the checker), ``segment`` (constructors), ``render``, ``cli``."""
 
 import ast
 import subprocess
@@ -13,8 +14,8 @@ from pathlib import Path
 
 PACKAGE = Path(__file__).resolve().parent.parent / "src" / "polyloops"
 CORE = PACKAGE / "core"
-ABOVE = ("parallel", "io", "verify", "solvers", "generate", "catalog", "reach", "segmentation", "render",
-         "cli")
+ABOVE = ("parallel", "surface", "io", "verify", "solvers", "generate", "catalog", "reach", "segmentation",
+         "segment", "render", "cli")
 LAYERS = ("core", *ABOVE)
 
 
@@ -132,6 +133,29 @@ def test_every_subpackage_imports_only_from_below():
         if bad:
             upward[me] = bad
     assert upward == {}
+
+
+# Lazy imports that close a circle, each for a reason of its own: the model's convenience methods
+# (``Polycube.dualize``, ``LoopStructure.primalize``) call the duality module, as networkx's graph
+# methods call its algorithms; and the torus search and its region search (two modules of one
+# search, to be cut apart along the interface of its stages).
+LAZY_CIRCLES = {frozenset({"polyloops.core.duality", "polyloops.core.polycube"}),
+                frozenset({"polyloops.core.duality", "polyloops.core.structure"}),
+                frozenset({"polyloops.generate.torus.regions", "polyloops.generate.torus.search"})}
+
+
+def test_lazy_imports_close_no_other_circle():
+    """Counting the imports inside functions too, the only circles are those listed above."""
+    import networkx as nx
+
+    graph = nx.DiGraph()
+    for path in PACKAGE.rglob("*.py"):
+        me = module_name(path)
+        graph.add_edges_from((me, m) for m in resolved_imports(path, lazy=True) if m != me)
+    for u, v in list(graph.edges):
+        if v.startswith(u + "."):
+            graph.remove_edge(u, v)
+    assert {frozenset(c) for c in nx.simple_cycles(graph)} <= LAZY_CIRCLES
 
 
 def test_no_import_cycle_between_modules():

@@ -377,9 +377,9 @@ def test_segmentation_pictures_mark_what_is_wrong_in_red(tmp_path, capsys):
     from matplotlib.colors import to_rgb
 
     from polyloops.core.directions import Direction
-    from polyloops.io.labelled_mesh import labelled_mesh_from_polycube
     from polyloops.render.segmentation import WITNESS_COLOUR, render_segmentation
     from polyloops.segmentation import check_segmentation
+    from polyloops.surface.construct import labelled_mesh_from_polycube
 
     def red_pixels(labels, name):
         report = check_segmentation(labelled_mesh_from_polycube(q, labels))

@@ -21,15 +21,12 @@ from polyloops.core.polycube import Polycube
 from polyloops.core.voxels import VoxelError, polycube_from_voxels
 from polyloops.generate.corners import OCTANT_CELLS, chart_corners
 from polyloops.io.examples import EXAMPLES, LABELLED_EXAMPLES, labelled_mesh_example, load_example
-from polyloops.io.labelled_mesh import (
-    LabelledMesh,
-    labelled_mesh_from_polycube,
-    labels_text,
-    triangle_obj_text,
-)
+from polyloops.io.labelled_mesh import labels_text, triangle_obj_text
 from polyloops.io.meshes import write_triangle_mesh
 from polyloops.segmentation import check_segmentation, segment
 from polyloops.segmentation.levels import chart_angles, check_global, corner_rule, corner_zones
+from polyloops.surface.construct import labelled_mesh_from_polycube
+from polyloops.surface.mesh import LabelledMesh
 from polyloops.verify import check_polycube
 from strategies import polycubes
 

@@ -20,8 +20,9 @@ from polyloops.cli.load import (
 from polyloops.core.halfedge import MapError
 from polyloops.core.words import plural
 from polyloops.io.files import InputError
-from polyloops.io.labelled_mesh import LabelledMesh, LabelledMeshError
+from polyloops.io.labelled_mesh import LabelledMeshError
 from polyloops.io.labelled_mesh import read_labelled_mesh as read_mesh_files
+from polyloops.surface.mesh import LabelledMesh
 
 
 def add_command(command: Callable[..., argparse.ArgumentParser]) -> None:

@@ -48,7 +48,7 @@ from polyloops.core.directions import Axis, Direction
 from polyloops.core.disjoint_sets import DisjointSets
 from polyloops.core.errors import PolyloopsError
 from polyloops.core.structure import LabelError, LoopStructure
-from polyloops.core.zones import topological_order
+from polyloops.core.zones import LevelArcs, closes_cycle, level_arcs_of
 
 # -- additions -------------------------------------------------------------------------------
 
@@ -791,63 +791,7 @@ def _removal_groups(ls: LoopStructure, loop: int) -> tuple[DisjointSets, list[tu
     return groups, rungs, set(lp.faces)
 
 
-class _LevelArcs:
-    """Each axis's level graph as successor lists, built once for many removal tests, and
-    which arcs have another path between their ends (contracting those closes a cycle)."""
-
-    def __init__(self, ls: LoopStructure):
-        self.ls = ls
-        self._succ: dict[Axis, dict[int, list[tuple[int, int]]]] = {}
-        self._bypassed: dict[Axis, set[int] | None] = {}
-
-    def bypassed(self, axis: Axis) -> set[int] | None:
-        """The loops whose arc ``u -> v`` is not the only path from ``u`` to ``v`` (a parallel
-        arc, or a path through another successor of ``u``); ``None`` when the graph has a
-        cycle already.  Reachability as bit sets, in reverse topological order: one pass."""
-        if axis not in self._bypassed:
-            succ = self.successors(axis)
-            count = self.ls.zones(axis).count
-            order = topological_order([[w for w, _ in succ.get(z, ())] for z in range(count)])
-            if order is None:
-                self._bypassed[axis] = None
-                return None
-            reach = [0] * self.ls.zones(axis).count  # zones reachable by a path of one arc or more
-            for z in reversed(order):
-                r = 0
-                for w, _ in succ.get(z, ()):
-                    r |= reach[w] | (1 << w)
-                reach[z] = r
-            out = set()
-            for arcs in succ.values():
-                heads = [w for w, _ in arcs]
-                for i, (v, loop) in enumerate(arcs):
-                    others = heads[:i] + heads[i + 1:]
-                    if v in others or any(reach[w] >> v & 1 for w in others):
-                        out.add(loop)
-            self._bypassed[axis] = out
-        return self._bypassed[axis]
-
-    def successors(self, axis: Axis) -> dict[int, list[tuple[int, int]]]:
-        """zone -> [(next zone, loop)] along the arcs of ``axis``."""
-        if axis not in self._succ:
-            succ: dict[int, list[tuple[int, int]]] = defaultdict(list)
-            for loop, (a, b) in self.ls.zones(axis).sides.items():
-                tail, head = (a, b) if self.ls.signs[loop] > 0 else (b, a)  # type: ignore[index]
-                succ[tail].append((head, loop))
-            self._succ[axis] = succ
-        return self._succ[axis]
-
-
-def _level_arcs_of(ls: LoopStructure) -> _LevelArcs:
-    """The level arcs of ``ls``, kept with it (as its cached zones are), so that callers
-    testing loop after loop share them."""
-    found = ls.__dict__.get("_level_arcs")
-    if found is None:
-        found = ls.__dict__["_level_arcs"] = _LevelArcs(ls)
-    return found
-
-
-def check_removal(ls: LoopStructure, loop: int, arcs: _LevelArcs | None = None) -> RemovalCheck:
+def check_removal(ls: LoopStructure, loop: int, arcs: LevelArcs | None = None) -> RemovalCheck:
     """Decide locally whether removing ``loop`` leaves a polycube loop structure.
 
     Touches only the loop's corners, the faces and edges around them, and the loop's level
@@ -911,32 +855,9 @@ def check_removal(ls: LoopStructure, loop: int, arcs: _LevelArcs | None = None) 
     # path from {u, v} back to {u, v} along the other arcs; in an acyclic graph, exactly
     # another path from u to v.
     axis = ls.axes[loop]
-    if closes_cycle(ls, loop, arcs or _level_arcs_of(ls)):
+    if closes_cycle(ls, loop, arcs or level_arcs_of(ls)):
         return RemovalCheck(loop, False, f"the {axis}-graph would get a cycle through the merged zone")
     return RemovalCheck(loop, True)
-
-
-def closes_cycle(ls: LoopStructure, loop: int, arcs: _LevelArcs) -> bool:
-    """Whether contracting ``loop``'s arc closes a cycle of its level graph: another path
-    joins the arc's ends (from the bit sets, when the graph is acyclic), or else a search from
-    the merged zone returns to it."""
-    axis = ls.axes[loop]
-    bypassed = arcs.bypassed(axis)
-    if bypassed is not None:
-        return loop in bypassed
-    left, right = ls.zones(axis).sides[loop]
-    merged = {left, right}
-    succ = arcs.successors(axis)
-    stack = [z for start in merged for z, other in succ.get(start, ()) if other != loop]
-    seen_zones: set[int] = set()
-    while stack:
-        z = stack.pop()
-        if z in merged:
-            return True
-        if z not in seen_zones:
-            seen_zones.add(z)
-            stack.extend(head for head, _ in succ.get(z, ()))
-    return False
 
 
 def removable(ls: LoopStructure, loop: int) -> bool:
@@ -969,7 +890,7 @@ def removals(ls: LoopStructure) -> list[int]:
     >>> removals(load_example("box-2x1x1").dualize())
     [2, 3]
     """
-    arcs = _level_arcs_of(ls)
+    arcs = level_arcs_of(ls)
     if use_arrays(ls.map.num_darts) and removal_arrays.applies(ls):
         return [i for i, ok in enumerate(removal_arrays.removable_loops(ls).tolist()) if ok]
     return [lp.id for lp in ls.loops if check_removal(ls, lp.id, arcs).valid]

@@ -31,6 +31,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from polyloops.core.arrays import components
+from polyloops.core.zones import closes_cycle, level_arcs_of
 
 if TYPE_CHECKING:
     from polyloops.core.structure import LoopStructure
@@ -51,8 +52,6 @@ def removable_loops(ls: LoopStructure) -> np.ndarray:
     ValueError
         When the structure has no sides or a face that is not a quad.
     """
-    from polyloops.core.moves import _level_arcs_of, closes_cycle
-
     if not applies(ls):
         raise ValueError("the array removal test needs an oriented structure of quads")
     m, a = ls.map, ls.map.arrays
@@ -114,7 +113,7 @@ def removable_loops(ls: LoopStructure) -> np.ndarray:
     ok[group_loop[np.flatnonzero(np.bincount(kept, minlength=count) < 3)]] = False
     _mark_repeats(ok, group_loop, kept, codes[dart[starts]])
     # The level graph stays acyclic (searched loop by loop where it has a cycle already).
-    arcs = _level_arcs_of(ls)
+    arcs = level_arcs_of(ls)
     for axis in set(ls.axes):
         bypassed = arcs.bypassed(axis)
         if bypassed is not None:

@@ -13,6 +13,7 @@ crosses.  With ``chi = V - E + F`` of that complex and ``b`` the number of
 
 from __future__ import annotations
 
+from collections import defaultdict
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
@@ -215,3 +216,84 @@ def level_graph(ls: LoopStructure, axis: Axis) -> nx.MultiDiGraph:
     g.add_nodes_from(range(ls.zones(axis).count))
     g.add_edges_from(level_arcs(ls, axis))
     return g
+
+
+# -- level arcs, shared by the removal tests (core.moves and its array twin core.removal_arrays) --
+
+class LevelArcs:
+    """Each axis's level graph as successor lists, built once for many removal tests, and
+    which arcs have another path between their ends (contracting those closes a cycle)."""
+
+    def __init__(self, ls: LoopStructure):
+        self.ls = ls
+        self._succ: dict[Axis, dict[int, list[tuple[int, int]]]] = {}
+        self._bypassed: dict[Axis, set[int] | None] = {}
+
+    def bypassed(self, axis: Axis) -> set[int] | None:
+        """The loops whose arc ``u -> v`` is not the only path from ``u`` to ``v`` (a parallel
+        arc, or a path through another successor of ``u``); ``None`` when the graph has a
+        cycle already.  Reachability as bit sets, in reverse topological order: one pass."""
+        if axis not in self._bypassed:
+            succ = self.successors(axis)
+            count = self.ls.zones(axis).count
+            order = topological_order([[w for w, _ in succ.get(z, ())] for z in range(count)])
+            if order is None:
+                self._bypassed[axis] = None
+                return None
+            reach = [0] * self.ls.zones(axis).count  # zones reachable by a path of one arc or more
+            for z in reversed(order):
+                r = 0
+                for w, _ in succ.get(z, ()):
+                    r |= reach[w] | (1 << w)
+                reach[z] = r
+            out = set()
+            for arcs in succ.values():
+                heads = [w for w, _ in arcs]
+                for i, (v, loop) in enumerate(arcs):
+                    others = heads[:i] + heads[i + 1:]
+                    if v in others or any(reach[w] >> v & 1 for w in others):
+                        out.add(loop)
+            self._bypassed[axis] = out
+        return self._bypassed[axis]
+
+    def successors(self, axis: Axis) -> dict[int, list[tuple[int, int]]]:
+        """zone -> [(next zone, loop)] along the arcs of ``axis``."""
+        if axis not in self._succ:
+            succ: dict[int, list[tuple[int, int]]] = defaultdict(list)
+            for loop, (a, b) in self.ls.zones(axis).sides.items():
+                tail, head = (a, b) if self.ls.signs[loop] > 0 else (b, a)  # type: ignore[index]
+                succ[tail].append((head, loop))
+            self._succ[axis] = succ
+        return self._succ[axis]
+
+
+def level_arcs_of(ls: LoopStructure) -> LevelArcs:
+    """The level arcs of ``ls``, kept with it (as its cached zones are), so that callers
+    testing loop after loop share them."""
+    found = ls.__dict__.get("_level_arcs")
+    if found is None:
+        found = ls.__dict__["_level_arcs"] = LevelArcs(ls)
+    return found
+
+
+def closes_cycle(ls: LoopStructure, loop: int, arcs: LevelArcs) -> bool:
+    """Whether contracting ``loop``'s arc closes a cycle of its level graph: another path
+    joins the arc's ends (from the bit sets, when the graph is acyclic), or else a search from
+    the merged zone returns to it."""
+    axis = ls.axes[loop]
+    bypassed = arcs.bypassed(axis)
+    if bypassed is not None:
+        return loop in bypassed
+    left, right = ls.zones(axis).sides[loop]
+    merged = {left, right}
+    succ = arcs.successors(axis)
+    stack = [z for start in merged for z, other in succ.get(start, ()) if other != loop]
+    seen_zones: set[int] = set()
+    while stack:
+        z = stack.pop()
+        if z in merged:
+            return True
+        if z not in seen_zones:
+            seen_zones.add(z)
+            stack.extend(head for head, _ in succ.get(z, ()))
+    return False

@@ -17,7 +17,8 @@ from polyloops.core.directions import Axis, Direction
 from polyloops.core.polycube import Polycube
 from polyloops.core.voxels import polycube_from_voxels
 from polyloops.io.formats import Structure, loads
-from polyloops.io.labelled_mesh import LabelledMesh, labelled_mesh_from_polycube
+from polyloops.surface.construct import labelled_mesh_from_polycube
+from polyloops.surface.mesh import LabelledMesh
 
 
 @dataclass(frozen=True)

@@ -1,4 +1,4 @@
-"""Labelled triangle meshes: a closed triangle mesh with one direction label per triangle.
+"""Files of labelled triangle meshes (the model is :class:`polyloops.surface.mesh.LabelledMesh`).
 
 This is what polycube labelling methods produce: a triangle mesh (OBJ, STL or MEDIT
 ``.mesh``; meshio reads the last two and keeps the order of the faces) and a labels file of one
@@ -21,41 +21,26 @@ import math
 import os
 import warnings
 from collections.abc import Sequence
-from dataclasses import dataclass
 
 from polyloops.core.directions import Direction
-from polyloops.core.polycube import Polycube
 from polyloops.io.exchange import obj_polygons, obj_triangles
 from polyloops.io.formats import FormatError
+from polyloops.surface.construct import labelled_mesh_from_polycube  # noqa: F401  (the doctest's)
+from polyloops.surface.mesh import LabelledMesh, MeshError, Point, Triangle
 
-__all__ = ["LabelledMesh", "LabelledMeshError", "labelled_mesh_from_polycube", "labels_text",
-           "parse_labels", "read_labelled_mesh", "read_triangle_mesh", "triangle_obj_text"]
+__all__ = ["LabelledMeshError", "labels_text", "parse_labels", "read_labelled_mesh", "read_triangle_mesh",
+           "triangle_obj_text"]
 
-Point = tuple[float, float, float]
-Triangle = tuple[int, int, int]
 MESH_SUFFIXES = (".obj", ".stl", ".mesh")
 
 
-class LabelledMeshError(FormatError):
+class LabelledMeshError(FormatError, MeshError):
     """A mesh or labels file that cannot be read; the message names the line or face, and
     ``where`` the file (when known)."""
 
     def __init__(self, message: str, where: str | None = None):
         super().__init__(message)
         self.where = where
-
-
-@dataclass(frozen=True)
-class LabelledMesh:
-    """Triangles over ``points`` (counter-clockwise seen from outside) and a label each."""
-
-    points: tuple[Point, ...]
-    triangles: tuple[Triangle, ...]
-    labels: tuple[Direction, ...]
-
-    def __post_init__(self) -> None:
-        if len(self.labels) != len(self.triangles):
-            raise LabelledMeshError(f"{len(self.labels)} labels for {len(self.triangles)} triangles")
 
 
 def parse_labels(text: str, count: int | None = None) -> tuple[Direction, ...]:
@@ -177,21 +162,6 @@ def triangle_obj_text(mesh: LabelledMesh) -> str:
     lines = [f"v {x:g} {y:g} {z:g}" for x, y, z in mesh.points]
     lines += [f"f {a + 1} {b + 1} {c + 1}" for a, b, c in mesh.triangles]
     return "\n".join(lines) + "\n"
-
-
-def labelled_mesh_from_polycube(q: Polycube, labels: Sequence[Direction] | None = None) -> LabelledMesh:
-    """Each quad cut into two triangles, labelled by its normal (or by ``labels``, one per
-    quad, to make deliberately wrong labellings)."""
-    triangles = []
-    normals = []
-    for f, (a, b, c, d) in enumerate(q.faces):
-        triangles += [(a, b, c), (a, c, d)]
-        label = labels[f] if labels is not None else q.face_normal(f)
-        if label is None:
-            raise ValueError(f"face {f} is not axis-aligned, so it has no label")
-        normals += [label, label]
-    points = tuple((float(x), float(y), float(z)) for x, y, z in q.positions)
-    return LabelledMesh(points, tuple(triangles), tuple(normals))
 
 
 def read_labelled_mesh(mesh: str | os.PathLike[str], labels: str | os.PathLike[str]) -> LabelledMesh:

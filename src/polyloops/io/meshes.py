@@ -11,7 +11,8 @@ from polyloops.core.polycube import Polycube
 from polyloops.io.exchange import quad_mesh_document
 from polyloops.io.files import write_atomic, writing
 from polyloops.io.formats import Document, FormatError
-from polyloops.io.labelled_mesh import LabelledMesh, triangle_obj_text
+from polyloops.io.labelled_mesh import triangle_obj_text
+from polyloops.surface.mesh import LabelledMesh
 
 
 def write_triangle_mesh(path: str | os.PathLike[str], mesh: LabelledMesh) -> None:

@@ -14,7 +14,7 @@ condition fails, and ``None`` (undecided) when the conditions pass but the const
 does not succeed.
 
 >>> from polyloops.io.examples import load_example
->>> from polyloops.io.labelled_mesh import labelled_mesh_from_polycube
+>>> from polyloops.surface.construct import labelled_mesh_from_polycube
 >>> report = check_segmentation(labelled_mesh_from_polycube(load_example("l-shape")))
 >>> report.valid, len(report.segmentation.charts), report.polycube.map.num_corners > 0
 (True, 8, True)
@@ -25,11 +25,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from polyloops.core.polycube import Polycube
-from polyloops.io.labelled_mesh import LabelledMesh
 from polyloops.segmentation.charts import Boundary, Chart, Corner, Segmentation, segment
 from polyloops.segmentation.levels import GlobalResult, Witness, check_global
 from polyloops.segmentation.local import LocalResult, LocalViolation, check_local
 from polyloops.segmentation.realise import Realisation, realise
+from polyloops.surface.mesh import LabelledMesh
 
 __all__ = ["Boundary", "Chart", "Corner", "GlobalResult", "LocalResult", "LocalViolation", "Realisation",
            "Segmentation", "SegmentationReport", "Witness", "check_global", "check_local",

@@ -9,7 +9,7 @@ surface orientation fixes one of their two directions.  Around a corner, ``sides
 boundaries counter-clockwise seen from outside, each with the chart that follows it.
 
 >>> from polyloops.io.examples import load_example
->>> from polyloops.io.labelled_mesh import labelled_mesh_from_polycube
+>>> from polyloops.surface.construct import labelled_mesh_from_polycube
 >>> seg = segment(labelled_mesh_from_polycube(load_example("cube")))
 >>> len(seg.charts), len(seg.boundaries), len(seg.corners)
 (6, 12, 8)
@@ -23,7 +23,7 @@ from functools import cached_property
 from polyloops.core.directions import Axis, Direction
 from polyloops.core.disjoint_sets import DisjointSets
 from polyloops.core.halfedge import HalfEdgeMap
-from polyloops.io.labelled_mesh import LabelledMesh
+from polyloops.surface.mesh import LabelledMesh
 
 
 @dataclass(frozen=True)
