@@ -290,7 +290,7 @@ def test_loops_generator_needs_its_compiled_search(tmp_path, monkeypatch):
     import polyloops.generate.loops.arrangements as arrangements_module
 
     monkeypatch.setattr(arrangements_module, "compiled_generator_available", lambda: False)
-    with pytest.raises(CatalogRunError, match="--generator plantri"):
+    with pytest.raises(CatalogRunError, match="use the plantri generator"):
         build_catalog(tmp_path / "c", 12, generator="loops")
     with pytest.raises(CatalogRunError, match="unknown generator"):
         build_catalog(tmp_path / "c", 12, generator="nope")

@@ -241,3 +241,25 @@ def test_the_command_pins_blas_threads_and_the_library_does_not():
 
     assert run(show) == "None"  # a program that imports polyloops
     assert run("import sys; sys.argv = ['/usr/bin/polyloops', 'verify']; " + show) == "1"  # the command
+
+
+def test_library_messages_name_no_command_line_flag():
+    """Outside cli/, no string (docstrings aside) names a flag (``--max-corners``) or a command
+    (``'polyloops verify'``): the library speaks of its parameters, the command line adds its
+    own advice."""
+    import re
+
+    found = []
+    for path in sorted(PACKAGE.rglob("*.py")):
+        if "cli" in path.relative_to(PACKAGE).parts:
+            continue
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        docstrings = {id(node.body[0].value) for node in ast.walk(tree)
+                      if isinstance(node, (ast.Module, ast.ClassDef, ast.FunctionDef, ast.AsyncFunctionDef))
+                      and node.body and isinstance(node.body[0], ast.Expr)
+                      and isinstance(node.body[0].value, ast.Constant)}
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Constant) and isinstance(node.value, str) and id(node) not in docstrings \
+                    and re.search(r"(?<![\w-])--[a-z][a-z-]+|'polyloops [a-z]", node.value):
+                found.append(f"{path.relative_to(PACKAGE)}:{node.lineno}: {node.value[:60]}")
+    assert found == []

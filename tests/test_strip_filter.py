@@ -111,7 +111,7 @@ def test_method_names(monkeypatch):
         resolve_method("fast")
     monkeypatch.setattr(quads, "compiled_filter_available", lambda: False)
     assert resolve_method("auto") == "numpy"
-    with pytest.raises(quads.PlantriError, match="--method numpy"):
+    with pytest.raises(quads.PlantriError, match="use the numpy filter"):
         resolve_method("compiled")
 
 

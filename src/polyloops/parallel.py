@@ -70,7 +70,7 @@ def _run_dask(func: Callable[[Any], T], items: Iterable[Any], address: str, orde
     try:
         from distributed import Client, LocalCluster, as_completed
     except ImportError:
-        raise RuntimeError("--dask needs dask.distributed: pip install 'polyloops[dask]'") from None
+        raise RuntimeError("running on Dask needs dask.distributed: pip install 'polyloops[dask]'") from None
     cluster = LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
                            dashboard_address=None) if address == "local" else None
     try:

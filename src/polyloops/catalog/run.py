@@ -385,14 +385,14 @@ def build_catalog(out: Path | str, max_corners: int, min_corners: int = 8,
     """
     out = Path(out)
     if not 0 <= max_corners <= MAX_CATALOG_CORNERS or min_corners < 0:
-        raise CatalogRunError(f"--max-corners {max_corners}: a catalog run goes to at most "
+        raise CatalogRunError(f"max_corners {max_corners}: a catalog run goes to at most "
                               f"{MAX_CATALOG_CORNERS} corners")
     if max_corners < min_corners:
-        raise CatalogRunError("--max-corners must be at least --min-corners")
+        raise CatalogRunError("max_corners must be at least min_corners")
     if (res is None) != (mod is None) or (mod is not None and not 0 <= res < mod):  # type: ignore[operator]
-        raise CatalogRunError("--res R --mod M go together, with 0 <= R < M")
+        raise CatalogRunError("a share is res and mod together, with 0 <= res < mod")
     if workers < 1:
-        raise CatalogRunError("--workers must be at least 1")
+        raise CatalogRunError("workers must be at least 1")
     symmetry = Symmetry.parse(symmetry)
     name, _ = choose_generator(generator, method, plantri, genus)
     if name not in generators():
@@ -403,7 +403,7 @@ def build_catalog(out: Path | str, max_corners: int, min_corners: int = 8,
         raise CatalogRunError(str(err)) from None
     why = chosen.unavailable()
     if why is not None:
-        raise CatalogRunError(f"{why}: reinstall with them, or use --generator plantri")
+        raise CatalogRunError(f"{why}: reinstall with them, or use the plantri generator")
     if out.exists() and not out.is_dir():
         raise CatalogRunError(f"{out}: exists and is not a directory")
     if not out.absolute().parent.is_dir():  # like every other output: the directory above must exist

@@ -78,7 +78,7 @@ def cmd_catalog(args: argparse.Namespace) -> int:
     except WouldLoseResultsError as err:
         raise CliError(f"{err}; pass --overwrite to replace it, or build into another directory") from None
     except (CatalogRunError, PlantriError) as err:
-        raise CliError(str(err)) from None
+        raise CliError(with_flags(str(err))) from None
     finally:
         bar.close()
     summary = built.summary
@@ -131,6 +131,28 @@ def cmd_catalog_export(args: argparse.Namespace) -> int:
     else:
         written(args, text, {"rows": rows})
     return EXIT_OK
+
+
+# The library names its parameters and alternatives; the command line adds the flags for them.
+FLAGS = {
+    "max_corners": "--max-corners",
+    "min_corners": "--min-corners",
+    "the plantri generator": "the plantri generator (--generator plantri)",
+    "the numpy filter": "the numpy filter (--method numpy)",
+    "workers must": "--workers must",
+    "a share is res and mod together": "--res R and --mod M go together",
+}
+
+
+def with_flags(message: str) -> str:
+    """A library message with the command line's flags for what it names.
+
+    >>> with_flags("max_corners must be at least min_corners")
+    '--max-corners must be at least --min-corners'
+    """
+    for words, flag in FLAGS.items():
+        message = message.replace(words, flag)
+    return message
 
 
 QUERY_HELP = "rows of a catalog matching an SQL WHERE clause"

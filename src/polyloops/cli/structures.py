@@ -66,7 +66,10 @@ def cmd_verify(args: argparse.Namespace) -> int:
         report = verify_document(doc)
     except LabelError as err:
         raise CliError(f"{args.file}: {err}") from None
-    emit(args, report.to_json(), format_report(args.file, report))
+    text = format_report(args.file, report)
+    if report.violated("file convention", "outward"):  # the command line's repair
+        text += f"\nrepair it with 'polyloops convert {args.file} OUT --fix-orientation'"
+    emit(args, report.to_json(), text)
     return EXIT_OK if report.valid else EXIT_INVALID
 
 
@@ -159,7 +162,8 @@ def cmd_identify(args: argparse.Namespace) -> int:
     if found.name is not None:
         text = f"{args.file}: {found.name}"
     elif found.not_polycube is not None:
-        text = f"{args.file}: not in the catalog: it is no polycube ({found.not_polycube})"
+        text = (f"{args.file}: not in the catalog: it is no polycube ({found.not_polycube}; "
+                f"'polyloops verify {args.file}' lists every violation)")
     elif found.genus != found.catalog_genus:
         text = (f"{args.file}: not in the catalog (genus {found.genus}; "
                 f"the catalog has genus {found.catalog_genus})")

@@ -173,4 +173,4 @@ def labelled_mesh_example(name: str) -> LabelledMesh:
         if isinstance(q, Polycube):
             return labelled_mesh_from_polycube(q)
     raise KeyError(f"no labelled mesh of that name (bundled: {', '.join(LABELLED_EXAMPLES)}, or a valid "
-                   "polycube example from 'polyloops examples')")
+                   "bundled polycube example)")

@@ -115,7 +115,7 @@ def parse_apg(text: str) -> Document:
     if positions is not None:
         return Document("polycube", faces, positions=positions)
     return Document("loop-structure", faces, labels=labels,
-                    notes=(f"{why}; read as a loop structure (its polycube: 'polyloops primalize')",))
+                    notes=(f"{why}; read as a loop structure (primalize gives its polycube)",))
 
 
 def _positions_from_lengths(n: int, labels: dict[tuple[int, int], Direction | Axis],

@@ -426,7 +426,7 @@ def _explore(start: LoopStructure, max_corners: int, max_depth: int | None, kind
     start_sig = canonical_form(start, mode).signature
     result = ReachResult(start_sig, mode, max_corners, kinds)
     if start.map.num_corners > max_corners:
-        raise ValueError(f"the start has {start.map.num_corners} corners, more than --max-corners "
+        raise ValueError(f"the start has {start.map.num_corners} corners, more than max_corners "
                          f"{max_corners}")
     store = None
     if directory is not None:

@@ -161,8 +161,8 @@ def _check_outward(faces: Sequence[Sequence[int]], positions: Sequence[Sequence[
     if volume < 0:
         found.append(rb.violation(
             "outward", f"the polycube is inside out: its faces are clockwise seen from outside "
-            f"(signed volume {volume:g}); reverse every face, for example with "
-            "'polyloops convert FILE OUT --fix-orientation'", signed_volume=volume))
+            f"(signed volume {volume:g}); reverse every face (Polycube.outward() does)",
+            signed_volume=volume))
     rb.condition("outward", OUTWARD, found)
     return rb.build()
 

@@ -114,7 +114,7 @@ class Report:
         if not self.violations:
             return ""
         v, n = self.violations[0], len(self.violations)
-        more = f" (and {n - 1} more; see 'polyloops verify')" if n > 1 else ""
+        more = f" (and {n - 1} more)" if n > 1 else ""
         return f"{v.definition} condition {v.condition}: {v.message}{more}"
 
     def violated(self, definition: Source | str, condition: Condition | str) -> list[Violation]:

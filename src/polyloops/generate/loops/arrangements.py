@@ -60,7 +60,7 @@ def _module():
     except ImportError:
         raise ArrangementError("the compiled arrangement search was not built (a C compiler and the "
                                "Python headers are needed at install time): reinstall with them, "
-                               "or use --generator plantri") from None
+                               "or use the plantri generator") from None
     return _arrangements
 
 

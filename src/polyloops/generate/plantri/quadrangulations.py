@@ -190,8 +190,8 @@ def resolve_method(method: str) -> str:
         return "compiled" if compiled_filter_available() else "numpy"
     if method == "compiled" and not compiled_filter_available():
         raise PlantriError("the compiled strip filter was not built (a C compiler and the Python "
-                           "headers are needed at install time): reinstall with them, or use "
-                           "--method numpy")
+                           "headers are needed at install time): reinstall with them, or use the "
+                           "numpy filter")
     return method
 
 
