@@ -14,11 +14,12 @@ table.
 from __future__ import annotations
 
 import argparse
+import os
 import time
 
-import polyloops.generate.torus.regions as regions
 import polyloops.generate.torus.search as torus
 from polyloops.catalog.classes import map_classes
+from polyloops.core import compiled
 
 
 def row(n: int) -> list[object]:
@@ -53,8 +54,8 @@ def main() -> None:
     parser.add_argument("--python", action="store_true",
                         help="the Python searches instead of the compiled ones")
     args = parser.parse_args()
-    torus.COMPILED_SEARCH = not args.python
-    regions.COMPILED = not args.python
+    if args.python:  # the switchboard's twins, for the rest of the run
+        os.environ[compiled.ENV] = "torus,regions"
     torus.SECOND_STAGE = args.stage
     work = "regions cut" if args.stage == "regions" else "second-stage states"
     header = ["corners N", "B (<= N/3 crossings)", "first stage s", work, "second stage s",

@@ -287,9 +287,8 @@ def test_catalog_resumes_loops_shares(tmp_path):
 
 
 def test_loops_generator_needs_its_compiled_search(tmp_path, monkeypatch):
-    import polyloops.generate.loops.arrangements as arrangements_module
 
-    monkeypatch.setattr(arrangements_module, "compiled_generator_available", lambda: False)
+    monkeypatch.setenv("POLYLOOPS_PURE_PYTHON", "arrangements")
     with pytest.raises(CatalogRunError, match="use the plantri generator"):
         build_catalog(tmp_path / "c", 12, generator="loops")
     with pytest.raises(CatalogRunError, match="unknown generator"):

@@ -235,9 +235,9 @@ def test_one_default_mode_everywhere(capsys, tmp_path):
 def python_form(ls, mode):
     """The canonical form by the tuple code in Python (the compiled code switched off)."""
     import polyloops.core.canonical as canonical
+    from polyloops.core import compiled
 
-    with pytest.MonkeyPatch.context() as mp:
-        mp.setattr(canonical, "COMPILED", False)
+    with compiled.pure_python("canonical"):
         form = canonical.canonical_form(ls, mode)
         return form, form.signature
 
@@ -250,19 +250,19 @@ def test_compiled_canonical_form_is_the_python_one(ls, mode):
     """The compiled canonical form and signature text equal the Python ones: code,
     automorphism count, chirality and signature, on valid, perturbed and unoriented
     structures in every mode."""
-    from polyloops.core import canonical
+    from polyloops.core import canonical, compiled
 
-    if not canonical.COMPILED:
-        pytest.skip("the compiled canonical form was not built in this install")
+    if not compiled.in_use("canonical"):
+        pytest.skip("the compiled canonical form does not run here")
     form = canonical.canonical_form(ls, mode)
     assert (form, form.signature) == python_form(ls, mode)
 
 
 def test_compiled_canonical_form_on_every_example():
-    from polyloops.core import canonical
+    from polyloops.core import canonical, compiled
 
-    if not canonical.COMPILED:
-        pytest.skip("the compiled canonical form was not built in this install")
+    if not compiled.in_use("canonical"):
+        pytest.skip("the compiled canonical form does not run here")
     for name in EXAMPLES:
         x = load_example(name)
         ls = x if isinstance(x, LoopStructure) else x.dualize()

@@ -5,7 +5,7 @@ from functools import cache
 
 import networkx as nx
 import pytest
-from hypothesis import given, settings
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from polyloops.cli import main
@@ -434,13 +434,16 @@ def test_counts_without_listing_equal_the_listing(ls, axis, limit):
     """The count of additions (compiled where zones have genus 0, listed and tested where they
     have a handle) equals the number the listing yields, with and without a limit, with the
     compiled count and with the Python search."""
-    from polyloops.core import moves
+    from itertools import islice
 
-    listed = sum(1 for _ in moves.valid_additions(ls, axis))
+    from polyloops.core import compiled, moves
+
+    # the listing is the slow twin: structures with more than a thousand additions are left out
+    listed = sum(1 for _ in islice(moves.valid_additions(ls, axis), 1001))
+    assume(listed <= 1000)
     want = (listed, True) if limit is None or listed <= limit else (limit, False)
     assert moves.count_valid_additions(ls, axis, limit) == want
-    with pytest.MonkeyPatch.context() as mp:
-        mp.setattr(moves, "COMPILED_COUNT", False)
+    with compiled.pure_python("cycles"):
         assert moves.count_valid_additions(ls, axis, limit) == want
 
 

@@ -15,6 +15,7 @@ from polyloops.io.examples import EXAMPLES, load_example
 from polyloops.render.colours import AXIS_COLOUR, LIGHT_COLOUR
 from polyloops.render.polycube import as_polycube, choose_views, face_normal
 from strategies import polycubes
+from switch import needs
 
 
 def ink(path):
@@ -412,8 +413,7 @@ def test_gallery_workers_write_the_same_site(tmp_path, capsys):
     assert (site / "view" / "P8.1.html").stat().st_mtime_ns == kept
 
 
-@pytest.mark.skipif(not __import__("polyloops.render.raster", fromlist=["COMPILED"]).COMPILED,
-                    reason="the compiled depth buffer is not built")
+@needs("raster")
 @settings(max_examples=15, deadline=None)
 @given(polycubes(kinds=("blob", "frame1", "frame2"), max_size=7), st.integers(5, 60),
        st.floats(0, 360), st.floats(-80, 80))
@@ -421,6 +421,7 @@ def test_compiled_depth_buffer_equals_the_python_loop(q, pixels, azimuth, elevat
     """The compiled rasteriser and the triangle-at-a-time loop give the same buffers, bit for
     bit (faces, depths and the points seen), from any view, also on the self-touching
     example where ties decide."""
+    from polyloops.core import compiled
     from polyloops.render import raster
     from polyloops.render.projection import View
 
@@ -430,11 +431,8 @@ def test_compiled_depth_buffer_equals_the_python_loop(q, pixels, azimuth, elevat
             continue
         view = View(azimuth, elevation)
         fast = raster.rasterize(shape, view, pixels)
-        raster.COMPILED = False
-        try:
+        with compiled.pure_python("raster"):
             slow = raster.rasterize(shape, view, pixels)
-        finally:
-            raster.COMPILED = True
         for name in ("face", "depth", "point"):
             assert np.array_equal(getattr(fast, name), getattr(slow, name)), name
 

@@ -109,14 +109,14 @@ def test_method_names(monkeypatch):
     assert resolve_method("numpy") == "numpy"
     with pytest.raises(ValueError, match="unknown filter method"):
         resolve_method("fast")
-    monkeypatch.setattr(quads, "compiled_filter_available", lambda: False)
+    monkeypatch.setenv("POLYLOOPS_PURE_PYTHON", "strips")
     assert resolve_method("auto") == "numpy"
     with pytest.raises(quads.PlantriError, match="use the numpy filter"):
         resolve_method("compiled")
 
 
 def test_cli_says_when_the_compiled_filter_is_missing(monkeypatch, tmp_path, capsys):
-    monkeypatch.setattr(quads, "compiled_filter_available", lambda: False)
+    monkeypatch.setenv("POLYLOOPS_PURE_PYTHON", "strips")
     code = main(["catalog", "--max-corners", "12", "--method", "compiled", "-o", str(tmp_path / "c")])
     err = capsys.readouterr().err
     assert code == 2
@@ -126,9 +126,8 @@ def test_cli_says_when_the_compiled_filter_is_missing(monkeypatch, tmp_path, cap
 
 def test_the_fallback_filter_is_announced(monkeypatch, capsys, tmp_path):
     """Without the compiled filter, plantri's generator says once that the numpy twin runs."""
-    import polyloops.generate.plantri.quadrangulations as quadrangulations
 
-    monkeypatch.setattr(quadrangulations, "compiled_filter_available", lambda: False)
+    monkeypatch.setenv("POLYLOOPS_PURE_PYTHON", "strips")
     assert main(["catalog", "--max-corners", "12", "--generator", "plantri", "-o", str(tmp_path / "c")]) == 0
     err = capsys.readouterr().err
     assert err.count("numpy filter") == 1 and "note:" in err

@@ -4,13 +4,13 @@ import random
 
 import pytest
 
+from polyloops.core import compiled as compiled_parts
 from polyloops.core.canonical import from_signature
 from polyloops.core.directions import Axis
 from polyloops.core.labellings import polycube_structures, proper_colourings
 from polyloops.generate.torus.search import (
     TorusArrangement,
     canonical,
-    compiled_search_available,
     layered_need,
     torus_arrangements,
     two_stage_decompositions,
@@ -18,6 +18,7 @@ from polyloops.generate.torus.search import (
 from polyloops.io.examples import load_example
 from polyloops.reach.search import explore, stored_signatures
 from reference.torus_brute import _least_code, torus_maps_by_brute_force
+from switch import needs, running
 
 
 def by_size(arrangements, n):
@@ -31,12 +32,8 @@ def test_the_search_lists_what_brute_force_lists(n, compiled, monkeypatch):
     canonical construction path over marked maps, in Python and compiled, against a brute
     force over all pairings of darts (the same arrangements, compared by the twin's own
     canonical code)."""
-    import polyloops.generate.torus.search as torus
-
-    if compiled and not compiled_search_available():
-        pytest.skip("the compiled torus search was not built")
-    monkeypatch.setattr(torus, "COMPILED_SEARCH", compiled)
-    found = list(torus_arrangements(n))
+    with running("torus", compiled):
+        found = list(torus_arrangements(n))
     codes = by_size(found, n)
     assert len(codes) == sum(a.crossings == n for a in found)  # none twice
     assert codes == torus_maps_by_brute_force(n)
@@ -277,23 +274,23 @@ def _second_stage_states(n: int, compiled: bool, monkeypatch) -> tuple[dict, set
     the targets among them."""
     import polyloops.generate.torus.search as torus
 
-    monkeypatch.setattr(torus, "COMPILED_SEARCH", compiled)
     states, targets = {}, set()
-    for base in torus.two_axis_bases(n // 3):
-        stack = [TorusArrangement(base.twin, (), (0,) * len(base.twin))]
-        while stack:
-            kids = torus.torus_children(stack.pop(), n, None, True)
-            for kid, facts in kids:
-                code = canonical(TorusArrangement(kid.twin, (), kid.layer))[0]
-                assert code not in states  # each state once
-                states[code] = kid
-                if facts.target:
-                    targets.add(code)
-            stack.extend(kid for kid, _ in kids)
+    with running("torus", compiled):
+        for base in torus.two_axis_bases(n // 3):
+            stack = [TorusArrangement(base.twin, (), (0,) * len(base.twin))]
+            while stack:
+                kids = torus.torus_children(stack.pop(), n, None, True)
+                for kid, facts in kids:
+                    code = canonical(TorusArrangement(kid.twin, (), kid.layer))[0]
+                    assert code not in states  # each state once
+                    states[code] = kid
+                    if facts.target:
+                        targets.add(code)
+                stack.extend(kid for kid, _ in kids)
     return states, targets
 
 
-@pytest.mark.skipif(not compiled_search_available(), reason="the compiled second stage was not built")
+@needs("torus")
 @pytest.mark.parametrize("n", [18, *(pytest.param(n, marks=pytest.mark.slow) for n in (20, 24))])
 def test_the_compiled_second_stage_keeps_the_python_states(n, monkeypatch):
     """The compiled second stage keeps exactly the states of the Python search (by canonical
@@ -304,7 +301,7 @@ def test_the_compiled_second_stage_keeps_the_python_states(n, monkeypatch):
 
 
 @pytest.mark.slow  # 15 s: the Python search twice
-@pytest.mark.skipif(not compiled_search_available(), reason="the compiled second stage was not built")
+@needs("torus")
 @pytest.mark.parametrize("n", [18, 20])
 def test_the_compiled_search_lists_the_python_candidate_maps(n, monkeypatch):
     """Both stages and the decomposition test, compiled and in Python: the same candidate
@@ -312,10 +309,10 @@ def test_the_compiled_search_lists_the_python_candidate_maps(n, monkeypatch):
     from polyloops.generate.torus import search as torus
 
     monkeypatch.setattr(torus, "SECOND_STAGE", "loops")
-    monkeypatch.setattr(torus, "COMPILED_SEARCH", True)
-    with_c = [canonical(a)[0] for a in torus.candidate_torus_arrangements(n, polycubes=False)]
-    monkeypatch.setattr(torus, "COMPILED_SEARCH", False)
-    in_python = [canonical(a)[0] for a in torus.candidate_torus_arrangements(n, polycubes=False)]
+    with running("torus", True):
+        with_c = [canonical(a)[0] for a in torus.candidate_torus_arrangements(n, polycubes=False)]
+    with running("torus", False):
+        in_python = [canonical(a)[0] for a in torus.candidate_torus_arrangements(n, polycubes=False)]
     assert len(with_c) == len(set(with_c)) and set(with_c) == set(in_python) and with_c
 
 
@@ -323,13 +320,13 @@ def test_the_second_stage_never_crosses_its_start_edge_again(monkeypatch):
     """No state of the second stage has a face of two sides with a third-axis side (the cut
     that skips crossing the start edge again loses nothing: such a face never becomes a
     corner), in Python and compiled."""
-    for compiled in (False, True):
+    for compiled in (False, *((True,) if compiled_parts.in_use("torus") else ())):
         states, _ = _second_stage_states(14, compiled, monkeypatch)
         for kid in states.values():
             assert not any(len(f) == 2 and any(kid.layer[d] for d in f) for f in kid.faces)
 
 
-@pytest.mark.skipif(not compiled_search_available(), reason="the compiled torus search was not built")
+@needs("torus")
 @pytest.mark.parametrize(("n", "colours"), [(5, None), (6, 2), pytest.param(7, 2, marks=pytest.mark.slow)])
 def test_the_compiled_first_stage_keeps_the_python_states(n, colours, monkeypatch):
     """The compiled marked search keeps exactly the states of the Python one (marked states
@@ -337,13 +334,13 @@ def test_the_compiled_first_stage_keeps_the_python_states(n, colours, monkeypatc
     import polyloops.generate.torus.search as torus
 
     def states(compiled: bool) -> list:
-        monkeypatch.setattr(torus, "COMPILED_SEARCH", compiled)
         out, stack = [], [1, 0]
-        while stack:
-            node = stack.pop()
-            kids = torus.torus_children(node, n, colours)
-            out += [canonical(kid)[0] for kid, _ in kids]
-            stack.extend(kid for kid, _ in kids)
+        with running("torus", compiled):
+            while stack:
+                node = stack.pop()
+                kids = torus.torus_children(node, n, colours)
+                out += [canonical(kid)[0] for kid, _ in kids]
+                stack.extend(kid for kid, _ in kids)
         return out
 
     slow, fast = states(False), states(True)

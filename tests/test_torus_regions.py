@@ -14,19 +14,19 @@ from polyloops.core.disjoint_sets import ParitySets
 from polyloops.core.labellings import admits_polycube, polycube_structures, proper_colourings, sign_components
 from polyloops.generate.torus.search import TorusArrangement, TorusSearchStats
 from polyloops.io.examples import load_example
+from switch import needs, running
 from test_torus import genus_one_polycubes
 
-needs_compiled = pytest.mark.skipif(not regions.compiled_available(),
-                                    reason="the compiled region search was not built")
+needs_compiled = needs("regions")
 
 
 def _systems(n: int, cut: bool, compiled: bool, monkeypatch) -> tuple[list, TorusSearchStats]:
-    monkeypatch.setattr(regions, "COMPILED", compiled)
     stats = TorusSearchStats()
     out = []
-    for rank, base in enumerate(torus.two_axis_bases(n // 3)):
-        for twin, layer in regions.third_axis_systems(base, n, stats, cut_one_way=cut):
-            out.append((rank, twin, layer))
+    with running("regions", compiled):
+        for rank, base in enumerate(torus.two_axis_bases(n // 3)):
+            for twin, layer in regions.third_axis_systems(base, n, stats, cut_one_way=cut):
+                out.append((rank, twin, layer))
     return sorted(out), stats
 
 

@@ -27,9 +27,31 @@ from polyloops.cli.load import EXIT_OK, EXIT_USAGE, CliError
 EXIT_INTERNAL = 3
 
 
+def version_text() -> str:
+    """``polyloops 0.1.0`` and a line per compiled part: built or not, in use or not."""
+    from polyloops.core import compiled
+
+    lines = [f"polyloops {__version__}", "compiled parts (POLYLOOPS_PURE_PYTHON=all or NAME,... runs their "
+             "Python twins):"]
+    for s in compiled.status():
+        state = "in use" if s.in_use else "built, switched to its twin" if s.built else "not built"
+        lines.append(f"  {s.part.name:<13} {state:<28} {s.part.what}")
+    return "\n".join(lines)
+
+
+class VersionAction(argparse.Action):
+    """``--version``: the version and the compiled parts, worked out only when asked."""
+
+    def __call__(self, parser: argparse.ArgumentParser, namespace: argparse.Namespace, values: Any,
+                 option_string: str | None = None) -> None:
+        print(version_text())
+        parser.exit()
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = Parser(prog="polyloops", description="Polycubes via their dual loops: check, convert, explore.")
-    parser.add_argument("--version", action="version", version=f"polyloops {__version__}")
+    parser.add_argument("--version", action=VersionAction, nargs=0,
+                        help="the version, and which compiled parts were built and are in use")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=Parser)
     sub.required = True
 
@@ -60,8 +82,15 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
+    from polyloops.core import compiled
+
     parser = build_parser()
     given = list(sys.argv[1:] if argv is None else argv)
+    try:  # the environment's switch is checked before anything runs
+        compiled.forced()
+    except compiled.CompiledError as err:
+        print(f"polyloops: {err}", file=sys.stderr)
+        return EXIT_USAGE
     try:
         args = parser.parse_args(given)
     except UsageError as err:

@@ -31,6 +31,7 @@ from functools import cache, cached_property
 
 import numpy as np
 
+from polyloops.core import compiled
 from polyloops.core.arrays import gc_paused, use_arrays
 from polyloops.core.directions import Axis, Direction
 from polyloops.core.errors import PolyloopsError
@@ -38,13 +39,6 @@ from polyloops.core.halfedge import faces_from_next, permutation_orbits
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LoopStructure
 from polyloops.core.symmetry import SIGNED_PERMUTATIONS, SYMMETRY_MODES, SignedPermutation, Symmetry
-
-try:  # the compiled twin of the tuple code (optional: built when a C compiler is present)
-    from polyloops.core import _canonical as _compiled
-
-    COMPILED = True  # the tests switch it off to run the Python code as the twin
-except ImportError:  # pragma: no cover - depends on the install
-    COMPILED = False
 
 MODES = SYMMETRY_MODES
 ALPHABET = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789-_"
@@ -364,7 +358,7 @@ def canonical_form(obj: LoopStructure | Polycube, mode: Symmetry | str = Symmetr
     m = ls.map
     if use_arrays(m.num_darts):
         return _canonical_form_arrays(ls, mode)
-    if COMPILED:
+    if compiled.in_use("canonical"):  # the compiled twin of the tuple code (the switchboard's)
         return _canonical_form_compiled(ls, mode)
     nxt = list(m.next)
     twin = list(m.twin)
@@ -437,7 +431,7 @@ def _canonical_form_compiled(ls: LoopStructure, mode: Symmetry) -> CanonicalForm
     codes and counts."""
     m = ls.map
     tables, dets = _group_tables(mode, ls.oriented)
-    code, hits, dets_hit = _compiled.canonical(
+    code, hits, dets_hit = compiled.require("canonical").canonical(
         array("i", m.next).tobytes(), array("i", m.twin).tobytes(), array("i", m.prev).tobytes(),
         array("i", ls.direction_code_list).tobytes(), tables, dets)
     achiral = dets_hit == 3 if mode == "full" else None
@@ -537,8 +531,9 @@ def _encode(code: tuple[int, ...], oriented: bool) -> str:
         w += 1
     if use_arrays(n):
         return _encode_arrays(np.fromiter(code, dtype=np.int64, count=len(code)), oriented, w)
-    if COMPILED:
-        return _compiled.encode(array("i", code).tobytes(), oriented)
+    part = compiled.load("canonical")
+    if part is not None:
+        return part.encode(array("i", code).tobytes(), oriented)
     parts = [SIGNATURE_VERSION, "o" if oriented else "l", ALPHABET[w], _digits(n, w)]
     seen = 1  # darts discovered so far: the root
     for i in range(n):

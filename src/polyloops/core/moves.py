@@ -42,7 +42,7 @@ from dataclasses import dataclass
 from functools import cached_property
 from itertools import chain, islice
 
-from polyloops.core import removal_arrays
+from polyloops.core import compiled, removal_arrays
 from polyloops.core.arrays import use_arrays
 from polyloops.core.directions import Axis, Direction
 from polyloops.core.disjoint_sets import DisjointSets
@@ -398,12 +398,6 @@ def valid_additions(ls: LoopStructure, axis: Axis, max_length: int | None = None
             yield move
 
 
-try:  # the compiled count of the addition graph's cycles (optional)
-    from polyloops.core import _cycles
-
-    COMPILED_COUNT = True  # the tests switch it off to count with the Python search
-except ImportError:  # pragma: no cover - depends on the install
-    COMPILED_COUNT = False
 
 
 def count_valid_additions(ls: LoopStructure, axis: Axis, limit: int | None = None,
@@ -438,7 +432,8 @@ def count_valid_additions(ls: LoopStructure, axis: Axis, limit: int | None = Non
     found = 0
     if expired():
         return 0, False
-    if COMPILED_COUNT:
+    counting = compiled.in_use("cycles")  # the compiled count of the addition graph's cycles
+    if counting:
         found, status = _count_compiled(graph, plain, limit, deadline)
         if status:
             return found, False
@@ -446,7 +441,7 @@ def count_valid_additions(ls: LoopStructure, axis: Axis, limit: int | None = Non
     # in zones with a handle that separate their zone.
     handle_cycles = (c for c in graph.cycles(None, expired, [c for c in range(m.num_corners) if handled[c]])
                      if separates_zone(ls, Addition(axis, c)))
-    listed = handle_cycles if COMPILED_COUNT else chain(graph.cycles(None, expired, plain), handle_cycles)
+    listed = handle_cycles if counting else chain(graph.cycles(None, expired, plain), handle_cycles)
     try:
         for _ in listed:
             if limit is not None and found >= limit:
@@ -557,9 +552,10 @@ def _count_compiled(graph: _AdditionGraph, starts: list[int], limit: int | None,
         out_indptr.append(len(out_darts))
     target = array("i", (m.target(d) for d in range(m.num_darts)))
     seconds = -1.0 if deadline is None else max(0.0, deadline - time.monotonic())
-    return _cycles.count(indptr.tobytes(), succ.tobytes(), target.tobytes(), out_indptr.tobytes(),
-                         out_darts.tobytes(), allowed, array("i", starts).tobytes(),
-                         -1 if limit is None else limit, seconds)
+    cycles = compiled.require("cycles")
+    return cycles.count(indptr.tobytes(), succ.tobytes(), target.tobytes(), out_indptr.tobytes(),
+                        out_darts.tobytes(), allowed, array("i", starts).tobytes(),
+                        -1 if limit is None else limit, seconds)
 
 
 def addition_index(axis: Axis, i: int) -> str:

@@ -31,15 +31,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from polyloops.core import compiled
 from polyloops.core.polycube import Polycube
 from polyloops.render.projection import View
-
-try:  # the compiled depth buffer (optional; the same buffers bit for bit)
-    from polyloops.render import _raster
-
-    COMPILED = True  # the tests switch it off to draw with the Python loop
-except ImportError:  # pragma: no cover - depends on the install
-    COMPILED = False
 
 
 @dataclass(frozen=True)
@@ -94,11 +88,12 @@ def rasterize(q: Polycube, view: View, pixels: int,
     # Each face as two triangles (corners 0 1 2 and 0 2 3), in drawing order.
     tris = quads[order][:, [0, 1, 2, 0, 2, 3]].reshape(-1, 3)
     faces = np.repeat(order, 2)
-    if COMPILED:
+    part = compiled.load("raster")  # the compiled depth buffer: the same buffers bit for bit
+    if part is not None:
         a, b, c = tris.T
         rows = np.column_stack([flat_u[a], flat_v[a], flat_u[b], flat_v[b], flat_u[c], flat_v[c],
                                 flat_d[tris], faces.astype(float), pos[tris].reshape(-1, 9)])
-        _raster.fill(np.ascontiguousarray(rows).tobytes(), u.tobytes(), v.tobytes(), cu - half, cv + half,
+        part.fill(np.ascontiguousarray(rows).tobytes(), u.tobytes(), v.tobytes(), cu - half, cv + half,
                      step, tie, face, depth, point)
     else:
         for f, tri in zip(faces.tolist(), tris.tolist(), strict=True):

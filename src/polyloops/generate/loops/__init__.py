@@ -24,13 +24,12 @@ class LoopsGenerator(Generator):
     preference = 2  # several times cheaper from 26 corners on
 
     def unavailable(self) -> str | None:
-        """Why the compiled search cannot run (it was not built), or ``None``."""
-        from polyloops.generate.loops.arrangements import compiled_generator_available
+        """Why the compiled search cannot run (not built, or switched off), or ``None``."""
+        from polyloops.core import compiled
 
-        if compiled_generator_available():
+        if compiled.in_use("arrangements"):
             return None
-        return ("the compiled arrangement search was not built (a C compiler and the Python headers "
-                "are needed at install time)")
+        return f"the compiled arrangement search {compiled.why_not('arrangements')}"
 
     def plan(self, low: int, high: int, share: tuple[int, int] | None, workers: int) -> list[Job]:
         """One search over every corner count, cut into :func:`loops_slices` shares."""

@@ -37,6 +37,7 @@ from collections.abc import Callable, Iterator
 from dataclasses import asdict, astuple, dataclass, field, fields
 from functools import cached_property
 
+from polyloops.core import compiled
 from polyloops.core.errors import PolyloopsError
 from polyloops.core.halfedge import HalfEdgeMap, permutation_orbits
 
@@ -46,22 +47,17 @@ class ArrangementError(PolyloopsError, ValueError):
 
 
 def compiled_generator_available() -> bool:
-    """Whether the install built the compiled arrangement search (it needs a C compiler)."""
-    try:
-        import polyloops.generate.loops._arrangements  # noqa: F401
-    except ImportError:
-        return False
-    return True
+    """Whether the compiled arrangement search runs: built (it needs a C compiler) and not
+    switched off (:mod:`polyloops.core.compiled`)."""
+    return compiled.in_use("arrangements")
 
 
 def _module():
-    try:
-        import polyloops.generate.loops._arrangements as _arrangements
-    except ImportError:
-        raise ArrangementError("the compiled arrangement search was not built (a C compiler and the "
-                               "Python headers are needed at install time): reinstall with them, "
-                               "or use the plantri generator") from None
-    return _arrangements
+    part = compiled.load("arrangements")
+    if part is None:
+        raise ArrangementError(f"the compiled arrangement search {compiled.why_not('arrangements')}; "
+                               "the plantri generator makes the same catalog without it")
+    return part
 
 
 def _pack(values: tuple[int, ...] | list[int]) -> bytes:

@@ -41,12 +41,12 @@ class PlantriGenerator(Generator):
         return PlantriGenerator(options.get("plantri"), options.get("method") or "auto")
 
     def notes(self) -> list[str]:
-        """That the numpy filter stands in for the compiled one, when that was not built."""
-        from polyloops.generate.plantri.quadrangulations import compiled_filter_available
+        """That the numpy filter stands in for the compiled one, when that does not run."""
+        from polyloops.core import compiled
 
-        if self.method == "auto" and not compiled_filter_available():
-            return ["the compiled strip filter was not built (a C compiler is needed at install time); "
-                    "using the numpy filter, which keeps the same maps"]
+        if self.method == "auto" and not compiled.in_use("strips"):
+            return [f"the compiled strip filter {compiled.why_not('strips')}; using the numpy filter, "
+                    "which keeps the same maps"]
         return []
 
     def job_name(self, job: Job) -> str:

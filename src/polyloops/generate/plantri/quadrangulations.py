@@ -25,6 +25,7 @@ from pathlib import Path
 
 import numpy as np
 
+from polyloops.core import compiled
 from polyloops.core.errors import PolyloopsError
 from polyloops.core.halfedge import HalfEdgeMap, faces_from_next
 
@@ -173,12 +174,9 @@ METHODS = ("auto", "compiled", "numpy")
 
 
 def compiled_filter_available() -> bool:
-    """Whether the install built the compiled strip filter (it needs a C compiler)."""
-    try:
-        from polyloops.generate.plantri import _strips  # noqa: F401
-    except ImportError:
-        return False
-    return True
+    """Whether the compiled strip filter runs: built (it needs a C compiler) and not switched to
+    its numpy twin (:mod:`polyloops.core.compiled`)."""
+    return compiled.in_use("strips")
 
 
 def resolve_method(method: str) -> str:
@@ -189,9 +187,8 @@ def resolve_method(method: str) -> str:
     if method == "auto":
         return "compiled" if compiled_filter_available() else "numpy"
     if method == "compiled" and not compiled_filter_available():
-        raise PlantriError("the compiled strip filter was not built (a C compiler and the Python "
-                           "headers are needed at install time): reinstall with them, or use the "
-                           "numpy filter")
+        raise PlantriError(f"the compiled strip filter {compiled.why_not('strips')}: use the numpy "
+                           "filter, which keeps the same maps")
     return method
 
 
@@ -222,8 +219,7 @@ def filtered_batches(n: int, plantri: str, res: int = 0, mod: int = 1,
         for rows in plantri_batches(n, plantri, res, mod):
             yield _filter_numpy(rows)
         return
-    from polyloops.generate.plantri._strips import filter_maps
-
+    filter_maps = compiled.require("strips").filter_maps
     size = record_size(n)
     for rows in plantri_batches(n, plantri, res, mod, batch=1 << 16):
         kept, simple = filter_maps(rows, n, MAX_DEGREE)

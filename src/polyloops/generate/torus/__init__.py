@@ -27,14 +27,13 @@ class TorusGenerator(Generator):
     statistics_key = "search"
 
     def notes(self) -> list[str]:
-        """That the Python search stands in for the compiled one, when that was not built (the
+        """That the Python search stands in for the compiled one, when that does not run (the
         same note the genus-0 generators give)."""
-        from polyloops.generate.torus.search import compiled_search_available
+        from polyloops.core import compiled
 
-        if not compiled_search_available():
-            return ["the compiled torus search was not built (a C compiler and the Python headers are "
-                    "needed at install time); using the Python search, which finds the same classes "
-                    "several times slower"]
+        if not compiled.in_use("torus"):
+            return [f"the compiled torus search {compiled.why_not('torus')}; using the Python search, "
+                    "which finds the same classes several times slower"]
         return []
 
     def plan(self, low: int, high: int, share: tuple[int, int] | None, workers: int) -> list[Job]:

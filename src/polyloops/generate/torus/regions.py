@@ -33,6 +33,7 @@ from collections.abc import Iterator
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
+from polyloops.core import compiled
 from polyloops.core.disjoint_sets import DisjointSets, ParitySets
 
 if TYPE_CHECKING:
@@ -129,16 +130,10 @@ class _Side:
     forward: int  # +1 when the dart runs along its loop's reference walk
 
 
-COMPILED = True  # False runs the Python search (the twin of ``_regions.c``)
-
-
 def compiled_available() -> bool:
-    """Whether the install built the compiled region search."""
-    try:
-        from polyloops.generate.torus import _regions  # noqa: F401
-    except ImportError:
-        return False
-    return True
+    """Whether the compiled region search runs: built and not switched to its Python twin
+    (:mod:`polyloops.core.compiled`)."""
+    return compiled.in_use("regions")
 
 
 @dataclass(frozen=True)
@@ -172,14 +167,15 @@ def third_axis_systems(base: TorusArrangement, max_crossings: int, stats: TorusS
     regions all pass the local tests above and whose loops cross each region once, as
     ``(twin, layer)`` of the whole arrangement (``B``'s darts first, then four darts a new
     crossing), before the final test.  With ``cut_one_way`` false the level-graph cut is left
-    out (for the tests).  Runs in C when the install built it (:data:`COMPILED`)."""
+    out (for the tests).  Runs in C when the compiled part ``regions`` is in use
+    (:mod:`polyloops.core.compiled`)."""
     from polyloops.generate.torus.search import TorusSearchStats
 
     stats = stats if stats is not None else TorusSearchStats()
     if max_crossings < base.crossings:
         return
     setup = _setup(base, cut_one_way)
-    if COMPILED and compiled_available():
+    if compiled_available():
         yield from _compiled_systems(base, max_crossings, setup, stats)
     else:
         yield from _python_systems(base, max_crossings, setup, stats)
@@ -189,7 +185,7 @@ def _compiled_systems(base: TorusArrangement, max_crossings: int, setup: _Setup,
                       ) -> Iterator[tuple[tuple[int, ...], tuple[int, ...]]]:
     import array
 
-    from polyloops.generate.torus import _regions
+    _regions = compiled.require("regions")
 
     edges = sorted({side.edge for region in setup.sides for side in region})
     index = {e: i for i, e in enumerate(edges)}

@@ -51,11 +51,12 @@ from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field, fields
 from functools import cached_property, lru_cache
 
+from polyloops.core import compiled
 from polyloops.core.disjoint_sets import DisjointSets, ParitySets
 from polyloops.core.halfedge import HalfEdgeMap, permutation_orbits
 from polyloops.core.labellings import proper_colourings
 
-__all__ = ["ANNULUS", "COMPILED_SEARCH", "HANDLE", "SECOND_STAGE", "THIRD", "TorusArrangement",
+__all__ = ["ANNULUS", "HANDLE", "SECOND_STAGE", "THIRD", "TorusArrangement",
            "TorusSearchStats", "axis_runs", "candidate_torus_arrangements", "carries_polycube",
            "compiled_search_available", "decomposes", "face_need", "first_stage", "labelled_mesh",
            "layered_need", "orientable", "polycube_decompositions", "third_sides_consistent",
@@ -768,23 +769,17 @@ def torus_children(parent: TorusArrangement | int, max_crossings: int, colours: 
     return kids
 
 
-# Both stages run in C when the install built it (``_torus.c``: the same children as the
-# Python search, tested), the first for the marked search without a regions' bound and with
-# two colours or none; False makes everything run in Python.
-COMPILED_SEARCH = True
-
-
+# Both stages run in C when the compiled part ``torus`` is in use (``_torus.c``: the same
+# children as the Python search, tested), the first for the marked search without a regions'
+# bound and with two colours or none; its twin is the Python search below.
 def compiled_search_available() -> bool:
-    """Whether the install built the compiled torus search (it needs a C compiler)."""
-    try:
-        import polyloops.generate.torus._torus  # noqa: F401
-    except ImportError:
-        return False
-    return True
+    """Whether the compiled torus search runs: built (it needs a C compiler) and not switched to
+    its Python twin (:mod:`polyloops.core.compiled`)."""
+    return compiled.in_use("torus")
 
 
 def _compiled() -> bool:
-    return COMPILED_SEARCH and compiled_search_available()
+    return compiled.in_use("torus")
 
 
 def _compiled_children(parent: TorusArrangement, max_crossings: int, stats: TorusSearchStats
@@ -805,7 +800,7 @@ def _layered_children(twin: bytes, layer: bytes, max_crossings: int, stats: Toru
                       ) -> list[tuple[tuple[bytes, bytes], int]]:
     """The compiled second stage's children of one state, one of each, ordered by code, as
     ``((twin, layer), flags)``; its counts added to ``stats``."""
-    from polyloops.generate.torus import _torus
+    _torus = compiled.require("torus")
 
     found, counts = _torus.children(twin, layer, max_crossings)
     _, closed, over, inconsistent, rejected, straight = counts
@@ -826,7 +821,7 @@ def _compiled_first_children(parent: TorusArrangement | int, max_crossings: int,
     the compiled search (one of each child, ordered by its code)."""
     import array
 
-    from polyloops.generate.torus import _torus
+    _torus = compiled.require("torus")
 
     if isinstance(parent, int):
         found, counts = _torus.first_children(b"", parent, max_crossings, colours)
@@ -1062,7 +1057,7 @@ def _layered_code(a: TorusArrangement) -> bytes:
     """The compiled search's canonical code of a layered arrangement (its own order)."""
     import array
 
-    from polyloops.generate.torus import _torus
+    _torus = compiled.require("torus")
 
     return _torus.layered_code(array.array("H", a.twin).tobytes(), bytes(a.layer))
 
