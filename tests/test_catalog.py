@@ -713,3 +713,46 @@ def test_the_catalog_readme_counts_what_ships():
     assert int(top) == int(top_again) == max(int(n) for n in counts)
     assert int(total.replace(",", "")) == sum(row["full"] for row in counts.values())
     assert int(at_top.replace(",", "")) == counts[top]["full"]
+
+
+class ToyGenus2(Generator):
+    """A toy genus-2 generator: the quad map of the bundled two-hole example, nothing else. A
+    genus-2 search would be a folder of polyloops.generate with a class like this one."""
+
+    name = "toy-genus2"
+    genus = 2
+    visits = "examples"
+    statistics_key = "toy"
+
+    def plan(self, low, high, share, workers):
+        res, mod = share or (0, 1)
+        return [Job(self.name, high, low, res, mod)]
+
+    def candidates(self, job, context, tally):
+        m = load_example("two-axis-holes").map
+        if job.low <= m.num_corners <= job.n and job.res == 0:
+            tally.visited += 1
+            yield m
+
+
+def test_a_genus_two_generator_plugs_in_by_registering_itself(tmp_path, capsys):
+    """Genus is data: a generator of genus 2 registers itself, and the pipeline, the names, the
+    readers and the command line's --genus take it without any other file edited."""
+    from polyloops.catalog.census import read_catalog
+    from polyloops.catalog.run import build_catalog
+
+    register(ToyGenus2())
+    try:
+        top = load_example("two-axis-holes").map.num_corners
+        built = build_catalog(tmp_path / "g2", top, genus=2)
+        census = read_catalog(tmp_path / "g2")
+        assert built.summary["genus"] == 2 and census.genus == 2
+        assert [e.name for e in census.entries] == [f"G2-{top}.1"]
+        from polyloops.catalog.census import identify
+
+        assert identify(load_example("two-axis-holes"), census).name == f"G2-{top}.1"
+        from polyloops.cli.main import build_parser
+
+        assert build_parser().parse_args(["catalog", "--genus", "2", "--max-corners", "9"]).genus == 2
+    finally:
+        generators().pop("toy-genus2")

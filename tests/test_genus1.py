@@ -12,8 +12,8 @@ from polyloops.cli import main
 from polyloops.core.canonical import canonical_form, from_signature
 from polyloops.io.examples import load_example
 from polyloops.reach.conjecture import (
-    CERTIFICATE_KINDS,
     ConjectureError,
+    certificate_kind,
     check_certificate,
     complete_range,
     orientation_type,
@@ -159,7 +159,7 @@ def test_the_bases_are_the_smallest_class_of_each_type(extended):
     assert records[bridged]["orientation"] == ZERO
     assert records[base]["orientation"] != records[above[0]]["orientation"]
     assert all("removable" in records[sig] for sig in above)
-    assert json.loads(lines[0])["kind"] == CERTIFICATE_KINDS[1]
+    assert json.loads(lines[0])["kind"] == certificate_kind(1)
 
 
 def test_a_genus_one_certificate_claims_only_what_it_checked(extended):
@@ -174,7 +174,7 @@ def test_a_genus_one_certificate_claims_only_what_it_checked(extended):
     assert not check_certificate(second, catalog).valid
     unsettled = _edit(lines, other, detour=None, unsettled=True)
     assert "unsettled" in str(check_certificate(unsettled, catalog).problems[0])
-    header = {**json.loads(lines[0]), "kind": CERTIFICATE_KINDS[0]}
+    header = {**json.loads(lines[0]), "kind": certificate_kind(0)}
     with pytest.raises(ConjectureError, match="genus 1, not 0"):
         check_certificate([json.dumps(header), *lines[1:]], catalog)
 

@@ -103,6 +103,19 @@ class Census:
         return isinstance(key, str) and (key in self.by_name or key in self.by_signature)
 
 
+def shipped_genera() -> list[int]:
+    """The genera of the catalogs installed with the package (``catalogs/genusG``).
+
+    >>> shipped_genera()[:2]
+    [0, 1]
+    """
+    from importlib.resources import files
+
+    root = Path(str(files("polyloops") / "catalogs"))
+    found = [p.name.removeprefix("genus") for p in root.glob("genus*") if (p / "catalog.jsonl").is_file()]
+    return sorted(int(g) for g in found if g.isdigit())
+
+
 def default_catalog(genus: int = 0) -> Path:
     """The shipped catalog of ``genus``, installed with the package (``polyloops/catalogs``,
     package data; in the source tree also reached as ``catalogs/``).
@@ -159,7 +172,7 @@ def _read_entries(directory: Path) -> tuple[list[CatalogEntry], list[int]]:
     return out, sizes
 
 
-NAME = re.compile(r"(T?[PRL]?|T)[1-9][0-9]{0,5}\.[1-9][0-9]{0,8}")
+NAME = re.compile(r"([PRL]|T[RL]?|G[2-9][0-9]{0,2}-[RL]?)[1-9][0-9]{0,5}\.[1-9][0-9]{0,8}")
 
 
 def _digest(path: Path) -> str | None:
@@ -201,7 +214,7 @@ def catalog_problem(directory: Path, entries: list[CatalogEntry], summary: dict[
         seen.add(e.signature)
     if order != entries:
         return "the records are not in catalog order (by corners, then signature)"
-    names = records.class_names([e.record for e in entries], mode, genus) if genus in records.GENUS_PREFIX \
+    names = records.class_names([e.record for e in entries], mode, genus) if genus >= 0 \
         else [e.name for e in entries]
     for e, name in zip(entries, names, strict=True):
         if e.name != name:

@@ -30,9 +30,22 @@ from polyloops.core.errors import PolyloopsError
 from polyloops.core.symmetry import Symmetry
 from polyloops.io.files import InputError, check_regular, read_only_uri, write_atomic, writing
 
-__all__ = ["COLUMNS", "GENUS_PREFIX", "NAME_PREFIX", "CatalogEntry", "CatalogError", "CatalogMismatchError",
-           "CatalogRecord",
-           "class_names", "csv_text", "fill_tables", "query", "row", "write_jsonl", "write_sqlite"]
+__all__ = [
+    "COLUMNS",
+    "NAME_PREFIX",
+    "CatalogEntry",
+    "CatalogError",
+    "CatalogMismatchError",
+    "CatalogRecord",
+    "class_names",
+    "csv_text",
+    "fill_tables",
+    "genus_prefix",
+    "query",
+    "row",
+    "write_jsonl",
+    "write_sqlite",
+]
 
 
 class CatalogError(PolyloopsError, ValueError):
@@ -133,7 +146,16 @@ class CatalogEntry:
 
 
 NAME_PREFIX = {"full": "P", "rotation": "R", "labelled": "L"}
-GENUS_PREFIX = {0: "", 1: "T"}  # genus 1: T32.1 (full), TR32.1, TL32.1
+def genus_prefix(genus: int) -> str:
+    """What a class name of ``genus`` starts with: nothing at genus 0 (``P26.3``), ``T`` for the
+    torus (``T32.1``, ``TR32.1``, ``TL32.1``), ``G2-`` and so on from genus 2 (``G2-48.1``).
+
+    >>> [genus_prefix(g) for g in (0, 1, 2, 12)]
+    ['', 'T', 'G2-', 'G12-']
+    """
+    if genus < 0:
+        raise ValueError(f"no class names for genus {genus}")
+    return "" if genus == 0 else "T" if genus == 1 else f"G{genus}-"
 
 
 def class_names(records: Sequence[CatalogRecord], symmetry: Symmetry | str, genus: int = 0) -> list[str]:
@@ -147,9 +169,7 @@ def class_names(records: Sequence[CatalogRecord], symmetry: Symmetry | str, genu
     (['T32.1'], ['TR32.1'])
     """
     mode = str(Symmetry.parse(symmetry))
-    if genus not in GENUS_PREFIX:
-        raise ValueError(f"no class names for genus {genus}")
-    prefix = GENUS_PREFIX[genus] + ("" if genus and mode == "full" else NAME_PREFIX[mode])
+    prefix = genus_prefix(genus) + ("" if genus and mode == "full" else NAME_PREFIX[mode])
     out, rank, last = [], 0, None
     for rec in records:
         rank = rank + 1 if rec.corners == last else 1

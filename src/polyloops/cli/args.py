@@ -147,8 +147,12 @@ def json_flag(p: argparse.ArgumentParser) -> None:
 
 def genus_option(p: argparse.ArgumentParser, what: str = "catalog") -> None:
     """``--genus G``: which shipped catalog (or certificate) a command reads when none is given."""
-    p.add_argument("--genus", type=int, choices=(0, 1), default=None, metavar="G",
-                   help=f"without a {what}: the shipped one of genus G (0, the default, or 1)")
+    from polyloops.catalog.census import shipped_genera
+
+    genera = shipped_genera()
+    p.add_argument("--genus", type=int, choices=genera, default=None, metavar="G",
+                   help=f"without a {what}: the shipped one of genus G (one of "
+                   f"{', '.join(map(str, genera))}; default 0)")
 
 
 def catalog_dir(given: str | None, genus: int | None) -> Any:

@@ -173,7 +173,9 @@ def _export_arguments(p: argparse.ArgumentParser) -> None:
 
 
 def add_commands(command: AddCommand, hidden: AddCommand) -> None:
-    p = command("catalog", cmd_catalog, "the catalog of polycubes of genus 0 or 1 up to "
+    from polyloops.generate.base import generators
+
+    p = command("catalog", cmd_catalog, "the catalog of polycubes of one genus up to "
                 "order-equivalence, by number of corners: at genus 0 from arrangements of loops or "
                 "plantri's quadrangulations, at genus 1 from the torus search (two stages: "
                 "arrangements of two axes' loops, then the third axis region by region); 'catalog "
@@ -183,15 +185,15 @@ def add_commands(command: AddCommand, hidden: AddCommand) -> None:
                    help=f"required to build; at most {MAX_CATALOG_CORNERS} (the searches' arrays hold no "
                    "more, and no run gets near: 36 corners take minutes of CPU at genus 0)")
     p.add_argument("--min-corners", type=count_arg(8, MAX_CATALOG_CORNERS), default=8, metavar="M")
-    p.add_argument("--genus", type=int, choices=(0, 1), default=0,
-                   help="0 (the sphere; default) or 1 (the torus: the torus generator; the smallest "
-                   "genus-1 polycube, the square ring, has 32 corners and is found in about 10 s)")
+    genera = sorted({g.genus for g in generators().values()})
+    p.add_argument("--genus", type=int, choices=genera, default=0, metavar="G",
+                   help=f"a genus a generator searches: {', '.join(map(str, genera))} (0, the sphere, the "
+                   "default; 1, the torus: the smallest genus-1 polycube, the square ring, has 32 "
+                   "corners and is found in about 10 s)")
     p.add_argument("--symmetry", choices=SYMMETRIES, default="full",
                    help="which classes the records list (summary.json counts all three); default full")
     p.add_argument("--workers", type=count_arg(1, MAX_WORKERS), default=1, metavar="K",
                    help="local worker processes")
-    from polyloops.generate.base import generators
-
     p.add_argument("--generator", choices=sorted(generators()), default=None,
                    help="where candidate maps come from: loops (arrangements built one loop at a "
                    "time, compiled at install; the default where it was built) or plantri (every "

@@ -145,7 +145,7 @@ def verify_path_file(source: str, data: dict[str, Any], as_json: bool) -> int:
 
 
 def cmd_conjecture_settle(args: argparse.Namespace) -> int:
-    """``conjecture genus0`` and ``conjecture genus1``: settle every class of a catalog."""
+    """``conjecture genusG``: settle every class of a catalog of genus G."""
     from tqdm import tqdm
 
     from polyloops.catalog.census import CatalogError, read_catalog
@@ -157,7 +157,7 @@ def cmd_conjecture_settle(args: argparse.Namespace) -> int:
         settle_catalog,
     )
 
-    genus = 1 if args.which == "genus1" else 0
+    genus = int(args.which.removeprefix("genus"))
     check_output(args.output)
     try:
         census = read_catalog(catalog_dir(args.catalog, genus))
@@ -267,16 +267,20 @@ def add_commands(command: AddCommand) -> None:
     p.add_argument("--moves", default="add,remove", help=moves_help)
     p.add_argument("-o", "--output", metavar="OUT.json", help="write the path: every step as a loop "
                    "structure ('polyloops verify OUT.json' checks it)")
-    p = command("conjecture", cmd_conjecture_settle, "the reachability conjecture: 'conjecture genus0' "
-                "and 'conjecture genus1' settle every catalog class, 'conjecture check' re-checks a "
-                "certificate", file_arg=False, json_flag=False)
+    p = command("conjecture", cmd_conjecture_settle, "the reachability conjecture: 'conjecture genusG' "
+                "settles every class of a catalog of genus G (genus0, genus1, ...), 'conjecture check' "
+                "re-checks a certificate", file_arg=False, json_flag=False)
     sub = p.add_subparsers(dest="which", metavar="WHICH", parser_class=Parser)
     sub.required = True
-    for genus, what in ((0, "a removable loop, or a detour to fewer corners within the slack"),
-                        (1, "within each hole-orientation type (the invariant up to the axes' "
-                            "symmetries), a base class with fewest corners, and for every other "
-                            "class a removable loop, or a detour to fewer corners (or, at the "
-                            "type's fewest corners, to the base) within the slack")):
+    from polyloops.catalog.census import shipped_genera
+    from polyloops.generate.base import generators
+
+    sphere = "a removable loop, or a detour to fewer corners within the slack"
+    handles = ("within each hole-orientation type (the invariant up to the axes' symmetries), a base "
+               "class with fewest corners, and for every other class a removable loop, or a detour to "
+               "fewer corners (or, at the type's fewest corners, to the base) within the slack")
+    for genus in sorted({g.genus for g in generators().values()} | set(shipped_genera())):
+        what = sphere if genus == 0 else handles
         g = sub.add_parser(f"genus{genus}", help=f"settle every class of a genus-{genus} catalog up to N "
                            "corners", description=f"settle every class of a genus-{genus} catalog up to N "
                            f"corners: {what}; exit 1 if some class is not settled")

@@ -28,6 +28,7 @@ type (``orientation``), which the checker computes again.
 from __future__ import annotations
 
 import json
+import re
 from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -40,8 +41,24 @@ from polyloops.core.moves import check_removal
 from polyloops.core.structure import LoopStructure
 from polyloops.reach.search import Move, neighbours
 
-CERTIFICATE_KINDS = {0: "genus0-reachability-certificate", 1: "genus1-reachability-certificate"}
-CERTIFICATE_KIND = CERTIFICATE_KINDS[0]
+
+def certificate_kind(genus: int) -> str:
+    """The ``kind`` of a certificate's header for a catalog of ``genus``.
+
+    >>> certificate_kind(1), certificate_genus("genus2-reachability-certificate")
+    ('genus1-reachability-certificate', 2)
+    """
+    return f"genus{genus}-reachability-certificate"
+
+
+def certificate_genus(kind: object) -> int | None:
+    """The genus a header's ``kind`` names, or ``None`` when it is no certificate kind."""
+    found = re.fullmatch(r"genus(0|[1-9][0-9]{0,2})-reachability-certificate", kind) \
+        if isinstance(kind, str) else None
+    return int(found.group(1)) if found else None
+
+
+CERTIFICATE_KIND = certificate_kind(0)
 CUBE_CORNERS = 8  # the cube is the only polycube with 8 corners (and none has fewer)
 
 
@@ -291,9 +308,6 @@ def settle_catalog(directory: Path, max_corners: int, slack: int, workers: int =
 
     census = read_catalog(directory)
     genus = census.genus
-    if genus not in CERTIFICATE_KINDS:
-        raise ConjectureError(f"{census.directory}: a catalog of genus {genus}: the conjecture is "
-                              "asked at genus 0 and 1")
     covered = complete_range(census, genus)
     if max_corners > covered:
         raise ConjectureError(f"{census.directory}: the catalog holds every class only through {covered} "
@@ -320,7 +334,7 @@ def settle_catalog(directory: Path, max_corners: int, slack: int, workers: int =
 
 def certificate_lines(result: ConjectureResult) -> Iterator[str]:
     """The certificate as JSON lines: a header, then one line per class."""
-    yield json.dumps({"polyloops": 1, "kind": CERTIFICATE_KINDS[result.genus],
+    yield json.dumps({"polyloops": 1, "kind": certificate_kind(result.genus),
                       "max_corners": result.max_corners, "slack": result.slack,
                       "classes": len(result.records)})
     for r in result.records:
@@ -506,9 +520,9 @@ def read_header(first: str) -> dict[str, Any]:
         header = json.loads(first)
     except ValueError as err:
         raise ConjectureError(f"not a reachability certificate (the first line is not JSON: {err})") from None
-    if not isinstance(header, dict) or header.get("kind") not in CERTIFICATE_KINDS.values():
+    if not isinstance(header, dict) or certificate_genus(header.get("kind")) is None:
         raise ConjectureError("not a reachability certificate (the first line is not a "
-                              f"{' or '.join(CERTIFICATE_KINDS.values())} header)")
+                              f"{certificate_kind(0).replace('0', 'G', 1)} header)")
     for key in ("max_corners", "slack"):
         if not _is_count(header.get(key)) or header[key] < 1:
             raise ConjectureError(f"the header's {key} {header.get(key)!r} is not a positive integer")
@@ -536,7 +550,8 @@ def check_certificate(lines: Iterable[str], directory: Path | Census) -> Certifi
     it = iter(enumerate(lines, 1))
     first = next(it, (1, ""))[1]
     header = read_header(first)
-    genus = next(g for g, kind in CERTIFICATE_KINDS.items() if kind == header["kind"])
+    genus = certificate_genus(header["kind"])
+    assert genus is not None  # read_header checked it
     claimed, covered = header["max_corners"], complete_range(census, genus)
     checked = min(claimed, covered)
     problems: list[CertificateProblem] = []
@@ -611,7 +626,9 @@ class Certificate:
     @property
     def genus(self) -> int:
         """The genus the header's kind names."""
-        return next(g for g, kind in CERTIFICATE_KINDS.items() if kind == self.header["kind"])
+        genus = certificate_genus(self.header["kind"])
+        assert genus is not None  # read_header checked it
+        return genus
 
     @property
     def max_corners(self) -> int:
