@@ -291,13 +291,13 @@ def _second_stage_states(n: int, compiled: bool, monkeypatch) -> tuple[dict, set
 
 
 @needs("torus")
-@pytest.mark.parametrize("n", [18, *(pytest.param(n, marks=pytest.mark.slow) for n in (20, 24))])
+@pytest.mark.parametrize("n", [16, *(pytest.param(n, marks=pytest.mark.slow) for n in (18, 20, 24))])
 def test_the_compiled_second_stage_keeps_the_python_states(n, monkeypatch):
     """The compiled second stage keeps exactly the states of the Python search (by canonical
     code, every state once), with the same targets."""
     slow, slow_targets = _second_stage_states(n, False, monkeypatch)
     fast, fast_targets = _second_stage_states(n, True, monkeypatch)
-    assert set(fast) == set(slow) and fast_targets == slow_targets and len(slow) > 100
+    assert set(fast) == set(slow) and fast_targets == slow_targets and len(slow) > (100 if n >= 18 else 10)
 
 
 @pytest.mark.slow  # 15 s: the Python search twice
