@@ -52,14 +52,14 @@ def cmd_catalog(args: argparse.Namespace) -> int:
         configured = generators()[generator].with_options(plantri=args.plantri, method=args.method)
     except (KeyError, ValueError):
         configured = None  # build_catalog names the problem
-    for line in [note, *(configured.notes() if configured else [])]:
-        if line:
-            print(f"polyloops catalog: note: {line}", file=sys.stderr)
-
+    notes = [line for line in [note, *(configured.notes() if configured else [])] if line]
     bar = tqdm(unit="job", desc="catalog", disable=None, file=sys.stderr)
     maps = [0]
 
     def planned(jobs: list[Any]) -> None:
+        # said once the run is checked and planned: bad input stays one line
+        for line in notes:
+            bar.write(f"polyloops catalog: note: {line}", file=sys.stderr)
         bar.reset(total=len(jobs))
 
     visits = generators()[generator].visits

@@ -29,30 +29,55 @@
 #define MAXK 64
 #define MAXP 256
 
-typedef struct { int edge, rev, loop, axis, fwd, first, other; } Side;
+typedef struct {  /* one side of a region: a piece of an edge of B */
+    int edge;   /* the edge (numbered 0..E-1 among the edges the regions use) */
+    int rev;    /* 1 when the region walks the edge against its direction: points count back */
+    int loop;   /* the loop of B the edge lies on */
+    int axis;   /* 0 or 1: that loop's class in B's bipartition */
+    int fwd;    /* +1 when the edge runs along its loop's reference walk, -1 against it */
+    int first;  /* 1 on the first of the region's sides on this edge (an edge may bound it twice) */
+    int other;  /* the region's other side on the same edge, or -1 */
+} Side;
 
-typedef struct {
-    int f, ns, need, as[2];
-    Side s[MAXS];
+typedef struct {  /* a region of B (a face of the two-axis arrangement) */
+    int f;          /* its face in the caller's numbering */
+    int ns;         /* sides */
+    int need;       /* the third-axis points it needs at least, for its pieces to be corners */
+    int as[2];      /* its sides of each axis of B */
+    Side s[MAXS];   /* the sides in order round the region */
 } Region;
 
-typedef struct {  /* a region's walk in progress */
-    int fixed[MAXS], count[MAXS], L[MAXK], Rr[MAXK], kk, cap[2], placed[2];
+typedef struct {  /* a region's walk in progress: its chords laid from one cap to the other */
+    int fixed[MAXS];    /* per side: its edge's points when already numbered, -1 when free */
+    int count[MAXS];    /* per side: the chord ends placed on it so far */
+    int L[MAXK];        /* per chord: the side of its end on the walk's left */
+    int Rr[MAXK];       /* per chord: the side of its end on the walk's right */
+    int kk;             /* chords placed */
+    int cap[2];         /* per axis of B: the points the budget still allows on free edges */
+    int placed[2];      /* per axis of B: the points numbered before this region */
 } Walk;
 
-typedef struct {
-    int R, E, NL, least, budget, ncyc;
-    int edge_axis[MAXE], edge_loop[MAXE];
-    Region reg[MAXR];
-    int cyclen[2], cycloop[2][MAXL], cycrho[2][MAXL];
-    int points[MAXE];
-    int parent[MAXL], par[MAXL], trail[MAXL], ntrail;
-    int k[MAXR];
-    unsigned char ends[MAXR][MAXK][6];
-    Walk w[MAXR];
-    long long nodes, over, incons, oneway, complete, kept;
-    PyObject *out;
-    int failed;
+typedef struct {  /* the whole search: B's regions in search order and the state of the walk */
+    int R;          /* regions */
+    int E;          /* edges of B the regions use */
+    int NL;         /* loops of B */
+    int least;      /* B's crossings: the least each axis's third-axis crossings count for in the bound */
+    int budget;     /* the crossings the third axis may add */
+    int ncyc;       /* cycles of B's level graphs to keep from being forced one way (0 to 2) */
+    int edge_axis[MAXE], edge_loop[MAXE];  /* per edge: its axis of B and its loop */
+    Region reg[MAXR];                       /* the regions, in search order */
+    int cyclen[2], cycloop[2][MAXL], cycrho[2][MAXL];  /* per cycle: its loops and their senses */
+    int points[MAXE];                       /* per edge: its third-axis points, -1 while free */
+    int parent[MAXL], par[MAXL];            /* the parity union-find of loop signs (Condition 3) */
+    int trail[MAXL], ntrail;                /* its unions, to roll back on the way up */
+    int k[MAXR];                            /* per region: the chords of its chosen option */
+    unsigned char ends[MAXR][MAXK][6];      /* per region and chord: (edge, index, reverse) x 2 */
+    Walk w[MAXR];                           /* per region: its walk */
+    long long nodes, over, incons, oneway, complete, kept;  /* counts returned to the caller:
+        region options, branches over the budget, inconsistent signs, cycles forced one way,
+        complete third axes, and those kept (each of their loops crossing each region once) */
+    PyObject *out;  /* the list of third axes found */
+    int failed;     /* 1: a Python error is set; 2: a third axis with too many points */
 } Search;
 
 static int find(Search *S, int x, int *sign) {
