@@ -94,8 +94,8 @@ def test_the_cut_keeps_every_polycube_at_hand(corners):
     corners: the region search, with every cut, builds each from B."""
     count = 0
     for layered, base in _known_decompositions(corners):
-        want = torus._layered_code(layered)
-        got = {torus._layered_code(TorusArrangement(twin, (), layer))
+        want = torus.layered_code(layered)
+        got = {torus.layered_code(TorusArrangement(twin, (), layer))
                for twin, layer in regions.third_axis_systems(base, layered.crossings)}
         assert want in got
         assert torus.carries_polycube(layered)

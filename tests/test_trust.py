@@ -22,6 +22,7 @@ from polyloops.cli import main
 from polyloops.generate.spill import SpillMismatch, SpillRefused, SpillTag, read_spill, write_spill
 from polyloops.generate.torus import read_bases, spill_bases
 from polyloops.generate.torus import search as torus
+from switch import needs
 
 
 def run(capsys, *argv: str) -> tuple[int, str, str]:
@@ -35,7 +36,7 @@ def records(directory: Path) -> list[dict]:
 
 
 # -- spilled files -------------------------------------------------------------------------------
-
+@needs("arrangements")  # the loops generator: its compiled search
 def test_a_smaller_runs_top_is_not_taken_for_this_runs(tmp_path, capsys):
     """A 20-corner loops run given the top of a 16-corner run under its own name recomputes it:
     11 records, not the 4 the smaller top leads to; and it never replaces a finished catalog
@@ -58,6 +59,7 @@ def _top_version():
     return frontier_tag(0).version
 
 
+@needs("arrangements")  # the loops generator: its compiled search
 @pytest.mark.parametrize("damage", ["header-only", "half", "truncated", "junk", "padded", "edited"])
 def test_a_damaged_top_is_recomputed(tmp_path, damage):
     """A top with its header and no nodes, half of its nodes, cut, junk, padded or with one
@@ -102,8 +104,7 @@ def test_a_genus_one_run_given_a_smaller_runs_first_stage_finds_the_ring(tmp_pat
     shutil.copy(small / "parts" / "torus-bases-6.bin", cat / "parts" / "torus-bases-10.bin")
     status, _, _ = run(capsys, "catalog", "--genus", "1", "--max-corners", "32", "-o", str(cat))
     assert status == 0 and [r["name"] for r in records(cat)] == ["T32.1"]
-
-
+@needs("arrangements")  # the loops generator: its compiled search
 def test_a_link_in_parts_is_neither_read_nor_written_through(tmp_path, capsys):
     """A spilled file's name that is a link (to a device, or to a file elsewhere) is refused in
     one line, exit 2: nothing is read from it or written into it."""
@@ -259,8 +260,7 @@ def test_a_second_run_into_the_same_directory_is_refused(tmp_path):
     with locked(cat), pytest.raises(CatalogRunError, match="another catalog run"):
         build_catalog(cat, 16)
     assert build_catalog(cat, 16).records == 4  # released when the first run ends
-
-
+@needs("arrangements")  # the loops generator: its compiled search
 def test_two_runs_at_once_leave_the_larger_catalog(tmp_path):
     """A 28-corner run and a 24-corner run started together into one directory: one of them is
     refused, and the directory ends with the 28-corner catalog whichever finishes first."""
@@ -271,9 +271,14 @@ def test_two_runs_at_once_leave_the_larger_catalog(tmp_path):
     deadline = time.time() + 60
     while not (cat / ".polyloops-lock").exists() and time.time() < deadline:
         time.sleep(0.05)
-    small = subprocess.run([sys.executable, "-m", "polyloops", "catalog", "--max-corners", "24",
-                            "-o", str(cat)], capture_output=True, text=True, env=env)
-    big.wait(timeout=300)
+    try:
+        small = subprocess.run([sys.executable, "-m", "polyloops", "catalog", "--max-corners", "24",
+                                "-o", str(cat)], capture_output=True, text=True, env=env)
+        big.wait(timeout=300)
+    finally:  # a failed or timed-out test leaves no run behind
+        if big.poll() is None:
+            big.kill()
+            big.wait()
     assert big.returncode == 0
     assert small.returncode == 2 and ("another catalog run" in small.stderr or "with less" in small.stderr)
     assert max(r["corners"] for r in records(cat)) == 28

@@ -59,7 +59,7 @@ from polyloops.core.labellings import proper_colourings
 __all__ = ["ANNULUS", "HANDLE", "SECOND_STAGE", "THIRD", "TorusArrangement",
            "TorusSearchStats", "axis_runs", "candidate_torus_arrangements", "carries_polycube",
            "compiled_search_available", "decomposes", "face_need", "first_stage", "labelled_mesh",
-           "layered_need", "orientable", "polycube_decompositions", "third_sides_consistent",
+           "layered_code", "layered_need", "orientable", "polycube_decompositions", "third_sides_consistent",
            "torus_arrangements", "torus_children", "two_axis_bases", "two_stage_decompositions"]
 
 ANNULUS, HANDLE = "A", "H"  # an end of the annulus face; the face with the handle
@@ -936,7 +936,7 @@ def _third_axes(base: TorusArrangement, max_crossings: int, stats: TorusSearchSt
     from polyloops.generate.torus.regions import third_axis_systems
 
     seen: set[bytes | tuple] = set()
-    code = _layered_code if _compiled() else (lambda a: canonical(a)[0])
+    code = layered_code
     for twin, layer in third_axis_systems(base, max_crossings, stats):
         kid = TorusArrangement(twin, (), layer)
         key = code(kid)
@@ -1006,7 +1006,7 @@ def _canonical_decomposition(kid: TorusArrangement, polycubes: bool = True) -> b
     the map with the loops of a decomposition marked, over all its decompositions that carry a
     polycube (:func:`polycube_decompositions`; all of them with ``polycubes`` false)."""
     plain = TorusArrangement(kid.twin)
-    code = _layered_code if _compiled() else (lambda a: canonical(a)[0])
+    code = layered_code
     own = code(TorusArrangement(kid.twin, (), kid.layer))
     listed = polycube_decompositions if polycubes else two_stage_decompositions
     codes = [code(_with_layer(plain, chosen)) for chosen in listed(plain, plain.crossings)]
@@ -1051,6 +1051,12 @@ def labelled_mesh(a: TorusArrangement) -> tuple[HalfEdgeMap, list[int]]:
         for lp in system.loops_of_face(m, v):
             faces.setdefault(lp, set()).add(v)
     return m, [klass[mine[frozenset(faces[lp])]] for lp in range(len(system.loops))]
+
+
+def layered_code(a: TorusArrangement) -> bytes | tuple[int, ...]:
+    """A canonical code of a layered arrangement: the compiled one when the part ``torus`` runs,
+    the Python one otherwise (within one run, equal classes get equal codes)."""
+    return _layered_code(a) if _compiled() else canonical(a)[0]
 
 
 def _layered_code(a: TorusArrangement) -> bytes:
