@@ -35,8 +35,8 @@ from _common import markdown_table
 from scaling import box_surface
 from segmentation import subdivided
 
-from polyloops.core.builders import box
 from polyloops.io.formats import dumps
+from polyloops.shapes.builders import box
 from strategies import random_polycube
 
 CATALOG = Path(__file__).resolve().parent.parent / "src" / "polyloops" / "catalogs" / "genus0"

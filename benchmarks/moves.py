@@ -19,9 +19,9 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from _common import markdown_table, timed
 
-from polyloops.core.builders import box
 from polyloops.core.moves import add_loop, additions, count_additions, removals, remove_loop
-from polyloops.core.voxels import polycube_from_voxels
+from polyloops.shapes.builders import box
+from polyloops.shapes.voxels import polycube_from_voxels
 from strategies import well_composed_blob
 
 

@@ -25,7 +25,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from _common import markdown_table, timed
 
-from polyloops.core.voxels import polycube_from_voxels
+from polyloops.shapes.voxels import polycube_from_voxels
 from polyloops.solvers import OrientationProblem, make_solver
 from polyloops.solvers.base import count, solve
 from strategies import pillar_cells, renumbered

@@ -37,7 +37,7 @@ from polyloops.core.halfedge import HalfEdgeMap
 from polyloops.core.moves import additions, removals
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LoopStructure
-from polyloops.core.voxels import polycube_from_voxels
+from polyloops.shapes.voxels import polycube_from_voxels
 from polyloops.verify import check_polycube, verify
 
 

@@ -18,7 +18,7 @@ from hypothesis import strategies as st
 from polyloops.core.directions import Axis, Direction
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LoopStructure
-from polyloops.core.voxels import Cell, VoxelError, polycube_from_voxels
+from polyloops.shapes.voxels import Cell, VoxelError, polycube_from_voxels
 
 NEIGHBOURS = [d.vector for d in Direction]
 

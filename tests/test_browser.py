@@ -155,8 +155,8 @@ def test_the_gallery_walks_the_move_graph(chromium, tmp_path, capsys):
 def test_the_first_view_shows_the_whole_shape(chromium, tmp_path, dims):
     """The first camera is fitted to the bounding box: nothing of a tall tower, a flat slab or
     a cube touches the plot's edges (the scene's ink stays inside, with a margin)."""
-    from polyloops.core.builders import box
     from polyloops.render.viewer import write_viewer
+    from polyloops.shapes.builders import box
 
     out = tmp_path / "shape.html"
     write_viewer(box(*dims), out)

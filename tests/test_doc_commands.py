@@ -85,8 +85,8 @@ def test_every_shown_command_parses(shown):
 def clone_like(tmp: Path) -> Path:
     """A folder laid out like a clone (its data folders linked) with the inputs the pages
     assume the reader has made: a big structure, a mesh with labels, a structure of their own."""
-    from polyloops.core.builders import box
     from polyloops.io.formats import dumps
+    from polyloops.shapes.builders import box
 
     for name in ("tests", "catalogs", "src", "tools", "docs"):
         (tmp / name).symlink_to(ROOT / name)

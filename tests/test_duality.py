@@ -6,8 +6,8 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from polyloops.core.duality import dualize, is_order_equivalent, primalize
-from polyloops.core.voxels import polycube_from_voxels
 from polyloops.io.examples import load_example
+from polyloops.shapes.voxels import polycube_from_voxels
 from polyloops.verify import check_polycube, check_polycube_loop_structure
 from strategies import perturbed_structures, polycubes, renumbered
 

@@ -166,8 +166,8 @@ def test_bad_files_name_the_problem(suffix, text, words, tmp_path, capsys):
 def test_from_voxels_text_and_npy(tmp_path, capsys):
     import numpy as np
 
-    from polyloops.core.voxels import polycube_from_voxels
     from polyloops.io.formats import loads
+    from polyloops.shapes.voxels import polycube_from_voxels
 
     cells = [(0, 0, 0), (1, 0, 0), (2, 0, 0), (0, 1, 0), (2, 1, 0), (0, 2, 0), (1, 2, 0), (2, 2, 0)]
     lines = "".join(f"{x} {y} {z}\n" for x, y, z in cells)

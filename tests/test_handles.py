@@ -18,8 +18,8 @@ from polyloops.core.moves import (
     remove_loop,
     separates_zone,
 )
-from polyloops.core.voxels import polycube_from_voxels
 from polyloops.io.examples import BRIDGED_RING_CUBES, load_example
+from polyloops.shapes.voxels import polycube_from_voxels
 from polyloops.verify import check_polycube, check_polycube_loop_structure
 from strategies import bridged_ring, handle_zone_polycubes
 from test_moves import brute_additions

@@ -12,9 +12,9 @@ from polyloops.core.directions import Axis
 from polyloops.core.holes import PAIRS, hole_orientation, intersection_matrix, invariant_factors
 from polyloops.core.moves import add_loop, additions, removals, remove_loop
 from polyloops.core.symmetry import SIGNED_PERMUTATIONS
-from polyloops.core.voxels import polycube_from_voxels
 from polyloops.io.examples import load_example
 from polyloops.reach.search import explore, from_signature, neighbours
+from polyloops.shapes.voxels import polycube_from_voxels
 from strategies import handle_zone_polycubes, polycubes, transform_cells
 
 RING = {(x, y, 0) for x in range(3) for y in range(3) if (x, y) != (1, 1)}

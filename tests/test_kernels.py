@@ -12,13 +12,13 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import polyloops.core.arrays as arrays
-from polyloops.core.builders import box, torus_grid
 from polyloops.core.directions import Axis, Direction
 from polyloops.core.halfedge import FaceListError, HalfEdgeMap, MapError
 from polyloops.core.loops import _trace_loops_arrays, _trace_loops_tuples
 from polyloops.core.structure import LabelError, LoopStructure
 from polyloops.core.zones import _compute_zones_arrays, _compute_zones_tuples
 from polyloops.io.examples import load_example
+from polyloops.shapes.builders import box, torus_grid
 from polyloops.verify import verify
 from polyloops.verify.homology import _zone_genera_arrays, cut_zones
 from strategies import grown_structures, handle_zone_polycubes, perturbed_structures, polycubes

@@ -2,7 +2,8 @@
 or inside a function (read from the source, so a lazy import counts too), so there is no import
 cycle between subpackages; and no module imports one that imports it back.
 
-The layers, lowest first: ``core`` (the kernel), ``parallel`` (workers), ``surface`` (the
+The layers, lowest first: ``core`` (the kernel), ``parallel`` (workers), ``shapes`` (boxes, unions
+of cubes, coarsenings), ``surface`` (the
 labelled triangle mesh), ``io`` (files and formats), ``verify``, ``solvers``, ``generate``
 (candidate maps), ``catalog`` (the pipeline, records, census), ``reach`` (moves, the
 conjecture), ``segmentation`` (the checker), ``segment`` (constructors), ``render``, ``cli``."""
@@ -14,8 +15,8 @@ from pathlib import Path
 
 PACKAGE = Path(__file__).resolve().parent.parent / "src" / "polyloops"
 CORE = PACKAGE / "core"
-ABOVE = ("parallel", "surface", "io", "verify", "solvers", "generate", "catalog", "reach", "segmentation",
-         "segment", "render", "cli")
+ABOVE = ("parallel", "shapes", "surface", "io", "verify", "solvers", "generate", "catalog", "reach",
+         "segmentation", "segment", "render", "cli")
 LAYERS = ("core", *ABOVE)
 
 
@@ -156,6 +157,19 @@ def test_lazy_imports_close_no_other_circle():
         if v.startswith(u + "."):
             graph.remove_edge(u, v)
     assert {frozenset(c) for c in nx.simple_cycles(graph)} <= LAZY_CIRCLES
+
+
+def test_no_room_holds_more_than_a_quarter_of_the_lines():
+    """The library is spread over its rooms: none holds a quarter of its lines (modules at the
+    top of the package count as rooms of their own)."""
+    from collections import Counter
+
+    lines: Counter[str] = Counter()
+    for path in PACKAGE.rglob("*.py"):
+        parts = path.relative_to(PACKAGE).parts
+        lines[parts[0] if len(parts) > 1 else path.stem] += len(path.read_text(encoding="utf-8").splitlines())
+    total = sum(lines.values())
+    assert max(lines.values()) < total / 4, lines.most_common(3)
 
 
 def test_no_import_cycle_between_modules():

@@ -333,8 +333,8 @@ def test_sampled_additions_are_listed_valid_and_reproducible(q, seed, n):
 def test_counting_within_a_time_limit_on_a_large_slab():
     import time
 
-    from polyloops.core.builders import box
     from polyloops.reach.listing import count_additions_within
+    from polyloops.shapes.builders import box
 
     ls = box(8, 8, 1).dualize()  # 162 corners; Z-loops: every cycle of a 9x9 grid
     start = time.monotonic()
@@ -349,8 +349,8 @@ def test_counting_within_a_time_limit_on_a_large_slab():
 def test_moves_cli_on_a_large_slab(tmp_path, capsys):
     import time
 
-    from polyloops.core.builders import box
     from polyloops.io.formats import dumps
+    from polyloops.shapes.builders import box
 
     path = tmp_path / "slab.json"
     path.write_text(dumps(box(8, 8, 1)))
@@ -452,7 +452,7 @@ def test_counts_stop_at_the_deadline():
     import time
 
     from polyloops.core import moves
-    from polyloops.core.builders import box
+    from polyloops.shapes.builders import box
 
     ls = box(4, 4, 4).dualize()
     count, complete = moves.count_valid_additions(ls, Axis.Z, deadline=time.monotonic() - 1)
@@ -521,8 +521,8 @@ def test_a_first_addition_on_a_renumbered_box_is_found_without_wandering():
     """On a 22 x 22 x 22 box renumbered at random, the plain depth-first search walled itself
     off from its start and wandered for minutes before its first Z-loop; backing up from
     walks that cannot close finds one within a few hundred thousand steps."""
-    from polyloops.core.builders import box
     from polyloops.core.moves import SearchStopped, additions
+    from polyloops.shapes.builders import box
 
     ls = _renumbered_structure(box(22, 22, 22).dualize(), 7)
     asked = [0]

@@ -8,12 +8,12 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from polyloops.cli import main
-from polyloops.core.builders import box
 from polyloops.core.canonical import signature
 from polyloops.core.halfedge import HalfEdgeMap
 from polyloops.generate.plantri.quadrangulations import Batch, find_plantri, plantri_batches
 from polyloops.io.examples import load_example
 from polyloops.io.planar_code import HEADER_BE, PlanarCodeError, planar_code, read_planar_code
+from polyloops.shapes.builders import box
 from strategies import polycubes
 
 

@@ -4,9 +4,9 @@ and nothing uncertified is handed out."""
 import pytest
 from hypothesis import given
 
-from polyloops.core.builders import box
 from polyloops.segment.from_polycube import UncertifiedError, certified_from_polycube
 from polyloops.segmentation import check_segmentation
+from polyloops.shapes.builders import box
 from strategies import polycubes
 
 

@@ -14,17 +14,17 @@ from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 from polyloops.cli import main
-from polyloops.core.builders import box
 from polyloops.core.corners import canonical_rotation
 from polyloops.core.directions import Direction
 from polyloops.core.polycube import Polycube
-from polyloops.core.voxels import VoxelError, polycube_from_voxels
 from polyloops.generate.corners import OCTANT_CELLS, chart_corners
 from polyloops.io.examples import EXAMPLES, LABELLED_EXAMPLES, labelled_mesh_example, load_example
 from polyloops.io.labelled_mesh import labels_text, triangle_obj_text
 from polyloops.io.meshes import write_triangle_mesh
 from polyloops.segmentation import check_segmentation, segment
 from polyloops.segmentation.levels import chart_angles, check_global, corner_rule, corner_zones
+from polyloops.shapes.builders import box
+from polyloops.shapes.voxels import VoxelError, polycube_from_voxels
 from polyloops.surface.construct import labelled_mesh_from_polycube
 from polyloops.surface.mesh import LabelledMesh
 from polyloops.verify import check_polycube

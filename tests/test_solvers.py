@@ -8,9 +8,9 @@ import pytest
 from hypothesis import event, given, settings
 
 from polyloops.cli import main
-from polyloops.core.voxels import polycube_from_voxels
 from polyloops.io.examples import load_example
 from polyloops.io.formats import dumps, loads
+from polyloops.shapes.voxels import polycube_from_voxels
 from polyloops.solvers import SOLVERS, OrientationProblem, axis_flip_factor, explain, make_solver, orient
 from polyloops.solvers.base import count, count_naively, solve
 from polyloops.verify import check_polycube_loop_structure

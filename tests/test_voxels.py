@@ -7,9 +7,9 @@ from hypothesis import given
 
 import polyloops as pl
 from polyloops.cli import main
-from polyloops.core.coarsen import coarsen, in_flat_band
 from polyloops.core.moves import check_removal
-from polyloops.core.voxels import VoxelError, _bad_corners, diagnose_voxels, polycube_from_voxels
+from polyloops.shapes.coarsen import coarsen, in_flat_band
+from polyloops.shapes.voxels import VoxelError, _bad_corners, diagnose_voxels, polycube_from_voxels
 from polyloops.verify import verify
 from strategies import voxel_sets
 

@@ -25,7 +25,6 @@ import polyloops._startup  # noqa: F401  (first: before numpy loads, the command
 __version__ = "0.1.0"
 
 from polyloops.core.canonical import canonical_form, from_signature, is_isomorphic, signature
-from polyloops.core.coarsen import coarsen
 from polyloops.core.corners import classify, corner_configurations
 from polyloops.core.directions import Axis, Direction
 from polyloops.core.duality import DualityError, dualize, is_order_equivalent, primalize
@@ -35,10 +34,11 @@ from polyloops.core.moves import add_loop, additions, removals, remove_loop
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LoopStructure
 from polyloops.core.symmetry import Symmetry
-from polyloops.core.voxels import polycube_from_voxels
 from polyloops.io.examples import EXAMPLES, load_example
 from polyloops.io.formats import dumps, loads, to_obj
 from polyloops.render.jupyter import register as _register_pictures
+from polyloops.shapes.coarsen import coarsen
+from polyloops.shapes.voxels import polycube_from_voxels
 from polyloops.verify import as_loop_structure, verify
 from polyloops.verify.describe import describe
 

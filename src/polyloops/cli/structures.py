@@ -111,8 +111,8 @@ def cmd_convert(args: argparse.Namespace) -> int:
 
 
 def cmd_from_voxels(args: argparse.Namespace) -> int:
-    from polyloops.core.voxels import VoxelError, polycube_from_voxels
     from polyloops.io.voxels import parse_voxel_text, voxels_from_npy
+    from polyloops.shapes.voxels import VoxelError, polycube_from_voxels
 
     try:
         cells = (voxels_from_npy(read_bytes_file(args.file)) if args.file.lower().endswith(".npy")
@@ -127,7 +127,7 @@ def cmd_from_voxels(args: argparse.Namespace) -> int:
     facts: dict[str, Any] = {"cubes": cubes}
     removed = ""
     if args.coarsen:
-        from polyloops.core.coarsen import coarsen_polycube
+        from polyloops.shapes.coarsen import coarsen_polycube
 
         coarser = coarsen_polycube(q)
         q = coarser.polycube

@@ -24,7 +24,7 @@ from polyloops.core.corners import (
 from polyloops.core.directions import Direction
 from polyloops.core.polycube import Polycube
 from polyloops.core.symmetry import Symmetry
-from polyloops.core.voxels import Cell, VoxelError, polycube_from_voxels
+from polyloops.shapes.voxels import Cell, VoxelError, polycube_from_voxels
 
 
 @dataclass(frozen=True)

@@ -12,11 +12,11 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from importlib import resources
 
-from polyloops.core import builders
 from polyloops.core.directions import Axis, Direction
 from polyloops.core.polycube import Polycube
-from polyloops.core.voxels import polycube_from_voxels
 from polyloops.io.formats import Structure, loads
+from polyloops.shapes import builders
+from polyloops.shapes.voxels import polycube_from_voxels
 from polyloops.surface.construct import labelled_mesh_from_polycube
 from polyloops.surface.mesh import LabelledMesh
 

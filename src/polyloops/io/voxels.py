@@ -1,5 +1,5 @@
 """Unit cubes from files: ``x y z`` lines and NumPy ``.npy`` grids (what
-``polyloops from-voxels`` reads); :func:`polyloops.core.voxels.polycube_from_voxels` builds the
+``polyloops from-voxels`` reads); :func:`polyloops.shapes.voxels.polycube_from_voxels` builds the
 polycube.
 
 >>> parse_voxel_text("0 0 0\\n1 0 0\\n")
@@ -8,7 +8,7 @@ polycube.
 
 from __future__ import annotations
 
-from polyloops.core.voxels import Cell, voxels_from_grid
+from polyloops.shapes.voxels import Cell, voxels_from_grid
 
 __all__ = ["parse_voxel_text", "voxels_from_npy"]
 

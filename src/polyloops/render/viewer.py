@@ -185,7 +185,7 @@ def fitted_camera(q: Polycube) -> tuple[dict[str, float], dict[str, float]]:
     scene's units, where the box spans the aspect ratio about the centre) seen within the
     field of view, with a margin.
 
-    >>> from polyloops.core.builders import box
+    >>> from polyloops.shapes.builders import box
     >>> aspect, eye = fitted_camera(box(1, 1, 6))
     >>> aspect == {"x": 1 / 6, "y": 1 / 6, "z": 1.0}, round(math.dist((0, 0, 0), eye.values()), 2)
     (True, 1.54)

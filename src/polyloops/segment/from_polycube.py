@@ -1,7 +1,7 @@
 """A polycube's own segmentation: each quad cut into two triangles labelled by its normal,
 certified by the checker (the polycube realising it is found again, not assumed).
 
->>> from polyloops.core.builders import box
+>>> from polyloops.shapes.builders import box
 >>> done = certified_from_polycube(box(2, 1, 1))
 >>> done.report.valid, len(done.mesh.triangles), len(done.report.segmentation.charts)
 (True, 20, 6)

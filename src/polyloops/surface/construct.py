@@ -1,6 +1,6 @@
 """Labelled meshes built from the kernel's objects (no file, no check).
 
->>> from polyloops.core.builders import box
+>>> from polyloops.shapes.builders import box
 >>> mesh = labelled_mesh_from_polycube(box(1, 1, 1))
 >>> len(mesh.triangles), sorted({str(d) for d in mesh.labels})
 (12, ['+X', '+Y', '+Z', '-X', '-Y', '-Z'])

@@ -13,7 +13,7 @@ polycube loop structure (Definition 4, checked by the removal test of Section 4.
 such loop is left.  The result is a coarsening, not necessarily the coarsest one: which loops
 can go may depend on the order (two parallel loops in one band, for instance, cannot both go).
 
->>> from polyloops.core.voxels import polycube_from_voxels
+>>> from polyloops.shapes.voxels import polycube_from_voxels
 >>> ring = [(x, y, z) for x in range(3) for y in range(3) for z in range(2) if (x, y) != (1, 1)]
 >>> q = polycube_from_voxels(ring)
 >>> q.map.num_corners, coarsen(q.dualize()).structure.map.num_corners
@@ -127,7 +127,7 @@ def coarsen_polycube(q: Polycube) -> Coarsening:
     """:func:`coarsen` on a polycube's loop structure (Theorem 1), its polycube in
     :attr:`Coarsening.polycube`.
 
-    >>> from polyloops.core.voxels import polycube_from_voxels
+    >>> from polyloops.shapes.voxels import polycube_from_voxels
     >>> c = coarsen_polycube(polycube_from_voxels([(x, 0, 0) for x in range(5)]))
     >>> c.removed, c.polycube.map.num_corners
     (4, 8)

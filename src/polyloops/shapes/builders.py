@@ -11,7 +11,7 @@ from __future__ import annotations
 from polyloops.core.directions import Axis, Direction
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LoopStructure
-from polyloops.core.voxels import polycube_from_voxels
+from polyloops.shapes.voxels import polycube_from_voxels
 
 
 def box(a: int, b: int, c: int) -> Polycube:
