@@ -27,6 +27,7 @@ polyloops.io.registry.FormatChoiceError: ring.xyz: polyloops does not write .xyz
 from __future__ import annotations
 
 import os
+from collections.abc import Callable
 from dataclasses import dataclass
 
 from polyloops.core.polycube import Polycube
@@ -42,30 +43,89 @@ class FormatChoiceError(FormatError):
     """A format name or extension polyloops does not read or write; the message lists those it does."""
 
 
+def _text(data: bytes) -> str:
+    try:
+        return data.decode("utf-8-sig")
+    except UnicodeDecodeError as err:
+        raise FormatError(f"not UTF-8 text ({err.reason} at byte {err.start})") from None
+
+
+def _read_planar(data: bytes) -> Document:
+    """Planar code gives a document of kind ``map`` (faces only): it has no axis labels, and
+    finding the map's polycube loop structure is a search
+    (:func:`polyloops.core.labellings.only_structure_on`)."""
+    from polyloops.io.planar_code import read_planar_code
+
+    maps = read_planar_code(data)
+    if len(maps) != 1:
+        raise FormatError(f"holds {len(maps)} maps; polyloops reads one map per file")
+    return Document("map", [list(f) for f in maps[0].faces])
+
+
+def _write_planar(obj: Structure) -> bytes:
+    from polyloops.io.planar_code import planar_code
+
+    return planar_code([obj.map])
+
+
+def _read_mesh(name: str) -> Callable[[bytes], Document]:
+    def read(data: bytes) -> Document:
+        from polyloops.io.meshes import read_polycube_mesh
+
+        return read_polycube_mesh(data, name)
+
+    return read
+
+
+def _first_words(data: bytes) -> list[str]:
+    """The words of the first line that is not a comment (for formats known by their words)."""
+    for line in data.decode("utf-8", "replace").splitlines():
+        if line.strip() and not line.lstrip().startswith(("#", "/")):
+            return line.split()
+    return []
+
+
 @dataclass(frozen=True)
 class FileFormat:
-    """One file format: its name, extensions, whether polyloops reads it, and what it writes
-    (``polycube``: only polycubes; ``any``: polycubes and loop structures)."""
+    """One file format, one row: its name, extensions, what it writes (``polycube``: only
+    polycubes; ``any``: polycubes and loop structures), its reader and writer, and how its
+    content looks when a name has no known extension."""
 
     name: str
     suffixes: tuple[str, ...]
-    reads: bool
+    reader: Callable[[bytes], Document] | None  # None: polyloops does not read it
     writes: str  # "any" or "polycube"
+    writer: Callable[[Structure], str | bytes] | None = None  # None: written through meshio
+    looks: Callable[[bytes], bool] | None = None  # whether bytes look like this format
     mesh: bool = False  # written (and read) through meshio
+
+    @property
+    def reads(self) -> bool:
+        """Whether polyloops reads this format."""
+        return self.reader is not None
 
 
 FORMATS: tuple[FileFormat, ...] = (
-    FileFormat("json", (".json",), True, "any"),
-    FileFormat("apg", (".graph", ".apg"), True, "any"),
-    FileFormat("obj", (".obj",), True, "polycube"),
-    FileFormat("planar", (".pc", ".plc", ".planarcode"), True, "any"),
-    FileFormat("ply", (".ply",), True, "polycube", mesh=True),
-    FileFormat("off", (".off",), True, "polycube", mesh=True),
-    FileFormat("vtk", (".vtk",), True, "polycube", mesh=True),
-    FileFormat("vtu", (".vtu",), True, "polycube", mesh=True),
-    FileFormat("medit", (".mesh",), True, "polycube", mesh=True),
-    FileFormat("gmsh", (".msh",), True, "polycube", mesh=True),
-    FileFormat("stl", (".stl",), False, "polycube", mesh=True),
+    FileFormat("json", (".json",), lambda data: parse_document(_text(data)), "any", dumps,
+               lambda head: head.startswith((b"{", b"["))),
+    FileFormat("apg", (".graph", ".apg"), lambda data: parse_apg(_text(data)), "any", apg_text,
+               lambda head: (words := _first_words(head)) != [] and len(words) == 3
+               and all(w.isdigit() for w in words)),
+    FileFormat("obj", (".obj",), lambda data: parse_obj(_text(data)), "polycube", to_obj,  # type: ignore[arg-type]
+               lambda head: (words := _first_words(head)) != []
+               and words[0] in ("v", "f", "o", "g", "mtllib", "usemtl", "vn", "vt")),
+    FileFormat("planar", (".pc", ".plc", ".planarcode"), _read_planar, "any", _write_planar,
+               lambda head: head.startswith(b">>planar_code")),
+    FileFormat("ply", (".ply",), _read_mesh("ply"), "polycube", looks=lambda head: head.startswith(b"ply"),
+               mesh=True),
+    FileFormat("off", (".off",), _read_mesh("off"), "polycube",
+               looks=lambda head: head.startswith((b"OFF", b"COFF", b"NOFF")), mesh=True),
+    FileFormat("vtk", (".vtk",), _read_mesh("vtk"), "polycube",
+               looks=lambda head: head.startswith(b"# vtk DataFile"), mesh=True),
+    FileFormat("vtu", (".vtu",), _read_mesh("vtu"), "polycube", mesh=True),
+    FileFormat("medit", (".mesh",), _read_mesh("medit"), "polycube", mesh=True),
+    FileFormat("gmsh", (".msh",), _read_mesh("gmsh"), "polycube", mesh=True),
+    FileFormat("stl", (".stl",), None, "polycube", mesh=True),
 )
 BY_NAME = {f.name: f for f in FORMATS}
 BY_SUFFIX = {s: f for f in FORMATS for s in f.suffixes}
@@ -126,23 +186,7 @@ def sniff(data: bytes) -> FileFormat | None:
     head = data[:4096].lstrip()
     if head.startswith(b"\xef\xbb\xbf"):
         head = head[3:].lstrip()
-    if head.startswith((b"{", b"[")):
-        return BY_NAME["json"]
-    if head.startswith(b">>planar_code"):
-        return BY_NAME["planar"]
-    if head.startswith(b"ply"):
-        return BY_NAME["ply"]
-    if head.startswith((b"OFF", b"COFF", b"NOFF")):
-        return BY_NAME["off"]
-    if head.startswith(b"# vtk DataFile"):
-        return BY_NAME["vtk"]
-    lines = [line.split() for line in head.decode("utf-8", "replace").splitlines()
-             if line.strip() and not line.lstrip().startswith(("#", "/"))]
-    if lines and lines[0][0] in ("v", "f", "o", "g", "mtllib", "usemtl", "vn", "vt"):
-        return BY_NAME["obj"]
-    if lines and len(lines[0]) == 3 and all(w.isdigit() for w in lines[0]):
-        return BY_NAME["apg"]
-    return None
+    return next((f for f in FORMATS if f.looks is not None and f.looks(head)), None)
 
 
 def parse_bytes(data: bytes, fmt: FileFormat) -> Document:
@@ -155,23 +199,9 @@ def parse_bytes(data: bytes, fmt: FileFormat) -> Document:
     FormatError
         For bytes that do not follow the format (the message says where).
     """
-    if fmt.name == "planar":
-        from polyloops.io.planar_code import read_planar_code
-
-        maps = read_planar_code(data)
-        if len(maps) != 1:
-            raise FormatError(f"holds {len(maps)} maps; polyloops reads one map per file")
-        return Document("map", [list(f) for f in maps[0].faces])
-    if fmt.mesh:
-        from polyloops.io.meshes import read_polycube_mesh
-
-        return read_polycube_mesh(data, fmt.name)
-    try:
-        text = data.decode("utf-8-sig")
-    except UnicodeDecodeError as err:
-        raise FormatError(f"not UTF-8 text ({err.reason} at byte {err.start})") from None
-    reader = {"json": parse_document, "apg": parse_apg, "obj": parse_obj}[fmt.name]
-    return reader(text)
+    if fmt.reader is None:
+        raise FormatError(f"polyloops does not read {fmt.name} files")
+    return fmt.reader(data)
 
 
 class UnknownExampleError(FormatError):
@@ -284,15 +314,9 @@ def read_document(path: str | os.PathLike[str], given: str | None = None) -> Doc
 
 def serialize(obj: Structure, fmt: FileFormat) -> str | bytes:
     """The text or bytes of ``obj`` in a format polyloops writes without meshio."""
-    if fmt.name == "obj":
-        return to_obj(obj)  # type: ignore[arg-type]
-    if fmt.name == "apg":
-        return apg_text(obj)
-    if fmt.name == "planar":
-        from polyloops.io.planar_code import planar_code
-
-        return planar_code([obj.map])
-    return dumps(obj)
+    if fmt.writer is None:
+        raise FormatError(f"{fmt.name} files are written through meshio")
+    return fmt.writer(obj)
 
 
 def write_structure(obj: Structure, path: str | os.PathLike[str], given: str | None = None) -> FileFormat:
