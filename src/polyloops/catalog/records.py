@@ -32,7 +32,6 @@ from polyloops.io.files import InputError, check_regular, read_only_uri, write_a
 
 __all__ = [
     "COLUMNS",
-    "NAME_PREFIX",
     "CatalogEntry",
     "CatalogError",
     "CatalogMismatchError",
@@ -145,7 +144,6 @@ class CatalogEntry:
         return from_signature(self.signature)
 
 
-NAME_PREFIX = {"full": "P", "rotation": "R", "labelled": "L"}
 def genus_prefix(genus: int) -> str:
     """What a class name of ``genus`` starts with: nothing at genus 0 (``P26.3``), ``T`` for the
     torus (``T32.1``, ``TR32.1``, ``TL32.1``), ``G2-`` and so on from genus 2 (``G2-48.1``).
@@ -169,7 +167,7 @@ def class_names(records: Sequence[CatalogRecord], symmetry: Symmetry | str, genu
     (['T32.1'], ['TR32.1'])
     """
     mode = str(Symmetry.parse(symmetry))
-    prefix = genus_prefix(genus) + ("" if genus and mode == "full" else NAME_PREFIX[mode])
+    prefix = genus_prefix(genus) + ("" if genus and mode == "full" else Symmetry.parse(mode).prefix)
     out, rank, last = [], 0, None
     for rec in records:
         rank = rank + 1 if rec.corners == last else 1

@@ -88,6 +88,21 @@ class Symmetry(StrEnum):
         """The signed permutations this mode identifies by."""
         return SYMMETRY_MODES[self]
 
+    @property
+    def prefix(self) -> str:
+        """The letter of a genus-0 class name in this mode (``P26.3``, ``R26.3``, ``L26.3``).
+
+        >>> [m.prefix for m in Symmetry]
+        ['L', 'R', 'P']
+        """
+        return {"labelled": "L", "rotation": "R", "full": "P"}[self.value]
+
+    @property
+    def up_to(self) -> str:
+        """What classes of this mode are taken up to, in words (``up to rotations``)."""
+        return {"labelled": "renumbering", "rotation": "rotations",
+                "full": "rotations and reflections"}[self.value]
+
 
 def direction_permutation(g: SignedPermutation) -> list[int]:
     """``g`` as a permutation of the six directions (``Direction`` values 0..5).

@@ -31,6 +31,7 @@ from pathlib import Path
 
 from polyloops.catalog.census import CatalogEntry, Census
 from polyloops.core.corners import CATEGORIES
+from polyloops.core.symmetry import Symmetry
 from polyloops.io.files import check_within, write_atomic
 
 
@@ -107,13 +108,12 @@ def build_gallery(census: Census, out: str | Path, limit: int | None = None,
     for name in run_jobs(_draw_class, tasks, workers, ordered=False, batch=batch):
         if progress is not None:
             progress(name)
-    up_to = {"full": "rotations and reflections", "rotation": "rotations", "labelled": "renumbering"}
     if limit is None or len(entries) == len(census.entries):
         span = f"through {census.max_corners} corners"
     else:  # a limited gallery says what it shows, not the catalog's whole range
         low, high = (entries[0].corners, entries[-1].corners) if entries else (0, 0)
         span = f"the first {len(entries)} of {len(census.entries)} classes ({low} to {high} corners)"
-    title = f"Genus-{census.genus} polycubes, {span}, up to {up_to[str(census.symmetry)]}"
+    title = f"Genus-{census.genus} polycubes, {span}, up to {Symmetry.parse(census.symmetry).up_to}"
     full = str(census.symmetry) == "full"  # the move graph names classes by full signature
     if full:
         from polyloops.reach.move_graph import move_graph
