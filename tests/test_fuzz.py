@@ -226,7 +226,7 @@ def test_terminated_write_leaves_no_temporary_file(tmp_path):
     proc = subprocess.Popen([sys.executable, "-m", "polyloops", "catalog", "--max-corners", "32",
                              "--workers", "2", "-o", str(out)], stdout=subprocess.DEVNULL,
                             stderr=subprocess.PIPE, stdin=subprocess.DEVNULL)
-    time.sleep(4)
+    time.sleep(2)  # the run is under way: its workers started
     proc.terminate()
     proc.wait(timeout=30)
     assert proc.returncode == 130

@@ -363,11 +363,11 @@ def test_moves_cli_on_a_large_slab(tmp_path, capsys):
     assert "(>=: Z not finished, stopped by the time limit" in capsys.readouterr().out
     # one budget for all three axes, and the line names each axis it did not finish
     start = time.monotonic()
-    assert main(["moves", str(path), "--count", "--time-limit", "1.5", "--json"]) == 0
+    assert main(["moves", str(path), "--count", "--time-limit", "0.6"]) == 0
     assert time.monotonic() - start < 5.0
-    unfinished = [a for a, done in json.loads(capsys.readouterr().out)["complete"].items() if not done]
-    assert main(["moves", str(path), "--count", "--time-limit", "1.5"]) == 0
     text = capsys.readouterr().out
+    counts = text.splitlines()[0].split()[1:]  # "additions X:6  Y:>=40  Z:>=12"
+    unfinished = [c.split(":")[0] for c in counts if ":>=" in c]
     assert unfinished and f"{' and '.join(unfinished)} not finished" in text and "shared across" in text
     start = time.monotonic()
     assert main(["moves", str(path), "--add", "Z", "--time-limit", "1", "--json"]) == 0
