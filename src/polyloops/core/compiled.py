@@ -22,6 +22,7 @@ import os
 from collections.abc import Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass
+from functools import lru_cache
 from types import ModuleType
 
 from polyloops.core.errors import PolyloopsError
@@ -79,10 +80,16 @@ def _names(words: str | tuple[str, ...], where: str) -> frozenset[str]:
     return frozenset(items)
 
 
+@lru_cache(maxsize=8)
+def _from_env(value: str) -> frozenset[str]:
+    # parsed once per value: in_use() sits on hot paths (every canonical form asks it)
+    return _names(value, ENV)
+
+
 def forced() -> frozenset[str]:
     """The parts whose twins run now: named by ``POLYLOOPS_PURE_PYTHON`` or a :func:`pure_python`
     block."""
-    out = _names(os.environ.get(ENV, ""), ENV)
+    out = _from_env(os.environ.get(ENV, ""))
     for names in _forced:
         out |= names
     return out
