@@ -16,18 +16,16 @@ from __future__ import annotations
 import argparse
 import time
 
-import polyloops.generate.loops.arrangements as arrangements
 from polyloops.catalog.classes import map_classes
-from polyloops.generate.loops.arrangements import SearchStats, candidate_arrangements
+from polyloops.generate.loops.arrangements import Cuts, SearchStats, candidate_arrangements
 
 SETTINGS = {"neither": (False, False), "cut 4": (True, False), "both": (True, True)}
 
 
 def run(n: int, colour_cut: bool, meet_cut: bool) -> tuple[SearchStats, float, float, int]:
-    arrangements.COLOUR_CUT, arrangements.MEET_CUT = colour_cut, meet_cut
     stats: list[SearchStats] = []
     start = time.process_time()
-    found = list(candidate_arrangements(n, on_stats=stats.append))
+    found = list(candidate_arrangements(n, on_stats=stats.append, cuts=Cuts(colour_cut, meet_cut)))
     search = time.process_time() - start
     start = time.process_time()
     records = sum(len(map_classes(a.quad_mesh())["full"]) for a in found)

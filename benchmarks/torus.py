@@ -17,31 +17,33 @@ import argparse
 import os
 import time
 
-import polyloops.generate.torus.search as torus
 from polyloops.catalog.classes import map_classes
 from polyloops.core import compiled
+from polyloops.generate.torus.candidates import SecondStage, candidate_torus_arrangements
+from polyloops.generate.torus.cuts import base_bound
+from polyloops.generate.torus.stages import TorusSearchStats, first_stage, forget_first_stage
 
 
-def row(n: int) -> list[object]:
-    torus._bases.cache_clear()
+def row(n: int, stage: SecondStage) -> list[object]:
+    forget_first_stage()
     start = time.process_time()
-    bases, _ = torus._bases(n // 3, torus._compiled())
+    bases, _ = first_stage(base_bound(n))
     first = time.process_time() - start
-    stats: list[torus.TorusSearchStats] = []
+    stats: list[TorusSearchStats] = []
     start = time.process_time()
-    maps = list(torus.candidate_torus_arrangements(n, on_stats=stats.append))
+    maps = list(candidate_torus_arrangements(n, on_stats=stats.append, stage=stage))
     second = time.process_time() - start  # the bases are cached: the second stage alone
     start = time.process_time()
     classes = sum(len(map_classes(a.quad_mesh())["full"]) for a in maps)
     classify = time.process_time() - start
     s = stats[0]
-    work = s.region_choices if torus.SECOND_STAGE == "regions" else s.states - stats_first(n)
+    work = s.region_choices if stage is SecondStage.REGIONS else s.states - stats_first(n)
     return [n, len(bases), f"{first:.1f}", work, f"{second:.1f}", len(maps), f"{classify:.1f}", classes]
 
 
 def stats_first(n: int) -> int:
     """The states of the first stage (the second stage's statistics include them)."""
-    return torus._bases(n // 3, torus._compiled())[1].states
+    return first_stage(base_bound(n))[1].states
 
 
 def main() -> None:
@@ -56,14 +58,13 @@ def main() -> None:
     args = parser.parse_args()
     if args.python:  # the switchboard's twins, for the rest of the run
         os.environ[compiled.ENV] = "torus,regions"
-    torus.SECOND_STAGE = args.stage
     work = "regions cut" if args.stage == "regions" else "second-stage states"
     header = ["corners N", "B (<= N/3 crossings)", "first stage s", work, "second stage s",
               "maps with a polycube", "classify s", "classes (all symmetries)"]
     print("| " + " | ".join(header) + " |")
     print("|" + "---:|" * len(header))
     for n in range(args.min, args.max + 1, args.step):
-        print("| " + " | ".join(map(str, row(n))) + " |", flush=True)
+        print("| " + " | ".join(map(str, row(n, SecondStage(args.stage)))) + " |", flush=True)
 
 
 if __name__ == "__main__":

@@ -15,8 +15,10 @@ from hypothesis import strategies as st
 from polyloops.catalog.run import CatalogRunError, build_catalog
 from polyloops.core.halfedge import HalfEdgeMap
 from polyloops.generate.loops.arrangements import (
+    ALL_CUTS,
     Arrangement,
     ArrangementError,
+    Cuts,
     SearchStats,
     candidate_arrangements,
     children,
@@ -39,13 +41,13 @@ pytestmark = pytest.mark.skipif(not compiled_generator_available(),
                                 reason="the compiled arrangement search was not built (no C compiler)")
 
 
-def whole_tree(max_corners: int) -> list[Arrangement]:
+def whole_tree(max_corners: int, cuts: Cuts = ALL_CUTS) -> list[Arrangement]:
     out, stack = [], [None]
     while stack:
         node = stack.pop()
         if node is not None:
             out.append(node)
-        stack.extend(children(node, max_corners)[0])
+        stack.extend(children(node, max_corners, cuts)[0])
     return out
 
 
@@ -54,13 +56,6 @@ def reference_code(a: Arrangement) -> tuple[int, ...]:
 
 
 CUTS = [(False, False), (True, False), (True, True)]  # (cut 4, cut 5)
-
-
-def set_cuts(monkeypatch, colour_cut: bool, meet_cut: bool) -> None:
-    import polyloops.generate.loops.arrangements as arrangements_module
-
-    monkeypatch.setattr(arrangements_module, "COLOUR_CUT", colour_cut)
-    monkeypatch.setattr(arrangements_module, "MEET_CUT", meet_cut)
 
 
 def expected_under(cuts: tuple[bool, bool], max_corners: int,
@@ -84,14 +79,13 @@ def expected_under(cuts: tuple[bool, bool], max_corners: int,
 @pytest.mark.parametrize("cuts", CUTS)
 @pytest.mark.parametrize("max_corners", [12, pytest.param(14, marks=pytest.mark.slow),
                                          pytest.param(16, marks=pytest.mark.slow)])
-def test_search_visits_exactly_what_the_slow_twin_finds(max_corners, cuts, monkeypatch):
+def test_search_visits_exactly_what_the_slow_twin_finds(max_corners, cuts):
     """The compiled search (canonical construction, every cut) visits each connected
     arrangement of simple loops that passes the counting bound once: the slow twin's list,
     made with no canonical construction, another canonical code and only the final bound; with
     cut 4, those of them whose crossing graph is 3-colourable (the twin tries every colouring);
     with cut 5 too, those within its bound (the twin counts each region's sides per loop)."""
-    set_cuts(monkeypatch, *cuts)
-    tree = whole_tree(max_corners)
+    tree = whole_tree(max_corners, Cuts(*cuts))
     codes = [reference_code(a) for a in tree]
     assert len(set(codes)) == len(codes)  # no arrangement twice
     expected = expected_under(cuts, max_corners, reference_arrangements(max_corners))
@@ -152,15 +146,14 @@ def test_children_give_back_their_parent(a):
 
 @pytest.mark.parametrize("n", [*range(8, 23, 2), pytest.param(24, marks=pytest.mark.slow),
                                pytest.param(26, marks=pytest.mark.slow)])
-def test_candidates_are_plantris(n, monkeypatch):
+def test_candidates_are_plantris(n):
     """The candidate maps with n corners are those plantri's filter keeps, map for map; with
     cut 4, those of them whose crossing graph is 3-colourable (every colouring tried); with cut
     5 too, those of these where no region has two sides on one loop."""
     theirs = {Arrangement.of(m) for m in candidate_maps(n, find_plantri())}
     found = {}
     for cuts in CUTS:
-        set_cuts(monkeypatch, *cuts)
-        found[cuts] = [a for a in candidate_arrangements(n) if a.corners == n]
+        found[cuts] = [a for a in candidate_arrangements(n, cuts=Cuts(*cuts)) if a.corners == n]
         assert len(set(found[cuts])) == len(found[cuts])
     assert set(found[False, False]) == theirs
     colourable = {a for a in theirs if three_colourable(reference_code(a))}
@@ -168,9 +161,9 @@ def test_candidates_are_plantris(n, monkeypatch):
     assert set(found[True, True]) == {a for a in colourable if meets_each_loop_once(reference_code(a))}
 
 
-def test_quad_mesh_round_trip(monkeypatch):
-    set_cuts(monkeypatch, False, False)  # every candidate map
-    found = list(candidate_arrangements(20))
+def test_quad_mesh_round_trip():
+    none = Cuts(colour=False, meet=False)  # every candidate map
+    found = list(candidate_arrangements(20, cuts=none))
     maps = sum(1 for _ in candidate_maps(20, find_plantri()))  # what plantri's filter keeps
     assert Counter(a.corners for a in found)[20] == maps == 60
     for a in found:
@@ -178,7 +171,7 @@ def test_quad_mesh_round_trip(monkeypatch):
         assert isinstance(m, HalfEdgeMap)
         assert (m.num_corners, m.num_faces) == (a.corners, a.crossings)
         assert sorted(len(f) for f in m.faces) == [4] * a.crossings
-        assert Arrangement.of(m) == a and Arrangement.of(m).candidate
+        assert Arrangement.of(m, none) == a and Arrangement.of(m, none).candidate
         assert all(3 <= s <= 6 for s in a.region_sizes())
 
 

@@ -756,3 +756,35 @@ def test_a_genus_two_generator_plugs_in_by_registering_itself(tmp_path, capsys):
         assert build_parser().parse_args(["catalog", "--genus", "2", "--max-corners", "9"]).genus == 2
     finally:
         generators().pop("toy-genus2")
+
+
+@needs("arrangements")
+@needs("torus")  # the Python loop-by-loop second stage takes minutes
+def test_generator_options_change_the_work_not_the_records(tmp_path):
+    """The search variants that were module flags are generator options: the loops search with
+    its cuts off and the torus search with its loop-by-loop second stage write the records of
+    the defaults byte for byte, do other work, say so in the summary, and keep their parts apart
+    (a default run over a variant's directory recomputes every job instead of reusing them).
+    The torus run stops below the smallest genus-1 polycube (32 corners: the loop-by-loop stage
+    takes two minutes there); test_torus compares the two stages' maps."""
+    from polyloops.catalog.run import CatalogRunError, build_catalog
+    from polyloops.generate.loops.arrangements import Cuts
+
+    runs = [("loops", 0, 18, {"cuts": Cuts(colour=False, meet=False)}, "no-colour-no-meet"),
+            ("torus", 1, 26, {"stage": "loops"}, "stage-loops")]
+    for name, genus, top, options, variant in runs:
+        plain = build_catalog(tmp_path / f"{name}-plain", top, generator=name, genus=genus)
+        other = build_catalog(tmp_path / f"{name}-variant", top, generator=name, genus=genus, options=options)
+        assert (tmp_path / f"{name}-variant" / "catalog.jsonl").read_bytes() \
+            == (tmp_path / f"{name}-plain" / "catalog.jsonl").read_bytes()
+        assert other.summary["counts"] == plain.summary["counts"]
+        assert other.summary["variant"] == variant and "variant" not in plain.summary
+        assert other.summary["search"] != plain.summary["search"]
+        parts = sorted(p.name for p in (tmp_path / f"{name}-variant" / "parts").glob("*.json"))
+        assert parts and all(p.startswith(f"{name}-{variant}-") for p in parts)
+        again = build_catalog(tmp_path / f"{name}-variant", top, generator=name, genus=genus, overwrite=True)
+        assert again.summary["search"] == plain.summary["search"] and "variant" not in again.summary
+    with pytest.raises(CatalogRunError, match="stage is regions or loops"):
+        build_catalog(tmp_path / "bad", 32, generator="torus", genus=1, options={"stage": "rows"})
+    with pytest.raises(CatalogRunError, match="takes no option cuts"):
+        build_catalog(tmp_path / "bad", 16, generator="plantri", options={"cuts": Cuts()})

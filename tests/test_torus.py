@@ -8,17 +8,23 @@ from polyloops.core import compiled as compiled_parts
 from polyloops.core.canonical import from_signature
 from polyloops.core.directions import Axis
 from polyloops.core.labellings import polycube_structures, proper_colourings
-from polyloops.generate.torus.search import (
-    TorusArrangement,
-    canonical,
+from polyloops.generate.torus.arrangement import TorusArrangement, canonical
+from polyloops.generate.torus.candidates import SecondStage, candidate_torus_arrangements
+from polyloops.generate.torus.cuts import (
+    axis_runs,
+    base_bound,
     layered_need,
-    torus_arrangements,
-    two_stage_decompositions,
+    orientable,
+    third_sides_consistent,
 )
+from polyloops.generate.torus.decompositions import independent_with_bipartite_rest, two_stage_decompositions
+from polyloops.generate.torus.stages import torus_arrangements, torus_children, two_axis_bases
 from polyloops.io.examples import load_example
 from polyloops.reach.search import explore, stored_signatures
 from reference.torus_brute import _least_code, torus_maps_by_brute_force
 from switch import needs, running
+
+LOOPS = SecondStage.LOOPS  # the loop-by-loop second stage, which lists maps without a polycube too
 
 
 def by_size(arrangements, n):
@@ -66,8 +72,6 @@ def _rot(d):
 def test_canonical_codes_do_not_depend_on_numbering_or_mirror():
     """Renumbered and mirrored copies of arrangements, cellular or marked, get the same code;
     different arrangements get different ones."""
-    from polyloops.generate.torus.search import torus_children
-
     rng = random.Random(7)
     states = [kid for root in (0, 1) for kid, _ in torus_children(root, 4)]
     states += [kid for s in list(states) for kid, _ in torus_children(s, 4)]
@@ -171,11 +175,8 @@ def test_the_two_stages_list_what_the_direct_search_lists():
     n = 12
     direct = list(torus_arrangements(n, colours=3, regions=True))
     want = {canonical(TorusArrangement(a.twin))[0] for a in direct if two_stage_decompositions(a, n)}
-    from polyloops.generate.torus import search as torus
 
-    with pytest.MonkeyPatch.context() as patch:
-        patch.setattr(torus, "SECOND_STAGE", "loops")
-        got = [canonical(a)[0] for a in torus.candidate_torus_arrangements(n, polycubes=False)]
+    got = [canonical(a)[0] for a in candidate_torus_arrangements(n, polycubes=False, stage=LOOPS)]
     assert len(got) == len(set(got)) and set(got) == want and want
 
 
@@ -232,14 +233,11 @@ def test_each_map_comes_from_its_canonical_decomposition_and_none_is_lost(monkey
     """Listing each map from its canonical decomposition only (so that shares never repeat a
     map) keeps every map the second stage reaches: the same maps as the whole search with
     duplicates removed by code, at 20 crossings."""
-    from polyloops.generate.torus import search as torus
-    from polyloops.generate.torus.search import torus_children, two_axis_bases
 
-    monkeypatch.setattr(torus, "SECOND_STAGE", "loops")
 
     n = 20
     reached = set()
-    for base in two_axis_bases(n // 3):
+    for base in two_axis_bases(base_bound(n)):
         stack = [TorusArrangement(base.twin, (), (0,) * len(base.twin))]
         while stack:
             kids = torus_children(stack.pop(), n, None, True)
@@ -247,19 +245,16 @@ def test_each_map_comes_from_its_canonical_decomposition_and_none_is_lost(monkey
                 if facts.target and two_stage_decompositions(TorusArrangement(kid.twin), kid.crossings):
                     reached.add(canonical(TorusArrangement(kid.twin))[0])
             stack.extend(kid for kid, _ in kids)
-    listed = [canonical(a)[0] for a in torus.candidate_torus_arrangements(n, polycubes=False)]
+    listed = [canonical(a)[0] for a in candidate_torus_arrangements(n, polycubes=False, stage=LOOPS)]
     assert len(listed) == len(set(listed)) and set(listed) == reached
 
 
 def test_the_second_stage_orients_the_third_axis(monkeypatch):
     """The orientation cut drops states (so it can fail), and every map listed has a
     decomposition whose third-axis loops it can orient."""
-    from polyloops.generate.torus import search as torus
-    from polyloops.generate.torus.search import third_sides_consistent
 
-    monkeypatch.setattr(torus, "SECOND_STAGE", "loops")
     stats = []
-    listed = list(torus.candidate_torus_arrangements(14, on_stats=stats.append, polycubes=False))
+    listed = list(candidate_torus_arrangements(14, on_stats=stats.append, polycubes=False, stage=LOOPS))
     assert stats[0].inconsistent_sides > 0 and listed
     for a in listed:
         decompositions = two_stage_decompositions(a, a.crossings)
@@ -272,14 +267,13 @@ def test_the_second_stage_orients_the_third_axis(monkeypatch):
 def _second_stage_states(n: int, compiled: bool, monkeypatch) -> tuple[dict, set]:
     """Every state the second stage keeps up to ``n`` crossings, by Python canonical code, and
     the targets among them."""
-    import polyloops.generate.torus.search as torus
 
     states, targets = {}, set()
     with running("torus", compiled):
-        for base in torus.two_axis_bases(n // 3):
+        for base in two_axis_bases(base_bound(n)):
             stack = [TorusArrangement(base.twin, (), (0,) * len(base.twin))]
             while stack:
-                kids = torus.torus_children(stack.pop(), n, None, True)
+                kids = torus_children(stack.pop(), n, None, True)
                 for kid, facts in kids:
                     code = canonical(TorusArrangement(kid.twin, (), kid.layer))[0]
                     assert code not in states  # each state once
@@ -306,13 +300,11 @@ def test_the_compiled_second_stage_keeps_the_python_states(n, monkeypatch):
 def test_the_compiled_search_lists_the_python_candidate_maps(n, monkeypatch):
     """Both stages and the decomposition test, compiled and in Python: the same candidate
     maps, each once."""
-    from polyloops.generate.torus import search as torus
 
-    monkeypatch.setattr(torus, "SECOND_STAGE", "loops")
     with running("torus", True):
-        with_c = [canonical(a)[0] for a in torus.candidate_torus_arrangements(n, polycubes=False)]
+        with_c = [canonical(a)[0] for a in candidate_torus_arrangements(n, polycubes=False, stage=LOOPS)]
     with running("torus", False):
-        in_python = [canonical(a)[0] for a in torus.candidate_torus_arrangements(n, polycubes=False)]
+        in_python = [canonical(a)[0] for a in candidate_torus_arrangements(n, polycubes=False, stage=LOOPS)]
     assert len(with_c) == len(set(with_c)) and set(with_c) == set(in_python) and with_c
 
 
@@ -331,14 +323,13 @@ def test_the_second_stage_never_crosses_its_start_edge_again(monkeypatch):
 def test_the_compiled_first_stage_keeps_the_python_states(n, colours, monkeypatch):
     """The compiled marked search keeps exactly the states of the Python one (marked states
     included, by canonical code), each once."""
-    import polyloops.generate.torus.search as torus
 
     def states(compiled: bool) -> list:
         out, stack = [], [1, 0]
         with running("torus", compiled):
             while stack:
                 node = stack.pop()
-                kids = torus.torus_children(node, n, colours)
+                kids = torus_children(node, n, colours)
                 out += [canonical(kid)[0] for kid, _ in kids]
                 stack.extend(kid for kid, _ in kids)
         return out
@@ -353,8 +344,6 @@ def test_decompositions_are_tried_over_every_set_of_loops():
     bipartite crossing graph: checked against every set of loops."""
     from itertools import combinations
 
-    from polyloops.generate.torus.search import _independent_with_bipartite_rest
-
     arrangements = list(torus_arrangements(5)) + list(torus_arrangements(9, 3, True))
     assert len(arrangements) > 50
     for a in arrangements:
@@ -366,7 +355,7 @@ def test_decompositions_are_tried_over_every_set_of_loops():
                 sub = [{rest.index(u) for u in adj[v] if u in rest} for v in rest]
                 if not any(adj[v] & set(chosen) for v in chosen) and next(proper_colourings(sub, 2), None):
                     want.add(frozenset(chosen))
-        assert set(_independent_with_bipartite_rest(adj)) == want
+        assert set(independent_with_bipartite_rest(adj)) == want
 
 
 def test_new_third_axis_loops_turn_at_least_four_times():
@@ -374,13 +363,9 @@ def test_new_third_axis_loops_turn_at_least_four_times():
     of the third axis crosses the two classes of B in four runs at least; the polycube
     structures of the examples have that property on every loop and axis pair."""
     from polyloops.core.directions import Axis as A
-    from polyloops.generate.torus import search as torus
-    from polyloops.generate.torus.search import axis_runs
 
     stats = []
-    with pytest.MonkeyPatch.context() as patch:
-        patch.setattr(torus, "SECOND_STAGE", "loops")
-        list(torus.candidate_torus_arrangements(16, on_stats=stats.append, polycubes=False))
+    list(candidate_torus_arrangements(16, on_stats=stats.append, polycubes=False, stage=LOOPS))
     assert stats[0].not_rectilinear > 0
     states, _ = _second_stage_states(16, True, pytest.MonkeyPatch())
     assert all(axis_runs(kid, lp) >= 4 for kid in states.values() for lp in kid.third_loops())
@@ -397,7 +382,6 @@ def test_every_loop_of_every_catalog_class_crosses_the_other_axes_in_four_runs()
     """The four-runs lemma on independent data: every loop of every genus-0 class through 32
     corners and of the genus-1 catalog, the axes crossed along it counted in runs."""
     from polyloops.catalog.census import default_catalog, read_catalog
-    from polyloops.generate.torus.search import axis_runs
 
     checked = 0
     for genus, top in ((0, 32), (1, 99)):
@@ -421,7 +405,6 @@ def test_real_polycubes_are_orientable_with_any_axis_third():
     :func:`orientable` (each of its constraints is Condition 3 at a corner of the polycube)."""
     from polyloops.catalog.census import default_catalog, read_catalog
     from polyloops.core.directions import Axis as A
-    from polyloops.generate.torus.search import orientable
 
     checked = 0
     for genus, top in ((0, 30), (1, 99)):

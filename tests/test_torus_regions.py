@@ -8,11 +8,21 @@ from __future__ import annotations
 import pytest
 
 import polyloops.generate.torus.regions as regions
-import polyloops.generate.torus.search as torus
 from polyloops.core.directions import Axis
 from polyloops.core.disjoint_sets import ParitySets
 from polyloops.core.labellings import admits_polycube, polycube_structures, proper_colourings, sign_components
-from polyloops.generate.torus.search import TorusArrangement, TorusSearchStats
+from polyloops.generate.torus.arrangement import (
+    TorusArrangement,
+    axis_classes,
+    labelled_mesh,
+    layered_code,
+    walk_forward,
+    with_layer,
+)
+from polyloops.generate.torus.candidates import SecondStage, candidate_torus_arrangements
+from polyloops.generate.torus.cuts import base_bound
+from polyloops.generate.torus.decompositions import carries_polycube, decomposes
+from polyloops.generate.torus.stages import TorusSearchStats, first_stage, second_stage, two_axis_bases
 from polyloops.io.examples import load_example
 from switch import needs, running
 from test_torus import genus_one_polycubes
@@ -24,7 +34,7 @@ def _systems(n: int, cut: bool, compiled: bool, monkeypatch) -> tuple[list, Toru
     stats = TorusSearchStats()
     out = []
     with running("regions", compiled):
-        for rank, base in enumerate(torus.two_axis_bases(n // 3)):
+        for rank, base in enumerate(two_axis_bases(base_bound(n))):
             for twin, layer in regions.third_axis_systems(base, n, stats, cut_one_way=cut):
                 out.append((rank, twin, layer))
     return sorted(out), stats
@@ -46,28 +56,26 @@ def test_the_compiled_region_search_lists_what_the_python_one_lists(n, cut, monk
 
 
 def _condition_three(a: TorusArrangement) -> bool:
-    m, axes = torus.labelled_mesh(a)
+    m, axes = labelled_mesh(a)
     return sign_components(m, axes) is not None
 
 
+@needs("torus")  # the loop-by-loop search in Python takes minutes
 @pytest.mark.parametrize("n", [20, *(pytest.param(n, marks=pytest.mark.slow) for n in (24, 26))])
-def test_without_its_cut_the_region_search_lists_what_the_loop_search_lists(n, monkeypatch):
-    """For every B, the decompositions (:func:`torus.decomposes`) whose labelling meets
+def test_without_its_cut_the_region_search_lists_what_the_loop_search_lists(n):
+    """For every B, the decompositions (:func:`decomposes`) whose labelling meets
     Condition 3: the same from the region search (level-graph cut off) and from the
     loop-by-loop search, which shares none of its code (by canonical code)."""
-    monkeypatch.setattr(torus, "SECOND_STAGE", "regions")
     total = 0
-    for base in torus.two_axis_bases(n // 3):
-        if not torus._compiled():
-            pytest.skip("the compiled loop-by-loop search was not built")
-        loops = {torus._layered_code(kid) for kid in torus._second_stage_compiled(base, n, TorusSearchStats())
-                 if _condition_three(kid)}
+    for base in two_axis_bases(base_bound(n)):
+        by_loops = second_stage(base, n, TorusSearchStats())
+        loops = {layered_code(kid) for kid in by_loops if _condition_three(kid)}
         found = set()
         for twin, layer in regions.third_axis_systems(base, n, cut_one_way=False):
             kid = TorusArrangement(twin, (), layer)
             chosen = frozenset(kid.third_loops())
-            if torus.decomposes(TorusArrangement(twin), chosen, n) and _condition_three(kid):
-                found.add(torus._layered_code(kid))
+            if decomposes(TorusArrangement(twin), chosen, n) and _condition_three(kid):
+                found.add(layered_code(kid))
         assert found == loops
         total += len(found)
     assert total > 0
@@ -84,7 +92,7 @@ def _known_decompositions(max_corners: int):
         least = min(b.crossings for b in left.values())
         for axis, chosen in by_axis.items():
             if left[axis].crossings == least:
-                yield torus._with_layer(a, chosen), left[axis]
+                yield with_layer(a, chosen), left[axis]
 
 
 @pytest.mark.parametrize("corners", [36, pytest.param(40, marks=pytest.mark.slow)])
@@ -94,11 +102,11 @@ def test_the_cut_keeps_every_polycube_at_hand(corners):
     corners: the region search, with every cut, builds each from B."""
     count = 0
     for layered, base in _known_decompositions(corners):
-        want = torus.layered_code(layered)
-        got = {torus.layered_code(TorusArrangement(twin, (), layer))
+        want = layered_code(layered)
+        got = {layered_code(TorusArrangement(twin, (), layer))
                for twin, layer in regions.third_axis_systems(base, layered.crossings)}
         assert want in got
-        assert torus.carries_polycube(layered)
+        assert carries_polycube(layered)
         count += 1
     assert count >= 10
 
@@ -115,7 +123,7 @@ def test_the_cycles_of_b_run_both_ways_in_real_polycubes():
             chosen = {a.loop_of[d] for d in range(ls.map.num_darts) if ls.axis_of_dart(d) == third}
             base = a.without_loops(chosen)
             keep = [v for v in range(a.crossings) if not {a.loop_of[4 * v], a.loop_of[4 * v + 1]} & chosen]
-            forward = torus._walk_forward(base)
+            forward = walk_forward(base)
             sign = {}  # per loop of B, +1 when its + side is on the right of B's reference walk
             for d in range(len(base.twin)):
                 if forward[d] == 1:
@@ -124,7 +132,7 @@ def test_the_cycles_of_b_run_both_ways_in_real_polycubes():
                     mesh_dart = 4 * keep[d // 4] + d % 4
                     loop = system.loop_of_dart[mesh_dart]
                     sign[base.loop_of[d]] = -ls.signs[loop] * system.side_of_dart[mesh_dart]
-            for cycle in regions.axis_cycles(base, torus._classes(base)):
+            for cycle in regions.axis_cycles(base, axis_classes(base)):
                 first = cycle.loops[0][0]
                 true = ParitySets(range(base.num_loops))
                 for lp, _ in cycle.loops:
@@ -142,9 +150,9 @@ def test_admits_polycube_agrees_with_the_structures_a_map_carries(monkeypatch):
     """``admits_polycube`` decides each labelling by axes one at a time; the structures of a
     map enumerate every labelling and every choice of sides together.  On the examples (every
     labelling of the ring carries one) and the candidate maps of 20 crossings (none does)."""
-    monkeypatch.setattr(torus, "SECOND_STAGE", "loops")
     maps = [load_example(name).map for name in ("ring", "ring-x", "bridged-ring", "l-shape")]
-    maps += [a.quad_mesh() for a in torus.candidate_torus_arrangements(20, polycubes=False)]
+    listed = candidate_torus_arrangements(20, polycubes=False, stage=SecondStage.LOOPS)
+    maps += [a.quad_mesh() for a in listed]
     seen = set()
     for m in maps:
         carried = {ls.axes for ls in polycube_structures(m)}
@@ -169,7 +177,7 @@ def test_the_first_stage_is_spilled_once_and_read_back(tmp_path):
 
     path = spill_bases(8, tmp_path)
     bases, stats = read_bases(str(path), 8)
-    listed, listed_stats = torus.first_stage(8)
+    listed, listed_stats = first_stage(8)
     assert bases == listed and len(bases) > 10 and stats == listed_stats
     stamp = path.stat().st_mtime_ns
     assert spill_bases(8, tmp_path) == path and path.stat().st_mtime_ns == stamp

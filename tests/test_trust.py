@@ -21,7 +21,7 @@ from polyloops.catalog.run import build_catalog, write_census
 from polyloops.cli import main
 from polyloops.generate.spill import SpillMismatch, SpillRefused, SpillTag, read_spill, write_spill
 from polyloops.generate.torus import read_bases, spill_bases
-from polyloops.generate.torus import search as torus
+from polyloops.generate.torus.stages import first_stage
 from switch import needs
 
 
@@ -90,7 +90,7 @@ def test_another_bound_of_the_first_stage_is_listed_again(tmp_path):
         read_bases(str(tmp_path / "torus-bases-8.bin"), 8)
     spill_bases(8, tmp_path)
     read_bases.cache_clear()
-    assert read_bases(str(tmp_path / "torus-bases-8.bin"), 8)[0] == torus.first_stage(8)[0]
+    assert read_bases(str(tmp_path / "torus-bases-8.bin"), 8)[0] == first_stage(8)[0]
 
 
 @pytest.mark.slow

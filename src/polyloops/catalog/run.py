@@ -17,8 +17,8 @@ import fcntl
 import hashlib
 import json
 import os
-from collections.abc import Callable, Iterator
-from dataclasses import dataclass
+from collections.abc import Callable, Iterator, Mapping
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
@@ -278,6 +278,8 @@ def summarize(generator: Generator, results: list[JobResult], min_n: int, max_n:
                                                for n in corners}}
     if generator.statistics_key is not None:
         out["generator"] = generator.name
+        if generator.variant:
+            out["variant"] = generator.variant
         out[generator.statistics_key] = statistics
     if partial is not None:
         out["partial"] = "only the share res/mod given on the command line"
@@ -331,7 +333,8 @@ def build_catalog(out: Path | str, max_corners: int, min_corners: int = 8,
                   plantri: str | None = None, method: str = "auto", generator: str | None = None,
                   progress: Callable[[JobResult], None] | None = None,
                   on_plan: Callable[[list[Job]], None] | None = None,
-                  overwrite: bool = False, genus: int = 0) -> CatalogBuild:
+                  overwrite: bool = False, genus: int = 0,
+                  options: Mapping[str, Any] | None = None) -> CatalogBuild:
     """Build (or resume) the catalog of the polycubes of genus ``genus`` in directory ``out``.
 
     Parameters
@@ -354,10 +357,14 @@ def build_catalog(out: Path | str, max_corners: int, min_corners: int = 8,
     plantri, method:
         Which plantri binary and which strip filter (see
         :func:`polyloops.generate.plantri.quadrangulations.filtered_batches`), for ``plantri``.
+    options:
+        The generator's other options (``loops``: ``cuts``, a
+        :class:`~polyloops.generate.loops.arrangements.Cuts`; ``torus``: ``stage``, ``"regions"``
+        or ``"loops"``): the same records, other work; a run keeps its parts apart.
     progress, on_plan:
         Called with each finished job's result, and once with the list of jobs.
     genus:
-        0 (the sphere) or 1 (the torus: the ``torus`` generator, :mod:`polyloops.generate.torus.search`).
+        0 (the sphere) or 1 (the torus: the ``torus`` generator, :mod:`polyloops.generate.torus`).
     overwrite:
         Replace a catalog in ``out`` that covers more than this build (more corner counts,
         another mode, the whole search where this is a share); without it such a build is
@@ -398,7 +405,7 @@ def build_catalog(out: Path | str, max_corners: int, min_corners: int = 8,
     if name not in generators():
         raise CatalogRunError(f"unknown generator {name!r}: choose one of {', '.join(sorted(generators()))}")
     try:
-        chosen = generators()[name].with_options(plantri=plantri, method=method)
+        chosen = generators()[name].with_options(plantri=plantri, method=method, **(options or {}))
     except ValueError as err:
         raise CatalogRunError(str(err)) from None
     why = chosen.unavailable()
@@ -417,7 +424,8 @@ def build_catalog(out: Path | str, max_corners: int, min_corners: int = 8,
         raise CatalogRunError(f"{out}: cannot write: {err.strerror}") from None
     with locked(out):
         _refuse_less(out, new, overwrite)
-        jobs = chosen.plan(min_corners, max_corners, share, workers)
+        planned = chosen.plan(min_corners, max_corners, share, workers)
+        jobs = [replace(job, variant=chosen.variant) for job in planned]  # not the parts of other options
         if on_plan:
             on_plan(jobs)
         try:

@@ -60,7 +60,7 @@ PARTS: dict[str, CompiledPart] = {part.name: part for part in (
                  "the arrangement search of the loops generator",
                  "plantri's generator, which gives the same catalog records"),
     CompiledPart("torus", "polyloops.generate.torus._torus", "both stages of the torus search",
-                 "the Python torus search (polyloops.generate.torus.search)"),
+                 "the Python torus search (polyloops.generate.torus.stages)"),
     CompiledPart("regions", "polyloops.generate.torus._regions", "the torus search's region search",
                  "the Python region search (polyloops.generate.torus.regions)"),
 )}

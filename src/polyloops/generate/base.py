@@ -45,13 +45,16 @@ __all__ = ["GENERATORS", "Generator", "Job", "Tally", "generators", "register"]
 @dataclass(frozen=True)
 class Job:
     """One share of a catalog run: the candidate maps of generator ``generator`` with ``low``
-    to ``n`` corners in share ``res`` of ``mod``."""
+    to ``n`` corners in share ``res`` of ``mod``; ``variant``, the generator's options when they
+    are not its defaults (:attr:`Generator.variant`), so that a run never reuses the parts of a
+    run with other options."""
 
     generator: str
     n: int
     low: int
     res: int = 0
     mod: int = 1
+    variant: str = ""
 
     @property
     def name(self) -> str:
@@ -60,13 +63,17 @@ class Job:
 
     def to_json(self) -> dict[str, Any]:
         """A JSON-ready dict of the job."""
-        return {"generator": self.generator, "n": self.n, "low": self.low, "res": self.res, "mod": self.mod}
+        out: dict[str, Any] = {"generator": self.generator, "n": self.n, "low": self.low, "res": self.res,
+                               "mod": self.mod}
+        if self.variant:
+            out["variant"] = self.variant
+        return out
 
     @classmethod
     def from_json(cls, data: dict[str, Any]) -> Job:
         """The job a stored result answers; raises ``KeyError`` or ``TypeError`` otherwise."""
         return cls(str(data["generator"]), int(data["n"]), int(data["low"]), int(data["res"]),
-                   int(data["mod"]))
+                   int(data["mod"]), str(data.get("variant", "")))
 
 
 @dataclass
@@ -103,6 +110,12 @@ class Generator(ABC):
         """What a user should know about how this generator will run here (a slower fallback)."""
         return []
 
+    @property
+    def variant(self) -> str:
+        """The options that differ from the defaults, as a short word for file names (``""``
+        at the defaults); the records do not depend on them, the work and statistics may."""
+        return ""
+
     def with_options(self, **options: Any) -> Generator:
         """This generator with the build's options (``plantri``: a binary, ``method``: the
         strip filter); one that takes none refuses any that is set.
@@ -124,7 +137,8 @@ class Generator(ABC):
 
     def job_name(self, job: Job) -> str:
         """A job's file name stem in ``DIR/parts``."""
-        return f"{self.name}-{job.low}to{job.n}-{job.res}of{job.mod}"
+        variant = f"-{job.variant}" if job.variant else ""
+        return f"{self.name}{variant}-{job.low}to{job.n}-{job.res}of{job.mod}"
 
     def corner_counts(self, job: Job) -> range:
         """The corner counts a job reports (each gets a :class:`CornerResult`)."""

@@ -10,18 +10,36 @@ from typing import Any
 
 from polyloops.core.halfedge import HalfEdgeMap
 from polyloops.generate.base import Generator, Job, Tally, register
+from polyloops.generate.loops.arrangements import ALL_CUTS, Cuts
 from polyloops.generate.spill import SPILL_VERSION
 
 
 class LoopsGenerator(Generator):
     """Arrangements of loops built one loop at a time by a canonical construction path (the
     compiled search); a job is share ``res/mod`` of the subtrees below the top of the tree,
-    covering every corner count at once."""
+    covering every corner count at once.  Its option ``cuts`` switches cuts of the search off
+    (:class:`~polyloops.generate.loops.arrangements.Cuts`: the same records, more work)."""
 
     name = "loops"
     visits = "arrangements"
     statistics_key = "search"
     preference = 2  # several times cheaper from 26 corners on
+    options = frozenset({"cuts"})
+
+    def __init__(self, cuts: Cuts = ALL_CUTS):
+        self.cuts = cuts
+
+    @property
+    def variant(self) -> str:
+        """``""``, or the cuts switched off (``no-colour``, ``no-meet``)."""
+        off = [name for name, on in (("colour", self.cuts.colour), ("meet", self.cuts.meet)) if not on]
+        return "-".join(f"no-{name}" for name in off)
+
+    def with_options(self, **options: Any) -> Generator:
+        """This generator with other ``cuts`` (a :class:`~polyloops.generate.loops.arrangements.Cuts`)."""
+        super().with_options(**options)  # refuses what it does not take
+        cuts = options.get("cuts")
+        return LoopsGenerator(cuts) if cuts is not None else self
 
     def unavailable(self) -> str | None:
         """Why the compiled search cannot run (not built, or switched off), or ``None``."""
@@ -46,10 +64,10 @@ class LoopsGenerator(Generator):
         file.  A rerun reads the file instead of computing the top again."""
         bounds = {job.n for job in jobs}
         if where is None:  # kept in memory, each job sent its share
-            tops = {n: loops_frontier(n, workers, dask) for n in bounds}
+            tops = {n: loops_frontier(n, workers, dask, self.cuts) for n in bounds}
             return [(share_of(tops[job.n][0], job.res, job.mod), tops[job.n][1] if job.res == 0 else None)
                     for job in jobs]
-        files = {n: spill_frontier(n, workers, dask, where) for n in bounds}
+        files = {n: spill_frontier(n, workers, dask, where, self.cuts) for n in bounds}
         return [(str(files[job.n]), job.res == 0) for job in jobs]
 
     def candidates(self, job: Job, context: Any, tally: Tally) -> Iterator[HalfEdgeMap]:
@@ -59,11 +77,11 @@ class LoopsGenerator(Generator):
 
         top, top_search = context if context is not None else (None, None)
         if isinstance(top, str):  # a spilled top: read this share's part
-            top, top_search = read_frontier_share(top, job.n, job.res, job.mod, bool(top_search))
+            top, top_search = read_frontier_share(top, job.n, job.res, job.mod, bool(top_search), self.cuts)
         stats = [SearchStats(**top_search)] if top_search else []
         # a given ``top`` is this share's part of the frontier (share_of): all of it is ours
         res, mod = (0, 1) if top is not None else (job.res, job.mod)
-        for a in candidate_arrangements(job.n, res, mod, on_stats=stats.append, top=top):
+        for a in candidate_arrangements(job.n, res, mod, on_stats=stats.append, top=top, cuts=self.cuts):
             if a.corners >= job.low:
                 yield a.quad_mesh()
         total = sum(stats, SearchStats()).as_dict()
@@ -78,13 +96,14 @@ def loops_slices(max_n: int, workers: int) -> int:
     return 1 if workers <= 1 and max_n < 26 else max(workers, 1) * (8 if max_n >= 26 else 1)
 
 
-def _expand_chunk(args: tuple[list[Any], int]) -> list[Any]:
+def _expand_chunk(args: tuple[list[Any], int, Cuts]) -> list[Any]:
     from polyloops.generate.loops.arrangements import expand
 
     return expand(*args)
 
 
-def loops_frontier(max_n: int, workers: int = 1, dask: str | None = None) -> tuple[Any, dict[str, int]]:
+def loops_frontier(max_n: int, workers: int = 1, dask: str | None = None, cuts: Cuts = ALL_CUTS
+                   ) -> tuple[Any, dict[str, int]]:
     """The loops search's frontier for ``max_n`` corners and its statistics, each level spread
     over the workers.  It is not stored (hundreds of thousands of arrangements from 28 corners
     on): a rerun computes it again (5 s at 28 corners) and then skips the shares already done."""
@@ -93,31 +112,30 @@ def loops_frontier(max_n: int, workers: int = 1, dask: str | None = None) -> tup
 
     stats: list[SearchStats] = []
 
-    def spread(nodes: list[Any], max_corners: int) -> list[Any]:
+    def spread(nodes: list[Any], max_corners: int, cuts: Cuts) -> list[Any]:
         size = max(1, -(-len(nodes) // (4 * workers)))
-        chunks = [(nodes[i:i + size], max_corners) for i in range(0, len(nodes), size)]
+        chunks = [(nodes[i:i + size], max_corners, cuts) for i in range(0, len(nodes), size)]
         parts = run_jobs(_expand_chunk, chunks, workers, dask, ordered=True)
         return [pair for part in parts for pair in part]
 
-    top = frontier(max_n, on_stats=stats.append, expander=spread)
+    top = frontier(max_n, on_stats=stats.append, expander=spread, cuts=cuts)
     return top, sum(stats, SearchStats()).as_dict()
 
 
-def frontier_tag(max_n: int) -> Any:
+def frontier_tag(max_n: int, cuts: Cuts = ALL_CUTS) -> Any:
     """What a spilled top must be to serve a loops run to ``max_n`` corners: this search, its
     schema and cuts, and the bound."""
-    import polyloops.generate.loops.arrangements as arrangements
     from polyloops.generate.spill import SpillTag
 
-    return SpillTag("loops-top", {"schema": SPILL_VERSION, "colour_cut": arrangements.COLOUR_CUT,
-                                  "meet_cut": arrangements.MEET_CUT}, max_n)
+    return SpillTag("loops-top", {"schema": SPILL_VERSION, "colour_cut": cuts.colour, "meet_cut": cuts.meet},
+                    max_n)
 
 
 def _node_bytes(kind: bytes, node: Any) -> bytes:
     return kind + bytes([node.candidate]) + node.code
 
 
-def spill_frontier(max_n: int, workers: int, dask: str | None, where: Path) -> Path:
+def spill_frontier(max_n: int, workers: int, dask: str | None, where: Path, cuts: Cuts = ALL_CUTS) -> Path:
     """The top of the loops search for ``max_n`` corners in ``where/loops-top-N.bin``
     (:mod:`polyloops.generate.spill`; meta: the split level and the top's statistics; one
     record a node: ``R`` a root or ``S`` a shallow candidate, a byte whether it is a
@@ -132,13 +150,13 @@ def spill_frontier(max_n: int, workers: int, dask: str | None, where: Path) -> P
     from polyloops.generate.spill import SpillMismatch, iter_spill, write_spill
 
     path = where / f"loops-top-{max_n}.bin"
-    tag = frontier_tag(max_n)
+    tag = frontier_tag(max_n, cuts)
     try:
         iter_spill(path, tag)  # proved (header, size, digest) before it is used
         return path
     except SpillMismatch:
         pass  # another run's, damaged, or absent: computed again
-    top, top_search = loops_frontier(max_n, workers, dask)
+    top, top_search = loops_frontier(max_n, workers, dask, cuts)
     nodes = [_node_bytes(b"R", node) for node in top.roots]
     nodes += [_node_bytes(b"S", node) for node in top.shallow]
     write_spill(path, tag, nodes, {"loops": top.loops, "search": top_search})
@@ -147,7 +165,7 @@ def spill_frontier(max_n: int, workers: int, dask: str | None, where: Path) -> P
 
 
 def read_frontier_share(path: str, max_n: int, res: int, mod: int,
-                        with_search: bool) -> tuple[Any, dict[str, int] | None]:
+                        with_search: bool, cuts: Cuts = ALL_CUTS) -> tuple[Any, dict[str, int] | None]:
     """Share ``res`` of ``mod`` of a spilled top (:func:`spill_frontier`) for ``max_n``
     corners: its roots (rank ``res`` modulo ``mod``), the shallow candidates for share 0, and
     the top's statistics when ``with_search``; only this share's nodes are kept in memory.
@@ -160,7 +178,7 @@ def read_frontier_share(path: str, max_n: int, res: int, mod: int,
     from polyloops.generate.loops.arrangements import Arrangement, Frontier
     from polyloops.generate.spill import SpillMismatch, iter_spill
 
-    meta, records = iter_spill(Path(path), frontier_tag(max_n))
+    meta, records = iter_spill(Path(path), frontier_tag(max_n, cuts))
     roots, shallow = [], []
     rank = 0
     for rec in records:

@@ -17,10 +17,10 @@ independent subtrees (``res``/``mod``).  Deleting a loop keeps loops simple but 
 sizes, so intermediate arrangements have bigons and large regions; a counting bound prunes
 those that cannot grow into a candidate within the corner budget (``docs/searches.md`` proves
 it).  Arrangements whose graph of crossing loops is not 3-colourable carry no polycube, nor
-does anything built from them, so they are not built either (cut 4, :data:`COLOUR_CUT`); and no
+does anything built from them, so they are not built either (cut 4, :attr:`Cuts.colour`); and no
 corner of a genus-0 polycube meets a strip twice, so a region with several sides on one loop
 must still be cut into pieces, which joins the counting bound, and a candidate map has no such
-region (cut 5, :data:`MEET_CUT`).  The search itself is the compiled extension ``_arrangements``.
+region (cut 5, :attr:`Cuts.meet`).  The search itself is the compiled extension ``_arrangements``.
 
 >>> from collections import Counter
 >>> sorted(Counter(a.corners for a in candidate_arrangements(16)).items())
@@ -44,6 +44,25 @@ from polyloops.core.halfedge import HalfEdgeMap, permutation_orbits
 
 class ArrangementError(PolyloopsError, ValueError):
     """Arrays that are not an arrangement of simple loops, or a generator that cannot run."""
+
+
+@dataclass(frozen=True)
+class Cuts:
+    """The cuts of the search that can be switched off (``docs/searches.md``).  The catalog's
+    records are the same with any of them; without them the search builds more arrangements
+    and classifies more candidate maps (the tests compare every setting with plantri)."""
+
+    # Cut 4: arrangements whose crossing graph is not 3-colourable carry no polycube, nor does
+    # any arrangement built from them; they are not built.  The candidate maps are then those of
+    # plantri's filter whose crossing graph is 3-colourable.
+    colour: bool = True
+    # Cut 5: no corner of a genus-0 polycube meets a strip twice, so a region with k sides on one
+    # loop must still be cut into k pieces; this joins cut 1's bound, and a candidate map has no
+    # region with two sides on one loop.  Off, the candidate maps are cut 4's alone.
+    meet: bool = True
+
+
+ALL_CUTS = Cuts()
 
 
 def compiled_generator_available() -> bool:
@@ -87,14 +106,15 @@ class Arrangement:
     candidate: bool = field(default=False, compare=False)
 
     @classmethod
-    def of(cls, m: HalfEdgeMap) -> Arrangement:
+    def of(cls, m: HalfEdgeMap, cuts: Cuts = ALL_CUTS) -> Arrangement:
         """The canonical arrangement dual to a quad mesh (the same darts: a quad's darts turn
-        around its crossing, and ``twin`` crosses an edge).  Raises
+        around its crossing, and ``twin`` crosses an edge; whether it is a candidate map
+        depends on ``cuts``).  Raises
         :class:`ArrangementError` unless every face is a quad and every loop is simple."""
         if any(len(f) != 4 for f in m.faces):
             raise ArrangementError("not a quad mesh: a face is not a quad")
         try:
-            code, candidate = _module().canonical(_pack(m.next), _pack(m.twin), MEET_CUT)
+            code, candidate = _module().canonical(_pack(m.next), _pack(m.twin), cuts.meet)
         except ValueError as err:
             raise ArrangementError(str(err)) from None
         return cls(code, bool(candidate))
@@ -150,9 +170,9 @@ class Arrangement:
             out.append(darts)
         return out
 
-    def without_loop(self, i: int) -> Arrangement:
+    def without_loop(self, i: int, cuts: Cuts = ALL_CUTS) -> Arrangement:
         """The arrangement with loop ``i`` (in the order of :meth:`loops`) deleted, in canonical
-        form; the other loops run straight through its crossings.  Raises
+        form (its candidacy under ``cuts``); the other loops run straight through its crossings.  Raises
         :class:`ArrangementError` when what is left is not connected (or is a single loop,
         which has no crossing).
 
@@ -179,7 +199,7 @@ class Arrangement:
         new_rot = [index[rot[d]] for d in keep]
         new_twin = [index[through(twin[d])] for d in keep]
         try:
-            code, candidate = _module().canonical(_pack(new_rot), _pack(new_twin), MEET_CUT)
+            code, candidate = _module().canonical(_pack(new_rot), _pack(new_twin), cuts.meet)
         except ValueError as err:
             raise ArrangementError(f"deleting loop {i}: {err}") from None
         out = Arrangement(code, bool(candidate))
@@ -226,22 +246,13 @@ class SearchStats:
 
 SINGLE_LOOP = (_pack([1, 0]), _pack([1, 0]))  # one loop, one marker vertex on it
 
-# Cut 4 (docs/searches.md): arrangements whose crossing graph is not 3-colourable carry no
-# polycube, nor does any arrangement built from them; they are not built.  The candidate maps
-# are then those of plantri's filter whose crossing graph is 3-colourable, and the catalog's
-# records are the same.  False visits every candidate map (the tests compare both with plantri).
-COLOUR_CUT = True
-# Cut 5 (docs/searches.md): no corner of a genus-0 polycube meets a strip twice, so a region with
-# k sides on one loop must still be cut into k pieces; this joins cut 1's bound, and a candidate
-# map has no region with two sides on one loop.  The catalog's records are the same; False
-# gives the candidate maps of cut 4 alone.
-MEET_CUT = True
 IMPLICIT = b""  # a canonical arrangement's rotation, which the search works out itself
 
 
-def _children(parent: Arrangement | None, max_corners: int) -> tuple[list[Arrangement], tuple[int, ...]]:
+def _children(parent: Arrangement | None, max_corners: int, cuts: Cuts
+              ) -> tuple[list[Arrangement], tuple[int, ...]]:
     rot, twin = SINGLE_LOOP if parent is None else (IMPLICIT, parent.code)
-    found, counts = _module().children(rot, twin, max_corners - 2, COLOUR_CUT, MEET_CUT)
+    found, counts = _module().children(rot, twin, max_corners - 2, cuts.colour, cuts.meet)
     curves, closed, over, rejected, uncolourable, met_twice = counts
     kids, seen = [], set()
     for code, candidate in found:
@@ -252,10 +263,11 @@ def _children(parent: Arrangement | None, max_corners: int) -> tuple[list[Arrang
                   met_twice)
 
 
-def children(parent: Arrangement | None, max_corners: int) -> tuple[list[Arrangement], SearchStats]:
+def children(parent: Arrangement | None, max_corners: int, cuts: Cuts = ALL_CUTS
+             ) -> tuple[list[Arrangement], SearchStats]:
     """The canonical children of ``parent`` (``None``: the single loop) that can still grow
     into a candidate map with at most ``max_corners`` corners, each once, in a fixed order."""
-    kids, stats = _children(parent, max_corners)
+    kids, stats = _children(parent, max_corners, cuts)
     return kids, SearchStats(*stats)
 
 
@@ -275,17 +287,18 @@ class Frontier:
 # shares); the top then costs 6.1 s at 32 corners (0.2 s to three loops), the shares minutes.
 SPLIT_LOOPS = 7
 
-Expander = Callable[[list["Arrangement | None"], int], list[tuple[list["Arrangement"], "SearchStats"]]]
+Expander = Callable[[list["Arrangement | None"], int, Cuts], list[tuple[list["Arrangement"], "SearchStats"]]]
 
 
-def expand(nodes: list[Arrangement | None], max_corners: int) -> list[tuple[list[Arrangement], SearchStats]]:
+def expand(nodes: list[Arrangement | None], max_corners: int, cuts: Cuts = ALL_CUTS
+           ) -> list[tuple[list[Arrangement], SearchStats]]:
     """The children of each node, in order (``None`` is the single loop)."""
-    return [children(node, max_corners) for node in nodes]
+    return [children(node, max_corners, cuts) for node in nodes]
 
 
 def frontier(max_corners: int, loops: int = SPLIT_LOOPS,
              on_stats: Callable[[SearchStats], None] | None = None,
-             expander: Expander = expand) -> Frontier:
+             expander: Expander = expand, cuts: Cuts = ALL_CUTS) -> Frontier:
     """The top of the search tree, down to the arrangements with ``loops`` loops: the roots of
     the subtrees that shares of a split search take (see :data:`SPLIT_LOOPS`).  Its first two
     levels (the second and third loops, drawn with the whole budget) are most of the top's
@@ -295,7 +308,7 @@ def frontier(max_corners: int, loops: int = SPLIT_LOOPS,
     shallow: list[Arrangement] = []
     for _ in range(loops - 1):
         nxt: list[Arrangement] = []
-        for kids, stats in expander(level, max_corners):
+        for kids, stats in expander(level, max_corners, cuts):
             if on_stats:
                 on_stats(stats)
             nxt.extend(kids)
@@ -306,17 +319,18 @@ def frontier(max_corners: int, loops: int = SPLIT_LOOPS,
 
 def candidate_arrangements(max_corners: int, res: int = 0, mod: int = 1,
                            on_stats: Callable[[SearchStats], None] | None = None,
-                           top: Frontier | None = None) -> Iterator[Arrangement]:
+                           top: Frontier | None = None, cuts: Cuts = ALL_CUTS) -> Iterator[Arrangement]:
     """Every candidate map with at most ``max_corners`` corners, once up to isomorphism (mirror
     images identified), as its arrangement.  ``res``/``mod`` keeps the subtrees below the
     :func:`frontier` (``top``, computed when not given) whose rank is ``res`` modulo ``mod``;
     candidates above it belong to share 0.  ``on_stats`` sees the statistics of the search,
     one subtree at a time (and those of the frontier when this call computes it and ``res``
-    is 0, so that the shares of a split search add up to one search)."""
+    is 0, so that the shares of a split search add up to one search).  ``cuts``: the cuts the
+    search makes (a given ``top`` must have been computed with the same)."""
     if not 0 <= res < mod:
         raise ArrangementError("res/mod needs 0 <= res < mod")
     if top is None:
-        top = frontier(max_corners, on_stats=on_stats if res == 0 else None)
+        top = frontier(max_corners, on_stats=on_stats if res == 0 else None, cuts=cuts)
     if res == 0:
         yield from top.shallow
     for rank, root in enumerate(top.roots):
@@ -327,7 +341,7 @@ def candidate_arrangements(max_corners: int, res: int = 0, mod: int = 1,
             node = stack.pop()
             if node.candidate:
                 yield node
-            kids, stats = _children(node, max_corners)
+            kids, stats = _children(node, max_corners, cuts)
             for i, v in enumerate(stats):
                 total[i] += v
             stack.extend(reversed(kids))

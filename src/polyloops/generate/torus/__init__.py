@@ -1,6 +1,18 @@
 """The ``torus`` generator (genus 1): the two-axis arrangements of the first stage, listed once a
-run and spilled, then the third axis region by region (:mod:`~polyloops.generate.torus.search`,
-:mod:`~polyloops.generate.torus.regions`, compiled in ``_torus.c`` and ``_regions.c``)."""
+run and spilled, then the third axis region by region, compiled in ``_torus.c`` and
+``_regions.c``.  The search's modules, each on the ones above it:
+
+- :mod:`~polyloops.generate.torus.arrangement`: arrangements on the torus as marked maps, their
+  canonical codes, the second stage's layer;
+- :mod:`~polyloops.generate.torus.cuts`: what a state still needs, the tests every polycube
+  passes, and the bound on the first stage (:func:`~polyloops.generate.torus.cuts.base_bound`);
+- :mod:`~polyloops.generate.torus.drawing`: drawing a new curve on a state;
+- :mod:`~polyloops.generate.torus.stages`: the search one loop at a time (both stages);
+- :mod:`~polyloops.generate.torus.regions`: the second stage region by region;
+- :mod:`~polyloops.generate.torus.decompositions`: a map's decompositions, its canonical one;
+- :mod:`~polyloops.generate.torus.candidates`: the maps that carry a polycube, both stages
+  together.
+"""
 
 from __future__ import annotations
 
@@ -12,19 +24,43 @@ from typing import Any
 from polyloops.core.halfedge import HalfEdgeMap
 from polyloops.generate.base import Generator, Job, Tally, register
 from polyloops.generate.spill import SPILL_VERSION
+from polyloops.generate.torus.cuts import base_bound
 
 
 class TorusGenerator(Generator):
     """The maps of genus 1 that carry a polycube
-    (:func:`polyloops.generate.torus.search.candidate_torus_arrangements`): a job is share ``res/mod``
-    of the two-axis arrangements of the second stage, covering
-    every corner count at once; it counts the states it builds (the first stage's, and the
-    regions the second cuts)."""
+    (:func:`polyloops.generate.torus.candidates.candidate_torus_arrangements`): a job is share
+    ``res/mod`` of the two-axis arrangements of the second stage, covering every corner count at
+    once; it counts the states it builds (the first stage's, and the regions the second cuts).
+    Its option ``stage`` chooses the second stage
+    (:class:`~polyloops.generate.torus.candidates.SecondStage`; the same records)."""
 
     name = "torus"
     genus = 1
     visits = "arrangements"
     statistics_key = "search"
+    options = frozenset({"stage"})
+
+    def __init__(self, stage: str = "regions"):
+        self.stage = stage
+
+    @property
+    def variant(self) -> str:
+        """``""``, or ``stage-loops`` for the loop-by-loop second stage."""
+        return "" if self.stage == "regions" else f"stage-{self.stage}"
+
+    def with_options(self, **options: Any) -> Generator:
+        """This generator with another second ``stage`` (``"regions"`` or ``"loops"``)."""
+        from polyloops.generate.torus.candidates import SecondStage
+
+        super().with_options(**options)  # refuses what it does not take
+        stage = options.get("stage")
+        if stage is None:
+            return self
+        try:
+            return TorusGenerator(SecondStage(stage).value)
+        except ValueError:
+            raise ValueError(f"the torus generator's stage is regions or loops, not {stage!r}") from None
 
     def notes(self) -> list[str]:
         """That the Python search stands in for the compiled one, when that does not run (the
@@ -53,16 +89,18 @@ class TorusGenerator(Generator):
         13 crossings that takes minutes and gigabytes at its peak); a rerun reads the file."""
         if where is None:
             return [None] * len(jobs)
-        files = {job.n // 3: str(spill_bases(job.n // 3, where)) for job in jobs}
-        return [files[job.n // 3] for job in jobs]
+        files = {base_bound(job.n): str(spill_bases(base_bound(job.n), where)) for job in jobs}
+        return [files[base_bound(job.n)] for job in jobs]
 
     def candidates(self, job: Job, context: Any, tally: Tally) -> Iterator[HalfEdgeMap]:
         """The share's candidate maps; the search's statistics go to ``tally``."""
-        from polyloops.generate.torus.search import TorusSearchStats, candidate_torus_arrangements
+        from polyloops.generate.torus.candidates import SecondStage, candidate_torus_arrangements
+        from polyloops.generate.torus.stages import TorusSearchStats
 
         stats: list[TorusSearchStats] = []
-        bases = read_bases(context, job.n // 3) if context is not None else None
-        for a in candidate_torus_arrangements(job.n, job.res, job.mod, on_stats=stats.append, bases=bases):
+        bases = read_bases(context, base_bound(job.n)) if context is not None else None
+        for a in candidate_torus_arrangements(job.n, job.res, job.mod, on_stats=stats.append, bases=bases,
+                                              stage=SecondStage(self.stage)):
             if a.crossings >= job.low:
                 yield a.quad_mesh()
         total = vars(stats[0]) if stats else {}
@@ -78,7 +116,7 @@ def bases_tag(max_crossings: int) -> Any:
 
 
 def spill_bases(max_crossings: int, where: Path) -> Path:
-    """The first stage of the torus search (:func:`polyloops.generate.torus.search.first_stage`) in
+    """The first stage of the torus search (:func:`polyloops.generate.torus.stages.first_stage`) in
     ``where/torus-bases-K.bin`` (:mod:`polyloops.generate.spill`; meta: the statistics; one
     record an arrangement's ``twin`` array).  Kept when the file there is proved to be this
     run's, computed and written atomically otherwise.
@@ -89,7 +127,7 @@ def spill_bases(max_crossings: int, where: Path) -> Path:
         When the name is a link or not a regular file.
     """
     from polyloops.generate.spill import SpillMismatch, write_spill
-    from polyloops.generate.torus import search as torus
+    from polyloops.generate.torus.stages import first_stage, forget_first_stage
 
     path = where / f"torus-bases-{max_crossings}.bin"
     try:
@@ -97,9 +135,9 @@ def spill_bases(max_crossings: int, where: Path) -> Path:
         return path
     except SpillMismatch:
         pass  # another run's, damaged, or absent: listed again
-    bases, stats = torus.first_stage(max_crossings)
+    bases, stats = first_stage(max_crossings)
     write_spill(path, bases_tag(max_crossings), bases, {"search": vars(stats)})
-    torus._bases.cache_clear()  # the workers read the file
+    forget_first_stage()  # the workers read the file
     read_bases.cache_clear()
     return path
 
@@ -115,7 +153,7 @@ def read_bases(path: str, max_crossings: int) -> tuple[tuple[bytes, ...], Any]:
         When the file is not the first stage of a run to ``max_crossings`` (or was changed).
     """
     from polyloops.generate.spill import SpillMismatch, read_spill
-    from polyloops.generate.torus.search import TorusSearchStats
+    from polyloops.generate.torus.stages import TorusSearchStats
 
     spill = read_spill(Path(path), bases_tag(max_crossings))
     try:

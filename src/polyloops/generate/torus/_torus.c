@@ -1,5 +1,5 @@
-/* The second stage of the torus search, compiled (polyloops/generate/torus/search.py describes the
- * search and is the reference; docs/catalog.md, "Genus 1: the torus search", proves it).
+/* The second stage of the torus search, compiled (polyloops/generate/torus/stages.py describes the
+ * search and is the reference; docs/searches.md, "Genus 1: the torus search", proves it).
  *
  * A state is a cellular arrangement on the torus, darts four a crossing counter-clockwise
  * (rot(d) = 4 (d / 4) + (d + 1) % 4), with a layer bit per dart: 1 on the third axis's loops,
@@ -60,9 +60,11 @@ static int layered_need(int sides, const int *count, int bad)
 
 /* A map with its faces (darts in face order, face by face), loops and their classes. */
 typedef struct {
-    int D, nf, nl;
-    int twin[MAXD];
-    unsigned char layer[MAXD];
+    int D;                    /* darts: four a crossing */
+    int nf;                   /* faces */
+    int nl;                   /* loops */
+    int twin[MAXD];           /* the dart across the edge */
+    unsigned char layer[MAXD];  /* 1 on a dart of the third axis's loops, 0 on B's */
     int face[MAXD];           /* the face on a dart's left */
     int fdart[MAXD];          /* the faces' darts, face by face, in order along each */
     int fstart[MAXD + 1];     /* face f: fdart[fstart[f] .. fstart[f + 1]) */
@@ -155,11 +157,14 @@ static int lacking(const Map *h, int *lack)
 
 /* The search context: the parent, and the cycle being drawn. */
 typedef struct {
-    Map p;
+    Map p;                    /* the parent state */
     int region[MAXD];         /* per face of the parent: its region of B */
     int need2[MAXD];          /* per face of the parent: twice its need */
     int total2;               /* their sum */
-    int limit, base, pc, budget;  /* the crossing limit, B's crossings, the parent's crossings */
+    int limit;                /* the most crossings a target may have */
+    int base;                 /* B's crossings */
+    int pc;                   /* the parent's crossings */
+    int budget;               /* limit - pc: the most crossings the new loop may make */
     int third_with[2];        /* crossings of the third axis with each class of B */
     int with_class[2];        /* and those of the cycle being drawn */
     int fewest_third;         /* fewest crossings of an old third-axis loop */
@@ -168,10 +173,17 @@ typedef struct {
     int deficit;              /* their sum, less the cycle's crossings that serve them */
     int path[MAXD];           /* the darts the cycle crosses (each in the face it leaves) */
     unsigned char visited[MAXD];  /* per region of B */
-    int end_face, end_region, first_edge;
-    PyObject *out;
-    int failed;
-    long long nodes, closed, bounded, inconsistent, rejected, straight;
+    int end_face;             /* the face the cycle started from, where it closes */
+    int end_region;           /* its region of B, entered last */
+    int first_edge;           /* the least edge the cycle crosses (its start; each cycle drawn once) */
+    PyObject *out;            /* the children found: a list of (twin, layer, flags) */
+    int failed;               /* a Python error is set (out of memory): stop */
+    long long nodes;          /* steps of the cycle drawn */
+    long long closed;         /* cycles closed */
+    long long bounded;        /* branches or children over the limit */
+    long long inconsistent;   /* children whose loops no orientation fits */
+    long long rejected;       /* children whose new loop is not the canonical one to delete */
+    long long straight;       /* new loops crossing B in fewer than four runs */
 } Ctx;
 
 static Ctx ctx;
@@ -609,26 +621,52 @@ static PyObject *layered_code(PyObject *self, PyObject *args)
 
 typedef struct {
     int n;                    /* darts of the drawing: the parent's, then 2 per point or chord */
-    int rot[MAXD], irot[MAXD], twin[MAXD];
+    int rot[MAXD];            /* the next dart counter-clockwise round its vertex */
+    int irot[MAXD];           /* the next dart clockwise (rot's inverse) */
+    int twin[MAXD];           /* the dart at the edge's other end */
     int loop[MAXD];           /* the parent loop a dart lies on; -1 on the curve */
-    int nmarks, mkind[2], mdart[2];
-    int nloops, lcross[MAXL1], deletable[MAXL1], klass[MAXL1];
-    int pc, limit, budget, colours, side;  /* side: the class the curve crosses (-1: not yet) */
-    int met[MAXL1], crossed;  /* the curve's crossings with each parent loop; loops crossed */
-    unsigned stamp[MAXD], now;  /* face membership */
-    PyObject *out;
-    PyObject *seen;  /* the children listed (a child is drawn in several ways) */
-    int failed;
-    long long nodes, closed, bounded, rejected, uncolourable;
+    int nmarks;               /* the marked faces: none, one H, or two A (the annulus's ends) */
+    int mkind[2];             /* A_MARK or H_MARK */
+    int mdart[2];             /* a dart with the marked face on its left */
+    int nloops;               /* the parent's loops */
+    int lcross[MAXL1];        /* per parent loop: its crossings */
+    int deletable[MAXL1];     /* per parent loop: its deletion leaves the parent connected */
+    int klass[MAXL1];         /* per parent loop: its class in the crossing graph's bipartition (2 colours) */
+    int pc;                   /* the parent's crossings */
+    int limit;                /* the most crossings a target may have */
+    int budget;               /* limit - pc */
+    int colours;              /* 2: keep bipartite crossing graphs; 0: any */
+    int side;                 /* the class the curve crosses (-1: not yet; 2 colours only) */
+    int met[MAXL1];           /* the curve's crossings with each parent loop */
+    int crossed;              /* the parent loops the curve has crossed */
+    unsigned stamp[MAXD];     /* face membership: stamp[d] == now for the darts of the face at hand */
+    unsigned now;
+    PyObject *out;            /* the children found: a list of (twin, marks, cellular) */
+    PyObject *seen;           /* the children listed (a child is drawn in several ways) */
+    int failed;               /* a Python error is set (out of memory): stop */
+    long long nodes;          /* steps of the curve drawn */
+    long long closed;         /* curves closed */
+    long long bounded;        /* branches or children over the limit */
+    long long rejected;       /* children whose new loop is not the canonical one to delete */
+    long long uncolourable;   /* children whose crossing graph the colours cannot colour */
 } Draw;
 
 static Draw dw;
 
 typedef struct {              /* a child in canonical form's making */
-    int D, nf, nl, nmarks, mkind[2], mdart[2];
-    int twin[MAXD], face[MAXD], fsize[MAXD], loop[MAXD], lcross[MAXL1];
-    uint64_t adj[MAXL1];
-    int marked[MAXD];
+    int D;                    /* darts: four a crossing */
+    int nf;                   /* faces */
+    int nl;                   /* loops */
+    int nmarks;               /* marked faces, as in Draw */
+    int mkind[2];             /* A_MARK or H_MARK */
+    int mdart[2];             /* a dart with the marked face on its left */
+    int twin[MAXD];           /* the dart across the edge */
+    int face[MAXD];           /* the face on a dart's left */
+    int fsize[MAXD];          /* per face: its sides */
+    int loop[MAXD];           /* the loop a dart lies on */
+    int lcross[MAXL1];        /* per loop: its crossings */
+    uint64_t adj[MAXL1];      /* per loop: the loops it crosses, one bit each */
+    int marked[MAXD];         /* per face: 1 when marked */
 } Kid;
 
 static Kid kid;

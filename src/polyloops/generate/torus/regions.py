@@ -23,7 +23,7 @@ final as soon as it is chosen:
 Each constraint is a property of every polycube loop structure with that decomposition, and
 constraints only accumulate as regions are chosen, so no polycube is lost.  At the end the
 loops must cross each region at most once and the map must pass the same final test as the
-loop-by-loop search (:func:`polyloops.generate.torus.search.decomposes`) and carry a polycube with
+loop-by-loop search (:func:`polyloops.generate.torus.decompositions.decomposes`) and carry a polycube with
 the decomposition's labelling.
 """
 
@@ -31,13 +31,12 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
 
 from polyloops.core import compiled
 from polyloops.core.disjoint_sets import DisjointSets, ParitySets
-
-if TYPE_CHECKING:
-    from polyloops.generate.torus.search import TorusArrangement, TorusSearchStats
+from polyloops.generate.torus.arrangement import TorusArrangement, axis_classes, walk_forward
+from polyloops.generate.torus.cuts import layered_need
+from polyloops.generate.torus.stages import TorusSearchStats
 
 __all__ = ["AxisCycle", "axis_cycles", "forced_one_way", "third_axis_systems"]
 
@@ -55,9 +54,7 @@ def axis_cycles(base: TorusArrangement, klass: list[int]) -> list[AxisCycle]:
     """The cycles of the two level graphs of ``B`` (zones: the regions joined across the
     other axis's edges; an arc per loop).  A level graph with more than one independent cycle
     gets none here (nothing is cut for it)."""
-    from polyloops.generate.torus.search import _walk_forward
-
-    forward = _walk_forward(base)
+    forward = walk_forward(base)
     out = []
     for axis in (0, 1):
         zones = DisjointSets(range(len(base.faces)))
@@ -146,10 +143,8 @@ class _Setup:
 
 
 def _setup(base: TorusArrangement, cut_one_way: bool) -> _Setup:
-    from polyloops.generate.torus.search import _classes, _walk_forward, layered_need
-
-    klass = _classes(base)
-    forward = _walk_forward(base)
+    klass = axis_classes(base)
+    forward = walk_forward(base)
     loops = base.loop_of
     faces = base.faces
     sides = [[_Side(min(d, base.twin[d]), d != min(d, base.twin[d]), loops[d], klass[loops[d]], forward[d])
@@ -169,8 +164,6 @@ def third_axis_systems(base: TorusArrangement, max_crossings: int, stats: TorusS
     crossing), before the final test.  With ``cut_one_way`` false the level-graph cut is left
     out (for the tests).  Runs in C when the compiled part ``regions`` is in use
     (:mod:`polyloops.core.compiled`)."""
-    from polyloops.generate.torus.search import TorusSearchStats
-
     stats = stats if stats is not None else TorusSearchStats()
     if max_crossings < base.crossings:
         return
