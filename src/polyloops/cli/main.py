@@ -20,7 +20,7 @@ from collections.abc import Sequence
 from typing import Any
 
 from polyloops import __version__
-from polyloops.cli import catalog, corners, moves, orient, pictures, reach, segmentation, structures
+from polyloops.cli import catalog, corners, moves, orient, pictures, reach, segment, segmentation, structures
 from polyloops.cli.args import FILE_HELP, Command, Parser, UsageError
 from polyloops.cli.load import EXIT_OK, EXIT_USAGE, CliError
 
@@ -78,6 +78,7 @@ def build_parser() -> argparse.ArgumentParser:
     pictures.add_commands(command)
     reach.add_commands(command)
     segmentation.add_command(command)
+    segment.add_command(command)
     return parser
 
 

@@ -95,7 +95,7 @@ def surface_of(points: Sequence[Sequence[float]] | np.ndarray, triangles: Sequen
     index[used] = np.arange(len(used))
     pts, tris = pts[used], index[tris]
     for t, (a, b, c) in enumerate(tris.tolist()):
-        if a == b or b == c or a == c:
+        if len({a, b, c}) < 3:
             raise SurfaceError(f"triangle {t} repeats a vertex")
     _check_edges(tris)
     _check_fans(tris, len(pts))

@@ -18,7 +18,8 @@ __all__ = ["ellipsoid", "octahedron", "sphere", "torus"]
 def octahedron() -> tuple[np.ndarray, np.ndarray]:
     """The regular octahedron with vertices at distance 1 on the axes."""
     points = np.array([(1, 0, 0), (-1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1), (0, 0, -1)], dtype=float)
-    triangles = np.array([(0, 2, 4), (2, 1, 4), (1, 3, 4), (3, 0, 4), (2, 0, 5), (1, 2, 5), (3, 1, 5), (0, 3, 5)])
+    triangles = np.array([(0, 2, 4), (2, 1, 4), (1, 3, 4), (3, 0, 4),
+                          (2, 0, 5), (1, 2, 5), (3, 1, 5), (0, 3, 5)])
     return points, triangles
 
 

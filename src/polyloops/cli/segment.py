@@ -1,0 +1,108 @@
+"""The ``segment`` command: a certified polycube segmentation of a triangle mesh."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from collections.abc import Callable
+
+from polyloops.cli.load import (
+    EXIT_INVALID,
+    EXIT_OK,
+    CliError,
+    check_output,
+    check_readable_file,
+    write_error,
+    write_output,
+    write_text,
+)
+
+
+def add_command(command: Callable[..., argparse.ArgumentParser]) -> None:
+    p = command("segment", cmd_segment, "label each triangle of a closed genus-0 mesh +X..-Z so that a "
+                "polycube realises the labels, by adding and removing loops from the cube; every output "
+                "is certified by two checks (exit 0 written, 1 nothing certified, 2 bad input)",
+                file_arg=False)
+    p.add_argument("mesh", metavar="MESH", help="a closed, oriented, connected triangle mesh (.obj, .stl or "
+                   "MEDIT .mesh), triangles counter-clockwise seen from outside")
+    p.add_argument("-o", "--output", metavar="LABELS", help="write one integer 0..5 per triangle of the "
+                   "labelled mesh (+X -X +Y -Y +Z -Z, the labeling.txt and .flag convention)")
+    p.add_argument("--mesh-out", metavar="MESH", help="write the labelled mesh (the input refined along the "
+                   "loops; the input triangle of each of its triangles goes to MESH.facemap)")
+    p.add_argument("--polycube", metavar="FILE", help="write the polycube of the loops (.json, .obj, ...)")
+    p.add_argument("--budget", type=float, default=20.0, metavar="SECONDS",
+                   help="time for the search of loop moves (default 20)")
+    p.add_argument("--seed", type=int, default=0, help="the seed of the search's move order (default 0)")
+
+
+def cmd_segment(args: argparse.Namespace) -> int:
+    for path in (args.output, args.mesh_out, args.mesh_out and args.mesh_out + ".facemap", args.polycube):
+        if path:
+            check_output(path)
+    if args.budget < 0:
+        raise CliError(f"--budget {args.budget}: a time budget is not negative")
+    from tqdm import tqdm
+
+    from polyloops.io.files import InputError
+    from polyloops.io.labelled_mesh import LabelledMeshError, read_triangle_mesh
+    from polyloops.segment.from_polycube import UncertifiedError
+    from polyloops.segment.run import segment_mesh
+    from polyloops.segment.search import StartError
+    from polyloops.segment.surface import SurfaceError
+
+    check_readable_file(args.mesh, limit=None)
+    try:
+        points, triangles = read_triangle_mesh(args.mesh)
+    except InputError as err:
+        raise CliError(str(err)) from None
+    except LabelledMeshError as err:
+        raise CliError(f"{err.where or args.mesh}: {err}") from None
+    bar = tqdm(desc="segment", unit="state", disable=None, file=sys.stderr)
+    try:
+        result = segment_mesh(points, triangles, budget=args.budget, seed=args.seed,
+                              on_step=lambda state: bar.update(1))
+    except (SurfaceError, StartError) as err:
+        raise CliError(f"{args.mesh}: {err}") from None
+    except UncertifiedError as err:
+        bar.close()
+        message = f"{args.mesh}: nothing written: {err}"
+        print(f"polyloops segment: {message}", file=sys.stderr)
+        if args.json:
+            print(json.dumps({"certified": False, "error": message, "status": EXIT_INVALID}, indent=2))
+        return EXIT_INVALID
+    finally:
+        bar.close()
+    return _write(args, result)
+
+
+def _write(args: argparse.Namespace, result) -> int:
+    from polyloops.io.labelled_mesh import labels_text
+    from polyloops.io.meshes import write_triangle_mesh
+
+    data = result.to_json()
+    realised = result.report.polycube.map.num_corners
+    lines = [f"{args.mesh}: certified polycube segmentation: {result.charts} charts, {result.corners} "
+             f"corners, {result.loops} loops; fidelity {result.fidelity:.4f} (per-triangle bound "
+             f"{result.naive_fidelity:.4f}); {result.seconds:.1f} s",
+             f"  the checker: valid, realised by a polycube of {realised} corners; the layout draws "
+             f"the loops' polycube of {result.polycube.map.num_corners} corners"]
+    if args.output:
+        write_text(args.output, labels_text(result.mesh))
+        data["output"] = args.output
+        lines.append(f"wrote {args.output}: {len(result.mesh.triangles)} labels")
+    if args.mesh_out:
+        try:
+            write_triangle_mesh(args.mesh_out, result.mesh)
+        except OSError as err:
+            raise write_error(args.mesh_out, err) from None
+        write_text(args.mesh_out + ".facemap", "".join(f"{p}\n" for p in result.face_map))
+        data["mesh_out"] = args.mesh_out
+        lines.append(f"wrote {args.mesh_out}: the labelled mesh, and {args.mesh_out}.facemap: "
+                     "its input triangles")
+    if args.polycube:
+        write_output(args.polycube, result.polycube)
+        data["polycube"] = args.polycube
+        lines.append(f"wrote {args.polycube}: the polycube")
+    print(json.dumps(data, indent=2) if args.json else "\n".join(lines))
+    return EXIT_OK

@@ -1,0 +1,210 @@
+"""A loop structure embedded on a surface, read off it: regions, crossings, the quad mesh.
+
+The loops are closed paths of edges of a refined surface (:mod:`~polyloops.segment.refine`),
+each a section by a plane perpendicular to its axis.  Cutting the surface along them leaves the
+*regions* (connected sets of triangles; each must be a disc); a vertex on two loops is a
+*crossing*.  Reading round each crossing gives the four regions round it, counter-clockwise:
+the faces of the primal quad mesh (:meth:`polyloops.core.structure.LoopStructure.from_edge_labels`,
+a corner per region, a quad per crossing), and each quad edge crosses one loop, whose ``+`` side
+is the side of greater coordinate along its axis.  :func:`read_structure` returns the
+structure with the embedding it came from, or the reason it is no loop structure.
+
+>>> from polyloops.shapes.meshes import sphere
+>>> from polyloops.segment.refine import Plane, Refined, cut
+>>> from polyloops.segment.surface import surface_of
+>>> r = cut(Refined.of(surface_of(*sphere(3))), [Plane(0, 0.01), Plane(1, 0.02), Plane(2, 0.03)])
+>>> e = read_structure(r, [SurfaceLoop(p, r.sections(p)[0]) for p in range(3)])
+>>> e.structure.genus, len(e.region_triangles), len(e.crossings)
+(0, 8, 6)
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import connected_components
+
+from polyloops.core.directions import Axis, Direction
+from polyloops.core.errors import PolyloopsError
+from polyloops.core.structure import LoopStructure
+from polyloops.segment.refine import Refined
+
+__all__ = ["Embedded", "NotAStructure", "SurfaceLoop", "read_structure"]
+
+
+class NotAStructure(PolyloopsError, ValueError):
+    """Loops on a surface that are no loop structure (a region that is not a disc, a loop or
+    region without crossings, two regions meeting twice); the message says which."""
+
+
+@dataclass(frozen=True)
+class SurfaceLoop:
+    """A closed curve of a plane's section: the plane's index in ``Refined.planes`` and the
+    curve's cycle of vertices."""
+
+    plane: int
+    vertices: tuple[int, ...]
+
+    def edges(self) -> set[tuple[int, int]]:
+        """The curve's edges, each as ``(u, v)`` with ``u < v``."""
+        vs = self.vertices
+        return {(min(a, b), max(a, b)) for a, b in zip(vs, vs[1:] + vs[:1], strict=True)}
+
+
+@dataclass(frozen=True, eq=False)
+class Embedded:
+    """A loop structure and its embedding: ``region`` per triangle (the structure's corner),
+    ``crossings`` (per quad face of the structure, the vertex where its two loops cross),
+    ``sectors`` (per crossing, the four regions round it counter-clockwise, each with the spoke
+    edge that ends its sector) and the loops."""
+
+    refined: Refined
+    loops: tuple[SurfaceLoop, ...]
+    region: np.ndarray
+    crossings: tuple[int, ...]
+    structure: LoopStructure
+
+    @property
+    def region_triangles(self) -> list[np.ndarray]:
+        """Per region, its triangles."""
+        order = np.argsort(self.region, kind="stable")
+        bounds = np.searchsorted(self.region[order], np.arange(self.region.max() + 2))
+        return [order[bounds[i]:bounds[i + 1]] for i in range(len(bounds) - 1)]
+
+
+def _directed(triangles: np.ndarray) -> dict[tuple[int, int], int]:
+    out = {}
+    for t, (a, b, c) in enumerate(triangles.tolist()):
+        out[a, b] = out[b, c] = out[c, a] = t
+    return out
+
+
+def regions_of(r: Refined, loop_edges: set[tuple[int, int]]) -> np.ndarray:
+    """Per triangle, its region: triangles joined across the edges not in ``loop_edges``."""
+    tris = r.triangles
+    rows, cols = [], []
+    owner = _directed(tris)
+    for (u, v), t in owner.items():
+        if u < v and (u, v) not in loop_edges:
+            rows.append(t)
+            cols.append(owner[v, u])
+    graph = coo_matrix((np.ones(len(rows)), (rows, cols)), shape=(len(tris), len(tris)))
+    _, labels = connected_components(graph, directed=False)
+    return labels
+
+
+def read_structure(r: Refined, loops: list[SurfaceLoop]) -> Embedded:
+    """The loop structure the ``loops`` make on ``r``, oriented by the planes' sides.
+
+    Raises
+    ------
+    NotAStructure
+        When the loops cut the surface into something other than discs meeting at crossings.
+    """
+    loop_of_edge: dict[tuple[int, int], int] = {}
+    for i, lp in enumerate(loops):
+        for e in lp.edges():
+            loop_of_edge[e] = i
+    region = regions_of(r, set(loop_of_edge))
+    on_loops: dict[int, list[int]] = {}
+    for i, lp in enumerate(loops):
+        for v in lp.vertices:
+            on_loops.setdefault(v, []).append(i)
+    crossings = sorted(v for v, ls in on_loops.items() if len(ls) > 1)
+    crossed = {i for v in crossings for i in on_loops[v]}
+    if len(crossed) < len(loops):
+        raise NotAStructure(f"{len(loops) - len(crossed)} loops cross no other loop")
+    if any(len(on_loops[v]) > 2 for v in crossings):
+        raise NotAStructure("three loops meet at one point")
+    _check_discs(r, region)
+    owner = _directed(r.triangles)
+    faces, labels = [], {}
+    centroid = r.points[r.triangles].mean(axis=1)
+    for v in crossings:
+        sectors = _sectors_round(v, r.triangles, owner, loop_of_edge)
+        if len(sectors) != 4:
+            raise NotAStructure(f"a crossing with {len(sectors)} sectors round it")
+        face = [int(region[t]) for t, _ in sectors]
+        if len(set(face)) != 4:
+            raise NotAStructure("a region meets a crossing twice")
+        faces.append(face)
+        for k in range(4):
+            _, spoke = sectors[k]
+            t_next = sectors[(k + 1) % 4][0]
+            plane = r.planes[loops[loop_of_edge[spoke]].plane]
+            plus = centroid[t_next, plane.axis] > plane.value
+            labels[face[k], face[(k + 1) % 4]] = Direction.of(Axis(plane.axis), 1 if plus else -1)
+    if len(set(region.tolist())) != len({c for f in faces for c in f}):
+        raise NotAStructure("a region touches no crossing")
+    try:
+        structure = LoopStructure.from_edge_labels(faces, _once(labels))
+    except (PolyloopsError, ValueError) as err:
+        raise NotAStructure(f"the crossings do not make a quad mesh: {err}") from None
+    return Embedded(r, tuple(loops), region, tuple(crossings), structure)
+
+
+def _once(labels: dict[tuple[int, int], Direction]) -> dict[tuple[int, int], Direction]:
+    """Each quad edge labelled once (its two faces label it from both sides, agreeing)."""
+    out: dict[tuple[int, int], Direction] = {}
+    for (u, v), d in labels.items():
+        if (v, u) in out:
+            if out[v, u] != -d:
+                raise NotAStructure(f"regions {u} and {v} are on inconsistent sides of their loop")
+            continue
+        out[u, v] = d
+    return out
+
+
+def _sectors_round(v: int, triangles: np.ndarray, owner: dict[tuple[int, int], int],
+                   loop_of_edge: dict[tuple[int, int], int]) -> list[tuple[int, tuple[int, int]]]:
+    """Round vertex ``v`` counter-clockwise: per sector between loop edges, a triangle of it
+    and the loop edge (``(u, w)``, ``u < w``) that ends it."""
+    start = next(t for (a, _), t in owner.items() if a == v)
+    tri = triangles[start].tolist()
+    k = tri.index(v)
+    spoke = tri[(k + 2) % 3]  # the triangle (v, a, b): the next one round v holds (v, b)
+    fan = []  # (triangle, its second spoke)
+    t = start
+    while True:
+        fan.append((t, spoke))
+        t = owner[v, spoke]
+        tri = triangles[t].tolist()
+        spoke = tri[(tri.index(v) + 2) % 3]
+        if t == start:
+            break
+    ends = [i for i, (_, s) in enumerate(fan) if (min(v, s), max(v, s)) in loop_of_edge]
+    out = []
+    for j, i in enumerate(ends):
+        s = fan[i][1]
+        first = fan[(ends[j - 1] + 1) % len(fan)][0] if len(ends) > 1 else fan[0][0]
+        out.append((first, (min(v, s), max(v, s))))
+    return out
+
+
+def _check_discs(r: Refined, region: np.ndarray) -> None:
+    """Every region a disc: Euler characteristic 1 and one boundary curve without pinches."""
+    tris = r.triangles
+    count = int(region.max()) + 1
+    faces = np.bincount(region, minlength=count)
+    owner = _directed(tris)
+    edges = np.zeros(count, dtype=np.int64)
+    boundary: list[dict[int, int]] = [{} for _ in range(count)]
+    for (u, v), t in owner.items():
+        g = region[t]
+        other = region[owner[v, u]]
+        if other == g:
+            if u < v:
+                edges[g] += 1
+        else:
+            edges[g] += 1
+            boundary[g][u] = boundary[g].get(u, 0) + 1
+    pairs = np.unique(np.repeat(region, 3) * (len(r.points) + 1) + tris.ravel())
+    verts = np.bincount(pairs // (len(r.points) + 1), minlength=count)
+    for g in range(count):
+        euler = verts[g] - edges[g] + faces[g]
+        if euler != 1:
+            raise NotAStructure(f"region {g} is not a disc (Euler characteristic {euler})")
+        if any(k != 1 for k in boundary[g].values()):
+            raise NotAStructure(f"region {g} touches itself on its boundary")

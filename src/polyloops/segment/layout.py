@@ -1,0 +1,242 @@
+"""Primalization on the surface: corners, paths and patches, and the labels they give.
+
+Each region (a corner of the polycube) gets a corner vertex inside it, and each of its sides (a
+segment of a loop, dual to a polycube edge) a point in its middle that both regions beside it
+share.  Paths inside the region join the corner to the points of its sides, meeting only at the
+corner (:func:`~polyloops.segment.flow.disjoint_paths`, the shortest such), so they cut the
+region into one sector per crossing on its boundary.  The four sectors round a crossing make
+the patch of the polycube's face dual to it, and its triangles get that face's normal as label.
+Where a region leaves no room (a side that is one edge, a region without an inner vertex, paths
+that cannot keep apart) the surface is refined there and the structure read again.
+
+>>> from polyloops.shapes.meshes import sphere
+>>> from polyloops.segment.refine import Plane, Refined, cut
+>>> from polyloops.segment.surface import surface_of
+>>> from polyloops.segment.embedded import SurfaceLoop
+>>> r = cut(Refined.of(surface_of(*sphere(3))), [Plane(0, 0.01), Plane(1, 0.02), Plane(2, 0.03)])
+>>> lay = lay_out(r, [SurfaceLoop(p, r.sections(p)[0]) for p in range(3)])
+>>> len(set(lay.labels)), len(lay.paths)
+(6, 8)
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import connected_components, dijkstra
+
+from polyloops.core.directions import Direction
+from polyloops.core.errors import PolyloopsError
+from polyloops.core.polycube import Polycube
+from polyloops.segment.embedded import Embedded, NotAStructure, SurfaceLoop, read_structure
+from polyloops.segment.flow import disjoint_paths
+from polyloops.segment.refine import Refined, split_edges
+
+__all__ = ["Layout", "lay_out"]
+
+MAX_ROUNDS = 6  # refinements before a layout is given up (each at least halves the edges in the way)
+
+
+@dataclass(frozen=True, eq=False)
+class Layout:
+    """A labelled layout: the embedded structure it lays out, the polycube primalized from it,
+    per region its corner vertex and paths, per triangle its patch (the crossing's face index)
+    and label."""
+
+    embedded: Embedded
+    polycube: Polycube
+    corners: tuple[int, ...]
+    paths: tuple[tuple[tuple[int, ...], ...], ...]
+    patch: np.ndarray
+    labels: tuple[Direction, ...]
+
+
+def relocate(r: Refined, loops: list[SurfaceLoop]) -> list[SurfaceLoop]:
+    """The same loops on a further refined ``r`` (a refinement keeps the old vertices)."""
+    out = []
+    for lp in loops:
+        mark = lp.vertices[0]
+        out.append(next(SurfaceLoop(lp.plane, c) for c in r.sections(lp.plane) if mark in c))
+    return out
+
+
+def lay_out(r: Refined, loops: list[SurfaceLoop]) -> Layout:
+    """The layout of the structure the ``loops`` make on ``r`` (refined where needed).
+
+    Raises
+    ------
+    NotAStructure
+        When the loops make no polycube loop structure, or no layout was found.
+    """
+    for _ in range(MAX_ROUNDS):
+        e = read_structure(r, loops)
+        try:
+            polycube = e.structure.primalize()
+        except (ValueError, PolyloopsError) as err:
+            raise NotAStructure(f"the structure has no polycube: {err}") from None
+        attempt = _attempt(e)
+        if isinstance(attempt, set):
+            r = split_edges(r, attempt)
+            loops = relocate(r, loops)
+            continue
+        corners, paths, patch = attempt
+        labels = tuple(_normal(polycube, int(f)) for f in patch)
+        return Layout(e, polycube, corners, paths, patch, labels)
+    raise NotAStructure(f"no layout after {MAX_ROUNDS} refinements")
+
+
+def _normal(q: Polycube, f: int) -> Direction:
+    d = q.face_normal(f)
+    if d is None:
+        raise NotAStructure(f"face {f} of the primalized polycube is not axis-parallel")
+    return d
+
+
+def _boundary_cycle(tris: np.ndarray, region: np.ndarray, g: int, owner: dict[tuple[int, int], int]
+                    ) -> list[int]:
+    """Region ``g``'s boundary, counter-clockwise round the region (the region on the left)."""
+    nxt = {}
+    for t in np.nonzero(region == g)[0].tolist():
+        a, b, c = tris[t].tolist()
+        for u, v in ((a, b), (b, c), (c, a)):
+            if region[owner[v, u]] != g:
+                nxt[u] = v
+    start = min(nxt)
+    cycle, v = [start], nxt[start]
+    while v != start:
+        cycle.append(v)
+        v = nxt[v]
+    return cycle
+
+
+Paths = tuple[tuple[tuple[int, ...], ...], ...]  # per region, its paths (vertex sequences)
+
+
+def _attempt(e: Embedded) -> tuple[tuple[int, ...], Paths, np.ndarray] | set:
+    """Corners, paths and patches, or the edges to split first."""
+    r = e.refined
+    tris, pts = r.triangles, r.points
+    owner = {}
+    for t, (a, b, c) in enumerate(tris.tolist()):
+        owner[a, b] = owner[b, c] = owner[c, a] = t
+    crossing_face = {v: f for f, v in enumerate(e.crossings)}
+    count = int(e.region.max()) + 1
+    cycles = [_boundary_cycle(tris, e.region, g, owner) for g in range(count)]
+    # the point in the middle of each side, the same from both regions beside it
+    to_split: set[tuple[int, int]] = set()
+    middle: dict[frozenset[int], int] = {}
+    sides: list[list[tuple[int, int]]] = []  # per region: (crossing that starts the side, its middle)
+    for cycle in cycles:
+        at = [i for i, v in enumerate(cycle) if v in crossing_face]
+        mine = []
+        for j, i in enumerate(at):
+            end = at[(j + 1) % len(at)]
+            arc = cycle[i:end + 1] if end > i else cycle[i:] + cycle[:end + 1]
+            if len(arc) == 2:
+                to_split.add((min(arc), max(arc)))
+                continue
+            key = frozenset(arc)
+            if key not in middle:
+                middle[key] = _middle(arc, pts)
+            mine.append((cycle[i], middle[key]))
+        sides.append(mine)
+    if to_split:
+        return to_split
+    corners, paths = [], []
+    patch = np.full(len(tris), -1, dtype=np.int64)
+    for g in range(count):
+        found = _region_layout(e, g, cycles[g], sides[g], owner, crossing_face)
+        if isinstance(found, set):
+            to_split |= found
+            continue
+        corner, region_paths, sector_face = found
+        corners.append(corner)
+        paths.append(region_paths)
+        for t, f in sector_face.items():
+            patch[t] = f
+    if to_split:
+        return to_split
+    return tuple(corners), tuple(paths), patch
+
+
+def _middle(arc: list[int], pts: np.ndarray) -> int:
+    """The inner vertex of ``arc`` nearest the middle of its length (the same either way)."""
+    if tuple(arc[::-1]) < tuple(arc):
+        arc = arc[::-1]
+    lengths = np.linalg.norm(np.diff(pts[arc], axis=0), axis=1)
+    along = np.concatenate([[0.0], np.cumsum(lengths)])
+    inner = range(1, len(arc) - 1)
+    return arc[min(inner, key=lambda i: (abs(along[i] - along[-1] / 2), i))]
+
+
+def _region_layout(e: Embedded, g: int, cycle: list[int], sides: list[tuple[int, int]],
+                   owner: dict[tuple[int, int], int], crossing_face: dict[int, int]
+                   ) -> tuple[int, tuple[tuple[int, ...], ...], dict[int, int]] | set:
+    r = e.refined
+    tris, pts = r.triangles, r.points
+    mine = np.nonzero(e.region == g)[0]
+    local_tris = tris[mine]
+    verts = np.unique(local_tris)
+    index = {int(v): i for i, v in enumerate(verts.tolist())}
+    on_boundary = set(cycle)
+    edge_set = set()
+    for a, b, c in local_tris.tolist():
+        for u, v in ((a, b), (b, c), (c, a)):
+            edge_set.add((min(u, v), max(u, v)))
+    ends = {m for _, m in sides}
+    # paths run inside the region: an edge with an end on the boundary only to a side's middle
+    edges = [(index[u], index[v], float(np.linalg.norm(pts[u] - pts[v]))) for u, v in sorted(edge_set)
+             if (u not in on_boundary or u in ends) and (v not in on_boundary or v in ends)
+             and not (u in on_boundary and v in on_boundary)]
+    inner = [v for v in verts.tolist() if v not in on_boundary]
+    if not inner:
+        return _all_edges(local_tris)
+    # the corner: the inner vertex farthest from the boundary
+    every = [(index[u], index[v], float(np.linalg.norm(pts[u] - pts[v]))) for u, v in sorted(edge_set)]
+    rows = [a for a, b, _ in every] + [b for a, b, _ in every]
+    cols = [b for a, b, _ in every] + [a for a, b, _ in every]
+    weights = [w for *_, w in every] * 2
+    graph = coo_matrix((weights, (rows, cols)), shape=(len(verts), len(verts))).tocsr()
+    dist = dijkstra(graph, indices=[index[v] for v in cycle], min_only=True)
+    corner = max(inner, key=lambda v: (dist[index[v]], -v))
+    targets = [index[m] for _, m in sides]
+    found = disjoint_paths(len(verts), edges, index[corner], targets)
+    if found is None:
+        return _all_edges(local_tris)
+    region_paths = tuple(tuple(int(verts[i]) for i in p) for p in found)
+    cut = {(min(p[i], p[i + 1]), max(p[i], p[i + 1])) for p in region_paths for i in range(len(p) - 1)}
+    # sectors: the region's triangles joined across edges on no path and no boundary
+    local = {int(t): i for i, t in enumerate(mine.tolist())}
+    rows, cols = [], []
+    for t in mine.tolist():
+        a, b, c = tris[t].tolist()
+        for u, v in ((a, b), (b, c), (c, a)):
+            other = owner[v, u]
+            if other in local and (min(u, v), max(u, v)) not in cut:
+                rows.append(local[t])
+                cols.append(local[other])
+    adjacency = coo_matrix((np.ones(len(rows)), (rows, cols)), shape=(len(mine), len(mine)))
+    n_sectors, sector = connected_components(adjacency, directed=False)
+    if n_sectors != len(sides):
+        return _all_edges(local_tris)
+    face_of_sector: dict[int, int] = {}
+    for c, _ in sides:
+        touching = {int(sector[local[t]]) for t in mine.tolist() if c in tris[t].tolist()}
+        if len(touching) != 1:
+            return _all_edges(local_tris)
+        s = touching.pop()
+        if s in face_of_sector:
+            return _all_edges(local_tris)
+        face_of_sector[s] = crossing_face[c]
+    return corner, region_paths, {int(t): face_of_sector[int(sector[local[t]])] for t in mine.tolist()}
+
+
+def _all_edges(local_tris: np.ndarray) -> set[tuple[int, int]]:
+    """Every edge of a region's triangles: split them all to make room."""
+    out = set()
+    for a, b, c in local_tris.tolist():
+        for u, v in ((a, b), (b, c), (c, a)):
+            out.add((min(u, v), max(u, v)))
+    return out

@@ -1,0 +1,141 @@
+"""``pl.segment``: a certified polycube segmentation of a triangle mesh, by loop moves.
+
+>>> from polyloops.shapes.meshes import ellipsoid
+>>> done = segment_mesh(*ellipsoid(2.0, 1.0, 0.7, level=3), budget=2.0)
+>>> done.certified, done.genus, done.loops >= 3, done.fidelity <= done.naive_fidelity
+(True, 0, True, True)
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from polyloops.core.polycube import Polycube
+from polyloops.segment.certify import layout_problem
+from polyloops.segment.embedded import NotAStructure
+from polyloops.segment.from_polycube import UncertifiedError
+from polyloops.segment.layout import Layout, lay_out
+from polyloops.segment.search import (
+    SearchSettings,
+    StartError,
+    State,
+    candidate_loops,
+    fidelity,
+    greedy_search,
+    naive_fidelity,
+    start_state,
+)
+from polyloops.segment.surface import Surface, surface_of
+from polyloops.segmentation import SegmentationReport, check_segmentation
+from polyloops.surface.mesh import LabelledMesh
+
+__all__ = ["SegmentResult", "segment_mesh"]
+
+
+@dataclass(frozen=True, eq=False)
+class SegmentResult:
+    """A certified segmentation: the labelled mesh (the input refined along the loops), per
+    triangle the input triangle it lies in, the polycube primalized from the loops, the
+    checker's report on the labels, and the figures of the run."""
+
+    mesh: LabelledMesh
+    face_map: tuple[int, ...]
+    polycube: Polycube
+    report: SegmentationReport
+    genus: int
+    input_triangles: int
+    loops: int
+    fidelity: float
+    naive_fidelity: float
+    seconds: float
+    states: int
+
+    @property
+    def certified(self) -> bool:
+        """Always true: an uncertified segmentation is never returned."""
+        return self.report.valid is True
+
+    @property
+    def charts(self) -> int:
+        """The charts of the labelling (maximal connected areas of one label)."""
+        return len(self.report.segmentation.charts)
+
+    @property
+    def corners(self) -> int:
+        """The corners of the labelling's charts."""
+        return len(self.report.segmentation.corners)
+
+    def to_json(self) -> dict[str, object]:
+        """The figures of the run, for ``segment --json``."""
+        return {"certified": self.certified, "genus": self.genus, "input_triangles": self.input_triangles,
+                "triangles": len(self.mesh.triangles), "charts": self.charts, "corners": self.corners,
+                "loops": self.loops, "polycube_corners": self.polycube.map.num_corners,
+                "fidelity": round(self.fidelity, 6), "naive_fidelity": round(self.naive_fidelity, 6),
+                "seconds": round(self.seconds, 2), "states": self.states}
+
+
+def _certify(lay: Layout) -> tuple[LabelledMesh, SegmentationReport] | str:
+    """The labelled mesh and the checker's report when both checks pass, else what failed."""
+    problem = layout_problem(lay)
+    if problem is not None:
+        return f"the layout does not draw the polycube: {problem}"
+    r = lay.embedded.refined
+    mesh = LabelledMesh(tuple(map(tuple, r.points.tolist())), tuple(map(tuple, r.triangles.tolist())),
+                        lay.labels)
+    report = check_segmentation(mesh)
+    if report.valid is not True:
+        return f"the checker finds the labels {'invalid' if report.valid is False else 'undecided'}"
+    return mesh, report
+
+
+def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, planes: int = 9,
+                    price: float = 0.002, on_step: Callable[[State], None] | None = None) -> SegmentResult:
+    """:func:`segment_mesh` on a checked surface."""
+    began = time.monotonic()
+    if surface.genus != 0:
+        raise StartError(f"the mesh has genus {surface.genus}: segment starts from the cube, on genus 0 only")
+    settings = SearchSettings(budget, seed, planes, price)
+    r, loops, _ = candidate_loops(surface, planes)
+    path = greedy_search(r, loops, start_state(r, loops), settings, on_step)
+    why = ""
+    for state in reversed(path):  # the best first, then the states before it
+        try:
+            lay = lay_out(r, [loops[i] for i in sorted(state.loops)])
+        except NotAStructure as err:
+            why = str(err)
+            continue
+        checked = _certify(lay)
+        if isinstance(checked, str):
+            why = checked
+            continue
+        refined = lay.embedded.refined
+        mesh, report = checked
+        return SegmentResult(mesh, tuple(int(p) for p in refined.parent.tolist()), lay.polycube, report,
+                             surface.genus, len(surface.triangles), len(state.loops),
+                             fidelity(refined.surface, lay.labels), naive_fidelity(surface),
+                             time.monotonic() - began, len(path))
+    raise UncertifiedError(f"no state of the search was certified: {why}")
+
+
+def segment_mesh(points: Sequence[Sequence[float]] | np.ndarray,
+                 triangles: Sequence[Sequence[int]] | np.ndarray, budget: float = 20.0, seed: int = 0,
+                 planes: int = 9, price: float = 0.002,
+                 on_step: Callable[[State], None] | None = None) -> SegmentResult:
+    """A certified polycube segmentation of the closed genus-0 triangle mesh ``points``,
+    ``triangles`` (counter-clockwise seen from outside), by the greedy loop search of
+    :mod:`~polyloops.segment.search` within ``budget`` seconds (its order fixed by ``seed``).
+
+    Raises
+    ------
+    SurfaceError
+        When the mesh is not a closed, oriented, connected manifold surface with some area.
+    StartError
+        When no start was found (or the mesh is not of genus 0).
+    UncertifiedError
+        When no state of the search passed both checks (nothing is returned then).
+    """
+    return segment_surface(surface_of(points, triangles), budget, seed, planes, price, on_step)

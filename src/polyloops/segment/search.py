@@ -1,0 +1,232 @@
+"""``polyloops segment``: a certified polycube segmentation of a surface, built by loop moves.
+
+The loops are closed curves of axis-aligned plane sections (:mod:`~polyloops.segment.refine`):
+a loop of axis X runs round the X axis, across triangles whose normals are perpendicular to it,
+which is what the paper's Section 5 asks of a loop's path.  The surface is cut once by a set of
+candidate planes per axis; a *state* is a set of their section curves, and a move adds one or
+removes one.
+
+1. **Start** (genus 0): the cube, three curves of the planes through the centroid (or nearest
+   it) that cross pairwise twice, checked as a polycube loop structure.
+2. **Search**: greedy, under a time budget: every move from the current state is tried in an
+   order the seed fixes; a state counts when its structure passes ``verify`` and primalizes; its
+   score is the fidelity of the labels it would give (each triangle labelled by the face of the
+   nearest crossing in its region), less a price per loop; the best move is made while it
+   improves the score.
+3. **Layout and certificate**: the best state is laid out (:mod:`~polyloops.segment.layout`)
+   and checked twice (:mod:`~polyloops.segment.certify`); a state whose layout or check fails
+   is dropped for the best certified one before it.
+"""
+
+from __future__ import annotations
+
+import random
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import dijkstra
+
+from polyloops.core.directions import Direction
+from polyloops.core.errors import PolyloopsError
+from polyloops.segment.embedded import Embedded, NotAStructure, SurfaceLoop, read_structure
+from polyloops.segment.refine import Plane, Refined, cut
+from polyloops.segment.surface import Surface
+from polyloops.verify import check_polycube_loop_structure
+
+__all__ = ["SearchSettings", "StartError", "State", "candidate_loops", "fidelity", "greedy_search",
+           "naive_fidelity", "start_state"]
+
+UNIT = np.eye(3)
+DIRECTION_VECTORS = np.array([UNIT[d // 2] * (1 if d % 2 == 0 else -1) for d in range(6)])
+
+
+class StartError(PolyloopsError, ValueError):
+    """No start was found on the surface (no three central curves cross pairwise twice)."""
+
+
+@dataclass(frozen=True)
+class SearchSettings:
+    """The search's knobs: the time ``budget`` in seconds, the ``seed`` of its move order, the
+    candidate ``planes`` per axis, the ``price`` of a loop in fidelity."""
+
+    budget: float = 20.0
+    seed: int = 0
+    planes: int = 9
+    price: float = 0.002
+
+
+@dataclass(frozen=True)
+class State:
+    """A set of section curves (indices into the candidates) and what they give."""
+
+    loops: frozenset[int]
+    score: float
+    fidelity: float
+    embedded: Embedded = field(compare=False, repr=False)
+
+
+def candidate_loops(surface: Surface, planes_per_axis: int) -> tuple[Refined, list[SurfaceLoop], list[int]]:
+    """The surface cut by the candidate planes (per axis, one through the area centroid, then
+    ``planes_per_axis`` evenly spread), their section curves, and the indices of the three
+    central planes' first curves."""
+    areas = surface.areas
+    centroid = (surface.points[surface.triangles].mean(axis=1) * areas[:, None]).sum(axis=0) / areas.sum()
+    lo, hi = surface.points.min(axis=0), surface.points.max(axis=0)
+    planes = [Plane(a, float(centroid[a])) for a in range(3)]
+    for a in range(3):
+        step = (hi[a] - lo[a]) / (planes_per_axis + 1)
+        planes += [Plane(a, float(lo[a] + step * (k + 1))) for k in range(planes_per_axis)
+                   if abs(lo[a] + step * (k + 1) - centroid[a]) > step / 4]
+    r = cut(Refined.of(surface), planes)
+    loops: list[SurfaceLoop] = []
+    for p in range(len(r.planes)):
+        try:
+            loops += [SurfaceLoop(p, c) for c in r.sections(p)]
+        except ValueError:
+            continue  # a degenerate section: its curves are not candidates
+    return r, loops, [i for i, lp in enumerate(loops) if lp.plane < 3]
+
+
+def _valid(r: Refined, loops: list[SurfaceLoop]) -> Embedded | None:
+    try:
+        e = read_structure(r, loops)
+    except NotAStructure:
+        return None
+    if not check_polycube_loop_structure(e.structure).valid:
+        return None
+    return e
+
+
+def start_state(r: Refined, loops: list[SurfaceLoop]) -> list[int]:
+    """Three curves, one per axis, crossing pairwise twice and making the cube: from the
+    central planes first, then from planes ever farther from the centre.
+
+    Raises
+    ------
+    StartError
+        When no three candidate curves make the cube.
+    """
+    centre = [r.planes[a].value for a in range(3)]
+    by_axis: list[list[int]] = [[], [], []]
+    for i, lp in enumerate(loops):
+        by_axis[r.planes[lp.plane].axis].append(i)
+    def nearness(i: int) -> tuple[float, int]:  # central planes first, longer curves first
+        plane = r.planes[loops[i].plane]
+        return abs(plane.value - centre[plane.axis]), -len(loops[i].vertices)
+
+    for axis in range(3):
+        by_axis[axis].sort(key=nearness)
+    vsets = [set(lp.vertices) for lp in loops]
+    tried = 0
+    for i in by_axis[0][:6]:
+        for j in by_axis[1][:6]:
+            if len(vsets[i] & vsets[j]) != 2:
+                continue
+            for k in by_axis[2][:6]:
+                if len(vsets[i] & vsets[k]) != 2 or len(vsets[j] & vsets[k]) != 2:
+                    continue
+                tried += 1
+                if _valid(r, [loops[i], loops[j], loops[k]]) is not None:
+                    return [i, j, k]
+    raise StartError(f"no three section curves make a cube ({tried} triples crossing pairwise twice tried)")
+
+
+class _Scorer:
+    """The fidelity a state's labels would have: each triangle labelled by the normal of the
+    face of the nearest crossing in its region (along the triangles' adjacency)."""
+
+    def __init__(self, r: Refined):
+        self.r = r
+        surface = r.surface
+        self.areas = surface.areas
+        self.normals = surface.normals
+        tris = r.triangles
+        owner = {}
+        for t, (a, b, c) in enumerate(tris.tolist()):
+            owner[a, b] = owner[b, c] = owner[c, a] = t
+        centroid = r.points[tris].mean(axis=1)
+        pairs = [(t, owner[v, u], u, v) for (u, v), t in owner.items() if u < v]
+        self.pairs = np.array([(a, b) for a, b, _, _ in pairs], dtype=np.int64)
+        self.edge_keys = np.array([u * (len(r.points) + 1) + v for _, _, u, v in pairs], dtype=np.int64)
+        self.lengths = np.linalg.norm(centroid[self.pairs[:, 0]] - centroid[self.pairs[:, 1]], axis=1) + 1e-12
+        self.incident: dict[int, list[int]] = {}
+        for t, tri in enumerate(tris.tolist()):
+            for v in tri:
+                self.incident.setdefault(v, []).append(t)
+
+    def fidelity(self, e: Embedded) -> float:
+        polycube = e.structure.primalize()
+        n = len(self.r.points) + 1
+        cut_keys = np.array(sorted(u * n + v for lp in e.loops for u, v in lp.edges()), dtype=np.int64)
+        keep = ~np.isin(self.edge_keys, cut_keys)
+        a, b, w = self.pairs[keep, 0], self.pairs[keep, 1], self.lengths[keep]
+        m = len(self.r.triangles)
+        graph = coo_matrix((np.concatenate([w, w]), (np.concatenate([a, b]), np.concatenate([b, a]))),
+                           shape=(m, m)).tocsr()
+        sources, face_of_source = [], {}
+        for f, v in enumerate(e.crossings):
+            for t in self.incident[v]:
+                sources.append(t)
+                face_of_source[t] = f
+        _, _, nearest = dijkstra(graph, indices=sources, min_only=True, return_predecessors=True)
+        normal = np.array([int(polycube.face_normal(f) or 0) for f in range(len(e.crossings))])
+        labels = normal[[face_of_source.get(int(s), 0) for s in nearest.tolist()]]
+        agreement = (self.normals * DIRECTION_VECTORS[labels]).sum(axis=1)
+        return float((self.areas * agreement).sum() / self.areas.sum())
+
+
+def greedy_search(r: Refined, loops: list[SurfaceLoop], start: list[int], settings: SearchSettings,
+                  on_step: Callable[[State], None] | None = None) -> list[State]:
+    """The states the search went through, the start first and the best last."""
+    deadline = time.monotonic() + settings.budget
+    rng = random.Random(settings.seed)
+    scorer = _Scorer(r)
+
+    def state(chosen: frozenset[int]) -> State | None:
+        e = _valid(r, [loops[i] for i in sorted(chosen)])
+        if e is None:
+            return None
+        try:
+            fid = scorer.fidelity(e)
+        except (PolyloopsError, ValueError):
+            return None
+        return State(chosen, fid - settings.price * len(chosen), fid, e)
+
+    first = state(frozenset(start))
+    assert first is not None  # start_state checked it
+    path = [first]
+    if on_step:
+        on_step(first)
+    while time.monotonic() < deadline:
+        here = path[-1]
+        moves = [here.loops | {i} for i in range(len(loops)) if i not in here.loops]
+        moves += [here.loops - {i} for i in here.loops if len(here.loops) > 3]
+        rng.shuffle(moves)
+        best = None
+        for chosen in moves:
+            if time.monotonic() >= deadline:
+                break
+            s = state(chosen)
+            if s is not None and s.score > here.score + 1e-9 and (best is None or s.score > best.score):
+                best = s
+        if best is None:
+            break
+        path.append(best)
+        if on_step:
+            on_step(best)
+    return path
+
+
+def naive_fidelity(surface: Surface) -> float:
+    """The fidelity of the per-triangle labelling (each triangle its closest direction): the
+    upper bound of every labelling's fidelity."""
+    return float((surface.areas * np.abs(surface.normals).max(axis=1)).sum() / surface.areas.sum())
+
+
+def fidelity(surface: Surface, labels: list[Direction] | tuple[Direction, ...]) -> float:
+    """The area-weighted mean of ``n . label`` over the triangles."""
+    vectors = DIRECTION_VECTORS[np.array([int(d) for d in labels])]
+    return float((surface.areas * (surface.normals * vectors).sum(axis=1)).sum() / surface.areas.sum())
