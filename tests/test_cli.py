@@ -14,7 +14,8 @@ ROOT = __import__("pathlib").Path(__file__).resolve().parent.parent
 
 COMMANDS = ["examples", "verify", "primalize", "dualize", "info", "corners", "orient", "moves", "add",
             "remove", "signature", "catalog", "catalog-query", "render", "sheet", "convert", "reach", "path",
-            "conjecture", "identify", "catalog-export", "from-voxels", "segmentation", "view", "gallery"]
+            "conjecture", "identify", "catalog-export", "from-voxels", "segmentation", "segment", "view",
+            "gallery"]
 
 
 def run(capsys, *argv):

@@ -32,3 +32,182 @@ def test_what_the_checker_does_not_pass_is_refused_not_handed_out(verdict, monke
     word = "invalid" if verdict is False else "undecided"
     with pytest.raises(UncertifiedError, match=f"checker finds this labelling {word}"):
         certified_from_polycube(box(2, 1, 1))
+
+
+# -- polyloops segment: loops on a surface ------------------------------------------------------
+
+import json  # noqa: E402
+from pathlib import Path  # noqa: E402
+
+import numpy as np  # noqa: E402
+from hypothesis import settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+from polyloops.cli import main  # noqa: E402
+from polyloops.core.canonical import canonical_form  # noqa: E402
+from polyloops.core.moves import add_loop, remove_loop  # noqa: E402
+from polyloops.io.labelled_mesh import parse_labels, read_triangle_mesh  # noqa: E402
+from polyloops.segment.certify import layout_problem  # noqa: E402
+from polyloops.segment.embedded import kernel_addition  # noqa: E402
+from polyloops.segment.flow import disjoint_paths  # noqa: E402
+from polyloops.segment.layout import lay_out  # noqa: E402
+from polyloops.segment.run import segment_mesh  # noqa: E402
+from polyloops.segment.search import SearchSettings, candidate_loops, greedy_search, start_state  # noqa: E402
+from polyloops.segment.surface import SurfaceError, surface_of  # noqa: E402
+from polyloops.shapes.meshes import ellipsoid, octahedron, sphere, torus  # noqa: E402
+
+SHARED = Path(__file__).resolve().parents[2] / "shared" / "meshes"
+
+
+def write_obj(path, points, triangles):
+    lines = [f"v {x} {y} {z}" for x, y, z in np.asarray(points).tolist()]
+    lines += [f"f {a + 1} {b + 1} {c + 1}" for a, b, c in np.asarray(triangles).tolist()]
+    path.write_text("\n".join(lines) + "\n")
+    return str(path)
+
+
+@pytest.mark.parametrize(("change", "problem"), [
+    (lambda p, t: (p, t[:-1]), "has a triangle on one side only"),
+    (lambda p, t: (p, np.concatenate([t[:-1], t[-1:, ::-1]])), "same way"),
+    (lambda p, t: (np.where(np.arange(len(p))[:, None] == 0, np.nan, p), t), "not a finite number"),
+    (lambda p, t: (np.concatenate([p, p + 5]), np.concatenate([t, t + len(p)])), "2 separate pieces"),
+    (lambda p, t: (p, np.concatenate([t[:1, [0, 0, 1]], t[1:]])), "repeats a vertex"),
+    (lambda p, t: (p * 0, t), "no area"),
+])
+def test_a_mesh_that_is_no_closed_surface_is_refused_with_its_problem(change, problem):
+    points, triangles = change(*octahedron())
+    with pytest.raises(SurfaceError, match=problem):
+        surface_of(points, triangles)
+
+
+def test_two_cones_touching_at_a_vertex_are_no_manifold():
+    points, triangles = octahedron()
+    # a second octahedron sharing the vertex +X (index 0) of the first
+    other = points * np.array([1, 1, 1]) + np.array([2, 0, 0])
+    index = np.arange(len(points)) + len(points)
+    index[1] = 0  # its vertex -X is the first one's +X
+    with pytest.raises(SurfaceError, match="two fans"):
+        surface_of(np.concatenate([points, other]), np.concatenate([triangles, index[triangles]]))
+
+
+def test_disjoint_paths_meet_only_at_the_source_and_are_refused_when_impossible():
+    # a path graph 0-1-2 with targets 0 and 2 from 1: possible; from 0 to 1 and 2: not (2 lies behind 1)
+    edges = [(0, 1, 1.0), (1, 2, 1.0)]
+    assert sorted(disjoint_paths(3, edges, 1, [0, 2])) == [[1, 0], [1, 2]]
+    assert disjoint_paths(3, edges, 0, [1, 2]) is None
+
+
+EGGS = (st.floats(0.6, 2.5), st.floats(0.6, 2.5), st.floats(0.6, 2.5), st.floats(0, 0.05), st.integers(0, 99))
+
+
+@settings(max_examples=4, deadline=None)
+@given(*EGGS)
+def test_every_generated_genus0_mesh_is_segmented_and_certified(a, b, c, jitter, seed):
+    """Ellipsoids of many proportions, jittered: every run ends certified, the checker is
+    called again on what it returned, and the labels' fidelity is at most the per-triangle
+    bound (many more shapes with --run-slow)."""
+    certified_egg(a, b, c, jitter, seed)
+
+
+@pytest.mark.slow
+@settings(max_examples=60, deadline=None)
+@given(*EGGS)
+def test_many_generated_genus0_meshes_are_segmented_and_certified(a, b, c, jitter, seed):
+    certified_egg(a, b, c, jitter, seed)
+
+
+def certified_egg(a, b, c, jitter, seed):
+    done = segment_mesh(*ellipsoid(a, b, c, level=2, jitter=jitter, seed=seed), budget=0.5, seed=seed)
+    assert done.certified and done.report.polycube is not None
+    assert check_segmentation(done.mesh).valid is True
+    assert done.fidelity <= done.naive_fidelity + 1e-9
+    assert len(done.face_map) == len(done.mesh.triangles) and max(done.face_map) < 128
+
+
+def test_each_move_read_off_the_surface_is_the_kernels_move():
+    """Adding a section curve and reading the structure off the surface gives the structure
+    the kernel's add_loop makes from the curve's walk through the regions; removing it again
+    gives back the structure before (canonical forms, labelled mode)."""
+    r, loops, _ = candidate_loops(surface_of(*ellipsoid(2, 1, 0.7, level=3)), 5)
+    first = start_state(r, loops)
+    from polyloops.segment.search import _valid
+
+    before = _valid(r, [loops[i] for i in first])
+    checked = 0
+    for i in set(range(len(loops))) - set(first):
+        after = _valid(r, [loops[j] for j in first] + [loops[i]])
+        if after is None:
+            continue
+        kernel = add_loop(before.structure, kernel_addition(before, loops[i]))
+        assert canonical_form(kernel, "labelled") == canonical_form(after.structure, "labelled")
+        back = remove_loop(after.structure, after.structure_loop(3))
+        assert canonical_form(back, "labelled") == canonical_form(before.structure, "labelled")
+        checked += 1
+    assert checked >= 5
+
+
+def test_the_search_improves_and_the_same_seed_gives_the_same_result():
+    r, loops, _ = candidate_loops(surface_of(*ellipsoid(2, 1, 0.7, level=2)), 3)
+    first = start_state(r, loops)
+    runs = [greedy_search(r, loops, first, SearchSettings(budget=60, seed=3)) for _ in range(2)]
+    assert [s.loops for s in runs[0]] == [s.loops for s in runs[1]]
+    scores = [s.score for s in runs[0]]
+    assert scores == sorted(scores) and len(scores) > 1
+    lay = lay_out(r, [loops[i] for i in sorted(runs[0][-1].loops)])
+    assert layout_problem(lay) is None
+
+
+def test_a_broken_layout_is_caught():
+    """The layout check fails when a patch carries another label, or a triangle changes patch."""
+    r, loops, _ = candidate_loops(surface_of(*sphere(3)), 3)
+    lay = lay_out(r, [loops[i] for i in start_state(r, loops)])
+    assert layout_problem(lay) is None
+    from dataclasses import replace
+
+    labels = list(lay.labels)
+    labels[0] = -labels[0]
+    assert "carries another label" in layout_problem(replace(lay, labels=tuple(labels)))
+    patch = lay.patch.copy()
+    patch[np.nonzero(patch == 0)[0][0]] = 1
+    assert layout_problem(replace(lay, patch=patch)) is not None
+
+
+def test_segment_command_writes_certified_labels(tmp_path, capsys):
+    mesh = write_obj(tmp_path / "egg.obj", *ellipsoid(1.5, 1, 0.8, level=2))
+    labels, out_mesh = tmp_path / "egg.labels", tmp_path / "out.obj"
+    assert main(["segment", mesh, "--budget", "1", "-o", str(labels), "--mesh-out", str(out_mesh),
+                 "--polycube", str(tmp_path / "q.json"), "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["certified"] is True and data["genus"] == 0 and data["loops"] >= 3
+    _, triangles = read_triangle_mesh(out_mesh)
+    assert len(parse_labels(labels.read_text(), len(triangles))) == data["triangles"] == len(triangles)
+    assert len((tmp_path / "out.obj.facemap").read_text().split()) == len(triangles)
+    assert main(["segmentation", str(out_mesh), str(labels)]) == 0  # the checker agrees from the files
+    assert "valid" in capsys.readouterr().out
+
+
+def test_segment_command_refuses_bad_input_with_one_line(tmp_path, capsys):
+    opened = write_obj(tmp_path / "open.obj", *octahedron())
+    text = Path(opened).read_text().splitlines()
+    Path(opened).write_text("\n".join(text[:-1]) + "\n")
+    ring = write_obj(tmp_path / "ring.obj", *torus())
+    for argv, words in ((["segment", opened], "open"), (["segment", ring], "genus 1"),
+                        (["segment", str(tmp_path / "none.obj")], "cannot read")):
+        assert main(argv) == 2
+        err = capsys.readouterr().err.strip().splitlines()
+        assert len(err) == 1 and words in err[0] and argv[1] in err[0]
+
+
+@pytest.mark.slow
+@pytest.mark.skipif(not SHARED.is_dir(), reason="../shared/meshes is not here")
+def test_the_shared_genus0_meshes_are_segmented_and_certified():
+    index = json.loads((SHARED / "index.json").read_text()) if (SHARED / "index.json").exists() else None
+    done = 0
+    for path in sorted(SHARED.glob("*/*.stl")):
+        points, triangles = read_triangle_mesh(path)
+        if surface_of(points, triangles).genus != 0:
+            continue
+        result = segment_mesh(points, triangles, budget=5)
+        assert result.certified, path
+        done += 1
+    assert done > 10, index

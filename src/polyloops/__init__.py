@@ -56,6 +56,7 @@ _LAZY = {
     "shortest_path": "polyloops.reach.search",
     "read": "polyloops.io.registry",
     "write": "polyloops.io.registry",
+    "segment_mesh": "polyloops.segment.run",  # (``polyloops.segment`` is the constructors' package)
 }
 
 

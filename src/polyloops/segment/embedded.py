@@ -28,10 +28,11 @@ from scipy.sparse.csgraph import connected_components
 
 from polyloops.core.directions import Axis, Direction
 from polyloops.core.errors import PolyloopsError
+from polyloops.core.moves import Addition
 from polyloops.core.structure import LoopStructure
 from polyloops.segment.refine import Refined
 
-__all__ = ["Embedded", "NotAStructure", "SurfaceLoop", "read_structure"]
+__all__ = ["Embedded", "NotAStructure", "SurfaceLoop", "kernel_addition", "read_structure"]
 
 
 class NotAStructure(PolyloopsError, ValueError):
@@ -65,6 +66,12 @@ class Embedded:
     region: np.ndarray
     crossings: tuple[int, ...]
     structure: LoopStructure
+
+    def structure_loop(self, k: int) -> int:
+        """The loop of :attr:`structure` that curve ``k`` of :attr:`loops` is (the one through
+        the same crossings)."""
+        faces = {f for f, v in enumerate(self.crossings) if v in set(self.loops[k].vertices)}
+        return next(i for i, lp in enumerate(self.structure.loops) if set(lp.faces) == faces)
 
     @property
     def region_triangles(self) -> list[np.ndarray]:
@@ -208,3 +215,21 @@ def _check_discs(r: Refined, region: np.ndarray) -> None:
             raise NotAStructure(f"region {g} is not a disc (Euler characteristic {euler})")
         if any(k != 1 for k in boundary[g].values()):
             raise NotAStructure(f"region {g} touches itself on its boundary")
+
+
+def kernel_addition(e: Embedded, new: SurfaceLoop) -> Addition:
+    """The kernel's description of adding curve ``new`` to ``e``: its axis and the regions of
+    ``e`` it walks through, in order, walked with its ``+`` side (greater coordinate) on the
+    right.  :func:`polyloops.core.moves.add_loop` with it must give the structure read off the
+    surface with ``new`` added (a self-test of both)."""
+    r = e.refined
+    owner = _directed(r.triangles)
+    plane = r.planes[new.plane]
+    vs = list(new.vertices)
+    u, v = vs[0], vs[1]
+    centroid = r.points[r.triangles[owner[v, u]]].mean(axis=0)  # the triangle on the walk's right
+    if centroid[plane.axis] < plane.value:
+        vs = vs[::-1]
+    walk = [int(e.region[owner[a, b]]) for a, b in zip(vs, vs[1:] + vs[:1], strict=True)]
+    cycle = [g for i, g in enumerate(walk) if g != walk[i - 1]]
+    return Addition(Axis(plane.axis), tuple(cycle))
