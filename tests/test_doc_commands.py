@@ -28,7 +28,7 @@ REPRODUCTIONS = ("--max-corners 30 --generator plantri", "--max-corners 36 --gen
                  "--genus 1 --max-corners 44", "-o catalogs/genus0/", "-o catalogs/genus1/",
                  "tools/ship_catalog.py")
 # Commands that draw, build or replay: seconds to minutes each, run with --run-slow.
-HEAVY = ("render", "view", "sheet", "gallery", "catalog", "reach", "conjecture", "path")
+HEAVY = ("render", "view", "sheet", "gallery", "catalog", "reach", "conjecture", "path", "segment")
 
 
 @dataclass(frozen=True)
@@ -85,8 +85,12 @@ def test_every_shown_command_parses(shown):
 def clone_like(tmp: Path) -> Path:
     """A folder laid out like a clone (its data folders linked) with the inputs the pages
     assume the reader has made: a big structure, a mesh with labels, a structure of their own."""
+    from polyloops.core.directions import Direction
     from polyloops.io.formats import dumps
+    from polyloops.io.meshes import write_triangle_mesh
     from polyloops.shapes.builders import box
+    from polyloops.shapes.meshes import ellipsoid
+    from polyloops.surface.mesh import LabelledMesh
 
     for name in ("tests", "catalogs", "src", "tools", "docs"):
         (tmp / name).symlink_to(ROOT / name)
@@ -95,6 +99,8 @@ def clone_like(tmp: Path) -> Path:
     examples = ROOT / "src" / "polyloops" / "examples"
     shutil.copy(examples / "overhang.obj", tmp / "shape.obj")
     shutil.copy(examples / "overhang.labels", tmp / "shape.labels")
+    points, triangles = (tuple(map(tuple, a.tolist())) for a in ellipsoid(1.5, 1, 0.7))
+    write_triangle_mesh(tmp / "shape.stl", LabelledMesh(points, triangles, (Direction.PX,) * len(triangles)))
     (tmp / "scratch").mkdir()
     return tmp
 

@@ -6,6 +6,7 @@ import argparse
 import json
 import sys
 from collections.abc import Callable
+from typing import Any
 
 from polyloops.cli.load import (
     EXIT_INVALID,
@@ -25,7 +26,8 @@ def add_command(command: Callable[..., argparse.ArgumentParser]) -> None:
                 "is certified by two checks (exit 0 written, 1 nothing certified, 2 bad input)",
                 file_arg=False)
     p.add_argument("mesh", metavar="MESH", help="a closed, oriented, connected triangle mesh (.obj, .stl or "
-                   "MEDIT .mesh), triangles counter-clockwise seen from outside")
+                   "MEDIT .mesh), triangles counter-clockwise seen from outside; or example:NAME, a made "
+                   "mesh (sphere, egg, pebble, torus)")
     p.add_argument("-o", "--output", metavar="LABELS", help="write one integer 0..5 per triangle of the "
                    "labelled mesh (+X -X +Y -Y +Z -Z, the labeling.txt and .flag convention)")
     p.add_argument("--mesh-out", metavar="MESH", help="write the labelled mesh (the input refined along the "
@@ -51,13 +53,24 @@ def cmd_segment(args: argparse.Namespace) -> int:
     from polyloops.segment.search import StartError
     from polyloops.segment.surface import SurfaceError
 
-    check_readable_file(args.mesh, limit=None)
-    try:
-        points, triangles = read_triangle_mesh(args.mesh)
-    except InputError as err:
-        raise CliError(str(err)) from None
-    except LabelledMeshError as err:
-        raise CliError(f"{err.where or args.mesh}: {err}") from None
+    points: Any
+    triangles: Any
+    if args.mesh.startswith("example:"):
+        from polyloops.shapes.meshes import MESH_EXAMPLES
+
+        name = args.mesh.removeprefix("example:")
+        if name not in MESH_EXAMPLES:
+            names = ", ".join(sorted(MESH_EXAMPLES))
+            raise CliError(f"{args.mesh}: no such mesh; the made meshes are {names}")
+        points, triangles = MESH_EXAMPLES[name]()
+    else:
+        check_readable_file(args.mesh, limit=None)
+        try:
+            points, triangles = read_triangle_mesh(args.mesh)
+        except InputError as err:
+            raise CliError(str(err)) from None
+        except LabelledMeshError as err:
+            raise CliError(f"{err.where or args.mesh}: {err}") from None
     bar = tqdm(desc="segment", unit="state", disable=None, file=sys.stderr)
     try:
         result = segment_mesh(points, triangles, budget=args.budget, seed=args.seed,

@@ -81,23 +81,13 @@ class Embedded:
         return [order[bounds[i]:bounds[i + 1]] for i in range(len(bounds) - 1)]
 
 
-def _directed(triangles: np.ndarray) -> dict[tuple[int, int], int]:
-    out = {}
-    for t, (a, b, c) in enumerate(triangles.tolist()):
-        out[a, b] = out[b, c] = out[c, a] = t
-    return out
-
-
 def regions_of(r: Refined, loop_edges: set[tuple[int, int]]) -> np.ndarray:
     """Per triangle, its region: triangles joined across the edges not in ``loop_edges``."""
-    tris = r.triangles
-    rows, cols = [], []
-    owner = _directed(tris)
-    for (u, v), t in owner.items():
-        if u < v and (u, v) not in loop_edges:
-            rows.append(t)
-            cols.append(owner[v, u])
-    graph = coo_matrix((np.ones(len(rows)), (rows, cols)), shape=(len(tris), len(tris)))
+    pairs, keys = r.adjacency
+    cut = r.edge_key(*np.array(sorted(loop_edges), dtype=np.int64).reshape(-1, 2).T)
+    keep = ~np.isin(keys, cut)
+    m = len(r.triangles)
+    graph = coo_matrix((np.ones(int(keep.sum())), (pairs[keep, 0], pairs[keep, 1])), shape=(m, m))
     _, labels = connected_components(graph, directed=False)
     return labels
 
@@ -126,11 +116,11 @@ def read_structure(r: Refined, loops: list[SurfaceLoop]) -> Embedded:
     if any(len(on_loops[v]) > 2 for v in crossings):
         raise NotAStructure("three loops meet at one point")
     _check_discs(r, region)
-    owner = _directed(r.triangles)
+    owner = r.owner
     faces, labels = [], {}
     centroid = r.points[r.triangles].mean(axis=1)
     for v in crossings:
-        sectors = _sectors_round(v, r.triangles, owner, loop_of_edge)
+        sectors = _sectors_round(v, r.incident[v][0], r.triangles, owner, loop_of_edge)
         if len(sectors) != 4:
             raise NotAStructure(f"a crossing with {len(sectors)} sectors round it")
         face = [int(region[t]) for t, _ in sectors]
@@ -164,11 +154,10 @@ def _once(labels: dict[tuple[int, int], Direction]) -> dict[tuple[int, int], Dir
     return out
 
 
-def _sectors_round(v: int, triangles: np.ndarray, owner: dict[tuple[int, int], int],
+def _sectors_round(v: int, start: int, triangles: np.ndarray, owner: dict[tuple[int, int], int],
                    loop_of_edge: dict[tuple[int, int], int]) -> list[tuple[int, tuple[int, int]]]:
-    """Round vertex ``v`` counter-clockwise: per sector between loop edges, a triangle of it
-    and the loop edge (``(u, w)``, ``u < w``) that ends it."""
-    start = next(t for (a, _), t in owner.items() if a == v)
+    """Round vertex ``v`` counter-clockwise from triangle ``start``: per sector between loop
+    edges, a triangle of it and the loop edge (``(u, w)``, ``u < w``) that ends it."""
     tri = triangles[start].tolist()
     k = tri.index(v)
     spoke = tri[(k + 2) % 3]  # the triangle (v, a, b): the next one round v holds (v, b)
@@ -193,29 +182,35 @@ def _sectors_round(v: int, triangles: np.ndarray, owner: dict[tuple[int, int], i
 def _check_discs(r: Refined, region: np.ndarray) -> None:
     """Every region a disc: Euler characteristic 1 and one boundary curve without pinches."""
     tris = r.triangles
+    n = len(r.points) + 1
     count = int(region.max()) + 1
     faces = np.bincount(region, minlength=count)
-    owner = _directed(tris)
-    edges = np.zeros(count, dtype=np.int64)
-    boundary: list[dict[int, int]] = [{} for _ in range(count)]
-    for (u, v), t in owner.items():
-        g = region[t]
-        other = region[owner[v, u]]
-        if other == g:
-            if u < v:
-                edges[g] += 1
-        else:
-            edges[g] += 1
-            boundary[g][u] = boundary[g].get(u, 0) + 1
-    pairs = np.unique(np.repeat(region, 3) * (len(r.points) + 1) + tris.ravel())
-    verts = np.bincount(pairs // (len(r.points) + 1), minlength=count)
-    for g in range(count):
-        euler = verts[g] - edges[g] + faces[g]
-        if euler != 1:
-            raise NotAStructure(f"region {g} is not a disc (Euler characteristic {euler})")
-        if any(k != 1 for k in boundary[g].values()):
-            raise NotAStructure(f"region {g} touches itself on its boundary")
+    pairs, _ = r.adjacency
+    a, b = region[pairs[:, 0]], region[pairs[:, 1]]
+    inner = a == b
+    edges = np.bincount(a[inner], minlength=count) + np.bincount(a[~inner], minlength=count) \
+        + np.bincount(b[~inner], minlength=count)
+    verts = np.bincount(np.unique(np.repeat(region, 3) * n + tris.ravel()) // n, minlength=count)
+    euler = verts - edges + faces
+    if (euler != 1).any():
+        g = int(np.nonzero(euler != 1)[0][0])
+        raise NotAStructure(f"region {g} is not a disc (Euler characteristic {euler[g]})")
+    # a pinch: a vertex where the region's boundary passes twice
+    owner = r.owner
+    starts = []
+    for (u, v) in (tuple(x) for x in _boundary_darts(r, region)):
+        starts.append(int(region[owner[u, v]]) * n + u)
+    if len(starts) != len(set(starts)):
+        raise NotAStructure("a region touches itself on its boundary")
 
+
+def _boundary_darts(r: Refined, region: np.ndarray) -> np.ndarray:
+    """The directed edges with another region on their right."""
+    pairs, keys = r.adjacency
+    differ = region[pairs[:, 0]] != region[pairs[:, 1]]
+    n = len(r.points) + 1
+    u, v = keys[differ] // n, keys[differ] % n
+    return np.concatenate([np.stack([u, v], axis=1), np.stack([v, u], axis=1)])
 
 def kernel_addition(e: Embedded, new: SurfaceLoop) -> Addition:
     """The kernel's description of adding curve ``new`` to ``e``: its axis and the regions of
@@ -223,7 +218,7 @@ def kernel_addition(e: Embedded, new: SurfaceLoop) -> Addition:
     right.  :func:`polyloops.core.moves.add_loop` with it must give the structure read off the
     surface with ``new`` added (a self-test of both)."""
     r = e.refined
-    owner = _directed(r.triangles)
+    owner = r.owner
     plane = r.planes[new.plane]
     vs = list(new.vertices)
     u, v = vs[0], vs[1]

@@ -118,9 +118,7 @@ def _attempt(e: Embedded) -> tuple[tuple[int, ...], Paths, np.ndarray] | set:
     """Corners, paths and patches, or the edges to split first."""
     r = e.refined
     tris, pts = r.triangles, r.points
-    owner = {}
-    for t, (a, b, c) in enumerate(tris.tolist()):
-        owner[a, b] = owner[b, c] = owner[c, a] = t
+    owner = r.owner
     crossing_face = {v: f for f, v in enumerate(e.crossings)}
     count = int(e.region.max()) + 1
     cycles = [_boundary_cycle(tris, e.region, g, owner) for g in range(count)]

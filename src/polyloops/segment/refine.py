@@ -61,6 +61,36 @@ class Refined:
         """The refined triangles as a surface (areas and normals)."""
         return Surface(self.points, self.triangles)
 
+    @cached_property
+    def owner(self) -> dict[tuple[int, int], int]:
+        """Per directed edge ``(u, v)``, the triangle that runs it (the one on its left)."""
+        out = {}
+        for t, (a, b, c) in enumerate(self.triangles.tolist()):
+            out[a, b] = out[b, c] = out[c, a] = t
+        return out
+
+    @cached_property
+    def adjacency(self) -> tuple[np.ndarray, np.ndarray]:
+        """Per edge (each once): the two triangles beside it (k x 2), and its key
+        ``u * (n + 1) + v`` with ``u < v`` (:meth:`edge_key`)."""
+        owner = self.owner
+        pairs = [(t, owner[v, u], u, v) for (u, v), t in owner.items() if u < v]
+        arr = np.array(pairs, dtype=np.int64).reshape(-1, 4)
+        return arr[:, :2], self.edge_key(arr[:, 2], arr[:, 3])
+
+    def edge_key(self, u: np.ndarray | int, v: np.ndarray | int) -> np.ndarray:
+        """The key of edge ``(u, v)`` (``u < v``) in :attr:`adjacency`."""
+        return np.asarray(u, dtype=np.int64) * (len(self.points) + 1) + np.asarray(v, dtype=np.int64)
+
+    @cached_property
+    def incident(self) -> dict[int, list[int]]:
+        """Per vertex, the triangles round it."""
+        out: dict[int, list[int]] = {}
+        for t, tri in enumerate(self.triangles.tolist()):
+            for v in tri:
+                out.setdefault(v, []).append(t)
+        return out
+
     def edges_on(self, plane: int) -> list[tuple[int, int]]:
         """The edges on ``plane``, each once as ``(u, v)`` with ``u < v``."""
         out = set()

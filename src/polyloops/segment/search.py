@@ -143,24 +143,15 @@ class _Scorer:
         surface = r.surface
         self.areas = surface.areas
         self.normals = surface.normals
-        tris = r.triangles
-        owner = {}
-        for t, (a, b, c) in enumerate(tris.tolist()):
-            owner[a, b] = owner[b, c] = owner[c, a] = t
-        centroid = r.points[tris].mean(axis=1)
-        pairs = [(t, owner[v, u], u, v) for (u, v), t in owner.items() if u < v]
-        self.pairs = np.array([(a, b) for a, b, _, _ in pairs], dtype=np.int64)
-        self.edge_keys = np.array([u * (len(r.points) + 1) + v for _, _, u, v in pairs], dtype=np.int64)
+        centroid = r.points[r.triangles].mean(axis=1)
+        self.pairs, self.edge_keys = r.adjacency
         self.lengths = np.linalg.norm(centroid[self.pairs[:, 0]] - centroid[self.pairs[:, 1]], axis=1) + 1e-12
-        self.incident: dict[int, list[int]] = {}
-        for t, tri in enumerate(tris.tolist()):
-            for v in tri:
-                self.incident.setdefault(v, []).append(t)
+        self.incident = r.incident
 
     def fidelity(self, e: Embedded) -> float:
         polycube = e.structure.primalize()
-        n = len(self.r.points) + 1
-        cut_keys = np.array(sorted(u * n + v for lp in e.loops for u, v in lp.edges()), dtype=np.int64)
+        on_loops = np.array(sorted(x for lp in e.loops for x in lp.edges()), dtype=np.int64)
+        cut_keys = self.r.edge_key(on_loops[:, 0], on_loops[:, 1])
         keep = ~np.isin(self.edge_keys, cut_keys)
         a, b, w = self.pairs[keep, 0], self.pairs[keep, 1], self.lengths[keep]
         m = len(self.r.triangles)

@@ -10,9 +10,11 @@ amount.
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 
-__all__ = ["ellipsoid", "octahedron", "sphere", "torus"]
+__all__ = ["MESH_EXAMPLES", "ellipsoid", "octahedron", "sphere", "torus"]
 
 
 def octahedron() -> tuple[np.ndarray, np.ndarray]:
@@ -77,3 +79,12 @@ def torus(major: float = 2.0, minor: float = 0.7, rings: int = 32, sides: int = 
             c, d = ((i + 1) % rings) * sides + (j + 1) % sides, i * sides + (j + 1) % sides
             triangles += [(a, b, c), (a, c, d)]
     return points, np.array(triangles)
+
+
+# Meshes the command line names as ``example:NAME`` (made, not read: no file is bundled).
+MESH_EXAMPLES: dict[str, Callable[[], tuple[np.ndarray, np.ndarray]]] = {
+    "sphere": lambda: sphere(4),
+    "egg": lambda: ellipsoid(1.6, 1.0, 0.8, level=4, jitter=0.01, seed=1),
+    "pebble": lambda: ellipsoid(2.2, 1.3, 0.6, level=5, jitter=0.02, seed=2),
+    "torus": lambda: torus(2.0, 0.7, 64, 32),
+}
