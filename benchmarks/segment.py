@@ -1,0 +1,83 @@
+"""``polyloops segment`` over a folder of meshes, beside the naive and graph-cut labellings.
+
+For each mesh (``.stl``, ``.obj``, ``.mesh`` in DIR and its subfolders): the per-triangle
+(naive) labelling, the graph-cut labelling (:mod:`polyloops.segment.labellings`, compactness 1)
+and ``segment`` (the given budget and seed), each judged by the checker: its verdict (``valid``,
+``INVALID``, ``undecided``), its fidelity (area-weighted mean of n . label), the charts, and the
+wall time.  The naive fidelity is the bound no labelling exceeds; "gap" is the bound less the
+fidelity.  Meshes of genus other than 0 get ``segment`` refused (a start of their genus is not
+built yet).  One Markdown table per subfolder.
+
+Usage: python benchmarks/segment.py DIR [--budget SECONDS] [--seed N] [--only NAME ...]
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from _common import markdown_table
+
+from polyloops.io.labelled_mesh import read_triangle_mesh
+from polyloops.segment.labellings import graphcut_labels, naive_labels
+from polyloops.segment.run import segment_surface
+from polyloops.segment.search import fidelity
+from polyloops.segment.surface import surface_of
+from polyloops.segmentation import check_segmentation
+from polyloops.surface.mesh import LabelledMesh
+
+VERDICT = {True: "valid", False: "INVALID", None: "undecided"}
+
+
+def judged(s, labels) -> tuple[str, float, int]:
+    mesh = LabelledMesh(tuple(map(tuple, s.points.tolist())), tuple(map(tuple, s.triangles.tolist())), labels)
+    report = check_segmentation(mesh)
+    return VERDICT[report.valid], fidelity(s, labels), len(report.segmentation.charts)
+
+
+def row(path: Path, budget: float, seed: int) -> list[object]:
+    s = surface_of(*read_triangle_mesh(path))
+    naive = judged(s, naive_labels(s))
+    start = time.perf_counter()
+    cut = judged(s, graphcut_labels(s))
+    cut_time = time.perf_counter() - start
+    bound = naive[1]
+    out: list[object] = [path.stem, len(s.triangles), s.genus, f"{bound:.4f}", naive[0], naive[2],
+                         cut[0], f"{cut[1]:.4f}", cut[2], f"{cut_time:.1f}"]
+    if s.genus != 0:
+        return [*out, f"genus {s.genus}", "", "", "", "", ""]
+    start = time.perf_counter()
+    try:
+        done = segment_surface(s, budget=budget, seed=seed)
+    except Exception as err:  # a benchmark reports every failure in its row
+        return [*out, f"failed: {type(err).__name__}", "", "", "", "", f"{time.perf_counter() - start:.1f}"]
+    took = time.perf_counter() - start
+    gap = bound - done.fidelity
+    return [*out, "certified", f"{done.fidelity:.4f}", f"{gap:.4f}", done.charts, done.loops, f"{took:.1f}"]
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("folder", type=Path)
+    parser.add_argument("--budget", type=float, default=20.0)
+    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--only", nargs="*", help="mesh names (stems) to run")
+    args = parser.parse_args()
+    header = ["mesh", "triangles", "genus", "naive fidelity (bound)", "naive", "naive charts", "graph-cut",
+              "graph-cut fidelity", "graph-cut charts", "graph-cut s", "segment", "fidelity", "gap", "charts",
+              "loops", "segment s"]
+    meshes = sorted(p for p in args.folder.rglob("*") if p.suffix.lower() in (".stl", ".obj", ".mesh"))
+    for folder in sorted({p.parent for p in meshes}):
+        rows = [row(p, args.budget, args.seed) for p in meshes
+                if p.parent == folder and (not args.only or p.stem in args.only)]
+        if rows:
+            print(f"\n### {folder.name}\n")
+            print(markdown_table(header, rows), flush=True)
+
+
+if __name__ == "__main__":
+    main()
