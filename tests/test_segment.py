@@ -211,3 +211,27 @@ def test_the_shared_genus0_meshes_are_segmented_and_certified():
         assert result.certified, path
         done += 1
     assert done > 10, index
+
+
+@settings(max_examples=20, deadline=None)
+@given(st.integers(0, 5), st.lists(st.integers(0, 5), min_size=8, max_size=8), st.floats(0.1, 3.0),
+       st.integers(0, 99))
+def test_an_expansion_move_is_the_best_of_its_kind(alpha, start, compactness, seed):
+    """The minimum cut of an alpha-expansion equals the best of all 256 ways to switch some of
+    the octahedron's (jittered) triangles to alpha (the brute-force twin)."""
+    from itertools import product
+
+    from polyloops.segment.labellings import _costs, _expand
+
+    points, triangles = octahedron()
+    points = points * np.random.default_rng(seed).uniform(0.5, 1.5, (len(points), 1))
+    s = surface_of(points, triangles)
+    unary, pairs, weights = _costs(s, compactness)
+    lab = np.array(start)
+
+    def energy(x):
+        return unary[np.arange(8), x].sum() + weights[x[pairs[:, 0]] != x[pairs[:, 1]]].sum()
+
+    switches = (np.array(switch, dtype=bool) for switch in product((0, 1), repeat=8))
+    best = min(energy(np.where(switch, alpha, lab)) for switch in switches)
+    assert energy(_expand(lab, alpha, unary, pairs, weights)) == pytest.approx(best, abs=1e-3)
