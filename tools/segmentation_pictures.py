@@ -1,4 +1,5 @@
-"""Draw the pictures of docs/segmentation.md from the bundled labelled meshes.
+"""Draw the pictures of docs/segmentation.md from the bundled labelled meshes, and of a
+segmentation ``polyloops segment`` builds on the made mesh ``pebble`` (seed 0, 10 s budget).
 
 Run from the repository root: ``python tools/segmentation_pictures.py``.
 """
@@ -8,7 +9,9 @@ from pathlib import Path
 from polyloops.io.examples import labelled_mesh_example
 from polyloops.render.polycube import render_polycube
 from polyloops.render.segmentation import render_segmentation
+from polyloops.segment.run import segment_mesh
 from polyloops.segmentation import check_segmentation
+from polyloops.shapes.meshes import MESH_EXAMPLES
 
 OUT = Path(__file__).resolve().parent.parent / "docs" / "images"
 
@@ -21,3 +24,8 @@ if __name__ == "__main__":
             render_polycube(report.polycube, OUT / f"segmentation-{name}-polycube.png", views=2,
                             title=f"the polycube that realises the labels of {name}", size=3.2)
             print(f"wrote segmentation-{name}-polycube.png")
+    done = segment_mesh(*MESH_EXAMPLES["pebble"](), budget=10.0, seed=0)
+    render_segmentation(done.report, OUT / "segment-pebble.png")
+    render_polycube(done.polycube, OUT / "segment-pebble-polycube.png", views=2,
+                    title=f"the polycube of its {done.loops} loops", size=3.2)
+    print("wrote segment-pebble.png and segment-pebble-polycube.png")

@@ -14,6 +14,7 @@ from polyloops.cli.load import (
     CliError,
     check_output,
     check_readable_file,
+    picture_output,
     write_error,
     write_output,
     write_text,
@@ -33,6 +34,7 @@ def add_command(command: Callable[..., argparse.ArgumentParser]) -> None:
     p.add_argument("--mesh-out", metavar="MESH", help="write the labelled mesh (the input refined along the "
                    "loops; the input triangle of each of its triangles goes to MESH.facemap)")
     p.add_argument("--polycube", metavar="FILE", help="write the polycube of the loops (.json, .obj, ...)")
+    p.add_argument("--png", metavar="FILE", help="draw the labelled mesh (two views, charts outlined)")
     p.add_argument("--budget", type=float, default=20.0, metavar="SECONDS",
                    help="time for the search of loop moves (default 20)")
     p.add_argument("--seed", type=int, default=0, help="the seed of the search's move order (default 0)")
@@ -42,6 +44,8 @@ def cmd_segment(args: argparse.Namespace) -> int:
     for path in (args.output, args.mesh_out, args.mesh_out and args.mesh_out + ".facemap", args.polycube):
         if path:
             check_output(path)
+    if args.png:
+        picture_output(args.png)
     if args.budget < 0:
         raise CliError(f"--budget {args.budget}: a time budget is not negative")
     from tqdm import tqdm
@@ -117,5 +121,14 @@ def _write(args: argparse.Namespace, result) -> int:
         write_output(args.polycube, result.polycube)
         data["polycube"] = args.polycube
         lines.append(f"wrote {args.polycube}: the polycube")
+    if args.png:
+        from polyloops.render.segmentation import render_segmentation
+
+        try:
+            render_segmentation(result.report, args.png)
+        except OSError as err:
+            raise write_error(args.png, err) from None
+        data["png"] = args.png
+        lines.append(f"drew the labelled mesh to {args.png}")
     print(json.dumps(data, indent=2) if args.json else "\n".join(lines))
     return EXIT_OK
