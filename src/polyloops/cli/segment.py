@@ -22,9 +22,10 @@ from polyloops.cli.load import (
 
 
 def add_command(command: Callable[..., argparse.ArgumentParser]) -> None:
-    p = command("segment", cmd_segment, "label each triangle of a closed genus-0 mesh +X..-Z so that a "
-                "polycube realises the labels, by adding and removing loops from the cube; every output "
-                "is certified by two checks (exit 0 written, 1 nothing certified, 2 bad input)",
+    p = command("segment", cmd_segment, "label each triangle of a closed mesh +X..-Z so that a polycube "
+                "realises the labels, by adding and removing loops (from the cube at genus 0, from a grid of "
+                "plane sections at any genus); every output is certified by two checks (exit 0 written, "
+                "1 no start or nothing certified, 2 bad input)",
                 file_arg=False)
     p.add_argument("mesh", metavar="MESH", help="a closed, oriented, connected triangle mesh (.obj, .stl or "
                    "MEDIT .mesh), triangles counter-clockwise seen from outside; or example:NAME, a made "
@@ -51,7 +52,8 @@ def cmd_segment(args: argparse.Namespace) -> int:
     from tqdm import tqdm
 
     from polyloops.io.files import InputError
-    from polyloops.io.labelled_mesh import LabelledMeshError, read_triangle_mesh
+    from polyloops.io.formats import FormatError
+    from polyloops.io.labelled_mesh import read_triangle_mesh
     from polyloops.segment.from_polycube import UncertifiedError
     from polyloops.segment.run import segment_mesh
     from polyloops.segment.search import StartError
@@ -73,15 +75,15 @@ def cmd_segment(args: argparse.Namespace) -> int:
             points, triangles = read_triangle_mesh(args.mesh)
         except InputError as err:
             raise CliError(str(err)) from None
-        except LabelledMeshError as err:
-            raise CliError(f"{err.where or args.mesh}: {err}") from None
+        except FormatError as err:  # the readers' errors name the line or the face
+            raise CliError(f"{getattr(err, 'where', None) or args.mesh}: {err}") from None
     bar = tqdm(desc="segment", unit="state", disable=None, file=sys.stderr)
     try:
         result = segment_mesh(points, triangles, budget=args.budget, seed=args.seed,
                               on_step=lambda state: bar.update(1))
-    except (SurfaceError, StartError) as err:
+    except SurfaceError as err:
         raise CliError(f"{args.mesh}: {err}") from None
-    except UncertifiedError as err:
+    except (StartError, UncertifiedError) as err:
         bar.close()
         message = f"{args.mesh}: nothing written: {err}"
         print(f"polyloops segment: {message}", file=sys.stderr)

@@ -21,6 +21,7 @@ that cannot keep apart) the surface is refined there and the structure read agai
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -37,6 +38,7 @@ from polyloops.segment.refine import Refined, split_edges
 __all__ = ["Layout", "lay_out"]
 
 MAX_ROUNDS = 6  # refinements before a layout is given up (each at least halves the edges in the way)
+CORNER_TRIES = 4  # corner vertices tried in a region before it is refined
 
 
 @dataclass(frozen=True, eq=False)
@@ -126,18 +128,32 @@ def _attempt(e: Embedded) -> tuple[tuple[int, ...], Paths, np.ndarray] | set:
     to_split: set[tuple[int, int]] = set()
     middle: dict[frozenset[int], int] = {}
     sides: list[list[tuple[int, int]]] = []  # per region: (crossing that starts the side, its middle)
+    on_boundary = np.zeros(len(pts), dtype=bool)
+    for cycle in cycles:
+        on_boundary[cycle] = True
+
+    def reaches_inside(v: int) -> bool:
+        """Whether ``v`` has a neighbour inside each region round it (on a side, a path can
+        leave it into both regions beside the side)."""
+        inside: dict[int, bool] = {}
+        for t in r.incident[v]:
+            g = int(e.region[t])
+            inside[g] = inside.get(g, False) or any(not on_boundary[w] for w in tris[t].tolist())
+        return all(inside.values())
+
     for cycle in cycles:
         at = [i for i, v in enumerate(cycle) if v in crossing_face]
         mine = []
         for j, i in enumerate(at):
             end = at[(j + 1) % len(at)]
             arc = cycle[i:end + 1] if end > i else cycle[i:] + cycle[:end + 1]
-            if len(arc) == 2:
-                to_split.add((min(arc), max(arc)))
-                continue
             key = frozenset(arc)
             if key not in middle:
-                middle[key] = _middle(arc, pts)
+                point = _middle(arc, pts, reaches_inside)
+                if point is None:  # room for a path to leave the side: split the triangles at it
+                    to_split |= _all_edges(tris[[t for v in arc for t in r.incident[v]]])
+                    continue
+                middle[key] = point
             mine.append((cycle[i], middle[key]))
         sides.append(mine)
     if to_split:
@@ -159,13 +175,16 @@ def _attempt(e: Embedded) -> tuple[tuple[int, ...], Paths, np.ndarray] | set:
     return tuple(corners), tuple(paths), patch
 
 
-def _middle(arc: list[int], pts: np.ndarray) -> int:
-    """The inner vertex of ``arc`` nearest the middle of its length (the same either way)."""
+def _middle(arc: list[int], pts: np.ndarray, usable: Callable[[int], bool]) -> int | None:
+    """The inner vertex of ``arc`` nearest the middle of its length among the ``usable`` ones
+    (the same either way round); ``None`` when there is none."""
     if tuple(arc[::-1]) < tuple(arc):
         arc = arc[::-1]
     lengths = np.linalg.norm(np.diff(pts[arc], axis=0), axis=1)
     along = np.concatenate([[0.0], np.cumsum(lengths)])
-    inner = range(1, len(arc) - 1)
+    inner = [i for i in range(1, len(arc) - 1) if usable(arc[i])]
+    if not inner:
+        return None
     return arc[min(inner, key=lambda i: (abs(along[i] - along[-1] / 2), i))]
 
 
@@ -177,30 +196,37 @@ def _region_layout(e: Embedded, g: int, cycle: list[int], sides: list[tuple[int,
     mine = np.nonzero(e.region == g)[0]
     local_tris = tris[mine]
     verts = np.unique(local_tris)
-    index = {int(v): i for i, v in enumerate(verts.tolist())}
-    on_boundary = set(cycle)
-    edge_set = set()
-    for a, b, c in local_tris.tolist():
-        for u, v in ((a, b), (b, c), (c, a)):
-            edge_set.add((min(u, v), max(u, v)))
-    ends = {m for _, m in sides}
-    # paths run inside the region: an edge with an end on the boundary only to a side's middle
-    edges = [(index[u], index[v], float(np.linalg.norm(pts[u] - pts[v]))) for u, v in sorted(edge_set)
-             if (u not in on_boundary or u in ends) and (v not in on_boundary or v in ends)
-             and not (u in on_boundary and v in on_boundary)]
-    inner = [v for v in verts.tolist() if v not in on_boundary]
-    if not inner:
+    index = np.full(len(pts), -1, dtype=np.int64)
+    index[verts] = np.arange(len(verts))
+    pairs = np.concatenate([local_tris[:, [0, 1]], local_tris[:, [1, 2]], local_tris[:, [2, 0]]])
+    pairs = np.unique(np.sort(pairs, axis=1), axis=0)  # the region's edges, each once
+    lengths = np.linalg.norm(pts[pairs[:, 0]] - pts[pairs[:, 1]], axis=1)
+    boundary = np.zeros(len(pts), dtype=bool)
+    boundary[cycle] = True
+    ends = np.zeros(len(pts), dtype=bool)
+    ends[[m for _, m in sides]] = True
+    inner = verts[~boundary[verts]]
+    if len(inner) == 0:
         return _all_edges(local_tris)
-    # the corner: the inner vertex farthest from the boundary
-    every = [(index[u], index[v], float(np.linalg.norm(pts[u] - pts[v]))) for u, v in sorted(edge_set)]
-    rows = [a for a, b, _ in every] + [b for a, b, _ in every]
-    cols = [b for a, b, _ in every] + [a for a, b, _ in every]
-    weights = [w for *_, w in every] * 2
-    graph = coo_matrix((weights, (rows, cols)), shape=(len(verts), len(verts))).tocsr()
-    dist = dijkstra(graph, indices=[index[v] for v in cycle], min_only=True)
-    corner = max(inner, key=lambda v: (dist[index[v]], -v))
-    targets = [index[m] for _, m in sides]
-    found = disjoint_paths(len(verts), edges, index[corner], targets)
+    lu, lv = index[pairs[:, 0]], index[pairs[:, 1]]
+    both_ways = (np.concatenate([lu, lv]), np.concatenate([lv, lu]))
+    size = (len(verts), len(verts))
+    graph = coo_matrix((np.concatenate([lengths, lengths]), both_ways), shape=size).tocsr()
+    dist = dijkstra(graph, indices=index[cycle], min_only=True)
+    # paths run inside the region: an edge with an end on the boundary only to a side's middle
+    bu, bv = boundary[pairs[:, 0]], boundary[pairs[:, 1]]
+    usable = ~(bu & bv) & (~bu | ends[pairs[:, 0]]) & (~bv | ends[pairs[:, 1]])
+    edges = list(zip(lu[usable].tolist(), lv[usable].tolist(), lengths[usable].tolist(), strict=True))
+    degree = np.bincount(np.concatenate([lu[usable], lv[usable]]), minlength=len(verts))
+    targets = [int(index[m]) for _, m in sides]
+    # the corner: an inner vertex with a way out to each side, as far from the boundary as can be
+    far = dist[index[inner]]
+    order = [int(v) for v in inner[np.lexsort((-inner, -far))] if degree[index[v]] >= len(sides)]
+    found = None
+    for corner in order[:CORNER_TRIES]:
+        found = disjoint_paths(len(verts), edges, int(index[corner]), targets)
+        if found is not None:
+            break
     if found is None:
         return _all_edges(local_tris)
     region_paths = tuple(tuple(int(verts[i]) for i in p) for p in found)
@@ -208,8 +234,7 @@ def _region_layout(e: Embedded, g: int, cycle: list[int], sides: list[tuple[int,
     # sectors: the region's triangles joined across edges on no path and no boundary
     local = {int(t): i for i, t in enumerate(mine.tolist())}
     rows, cols = [], []
-    for t in mine.tolist():
-        a, b, c = tris[t].tolist()
+    for t, (a, b, c) in zip(mine.tolist(), local_tris.tolist(), strict=True):
         for u, v in ((a, b), (b, c), (c, a)):
             other = owner[v, u]
             if other in local and (min(u, v), max(u, v)) not in cut:
@@ -221,14 +246,14 @@ def _region_layout(e: Embedded, g: int, cycle: list[int], sides: list[tuple[int,
         return _all_edges(local_tris)
     face_of_sector: dict[int, int] = {}
     for c, _ in sides:
-        touching = {int(sector[local[t]]) for t in mine.tolist() if c in tris[t].tolist()}
+        touching = {int(sector[local[t]]) for t in r.incident[c] if t in local}
         if len(touching) != 1:
             return _all_edges(local_tris)
         s = touching.pop()
         if s in face_of_sector:
             return _all_edges(local_tris)
         face_of_sector[s] = crossing_face[c]
-    return corner, region_paths, {int(t): face_of_sector[int(sector[local[t]])] for t in mine.tolist()}
+    return corner, region_paths, {t: face_of_sector[int(sector[i])] for t, i in local.items()}
 
 
 def _all_edges(local_tris: np.ndarray) -> set[tuple[int, int]]:

@@ -91,15 +91,27 @@ class Refined:
                 out.setdefault(v, []).append(t)
         return out
 
+    @cached_property
+    def _plane_vertices(self) -> dict[int, np.ndarray]:
+        on: dict[int, list[int]] = {}
+        for v, planes in enumerate(self.on):
+            for p in planes:
+                on.setdefault(p, []).append(v)
+        return {p: np.array(vs, dtype=np.int64) for p, vs in on.items()}
+
     def edges_on(self, plane: int) -> list[tuple[int, int]]:
         """The edges on ``plane``, each once as ``(u, v)`` with ``u < v``."""
-        out = set()
-        for tri in self.triangles.tolist():
-            for i in range(3):
-                u, v = tri[i], tri[(i + 1) % 3]
-                if plane in self.on[u] and plane in self.on[v]:
-                    out.add((min(u, v), max(u, v)))
-        return sorted(out)
+        mark = np.zeros(len(self.points), dtype=bool)
+        mark[self._plane_vertices.get(plane, np.zeros(0, dtype=np.int64))] = True
+        _, keys = self.adjacency
+        n = len(self.points) + 1
+        u, v = keys // n, keys % n
+        both = mark[u] & mark[v]
+        return sorted(zip(u[both].tolist(), v[both].tolist(), strict=True))
+
+    @cached_property
+    def _sections(self) -> dict[int, list[tuple[int, ...]]]:
+        return {}  # filled by sections(), plane by plane
 
     def sections(self, plane: int) -> list[tuple[int, ...]]:
         """The closed curves of ``plane``'s section, each as its cycle of vertices.
@@ -110,6 +122,11 @@ class Refined:
             When the section is not a union of disjoint closed curves (a plane through a
             vertex of the input can make it so; the planes are chosen to avoid that).
         """
+        if plane not in self._sections:
+            self._sections[plane] = self._curves(plane)
+        return self._sections[plane]
+
+    def _curves(self, plane: int) -> list[tuple[int, ...]]:
         around: dict[int, list[int]] = {}
         for u, v in self.edges_on(plane):
             around.setdefault(u, []).append(v)

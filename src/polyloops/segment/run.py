@@ -16,14 +16,16 @@ import numpy as np
 
 from polyloops.core.polycube import Polycube
 from polyloops.segment.certify import layout_problem
-from polyloops.segment.embedded import NotAStructure
+from polyloops.segment.embedded import NotAStructure, SurfaceLoop
 from polyloops.segment.from_polycube import UncertifiedError
 from polyloops.segment.layout import Layout, lay_out
+from polyloops.segment.refine import Refined
 from polyloops.segment.search import (
     SearchSettings,
     StartError,
     State,
     candidate_loops,
+    dense_start,
     fidelity,
     greedy_search,
     naive_fidelity,
@@ -96,14 +98,12 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
                     price: float = 0.002, on_step: Callable[[State], None] | None = None) -> SegmentResult:
     """:func:`segment_mesh` on a checked surface."""
     began = time.monotonic()
-    if surface.genus != 0:
-        raise StartError(f"the mesh has genus {surface.genus}: segment starts from the cube, on genus 0 only")
-    r, loops, _ = candidate_loops(surface, planes)
+    r, loops, first = _start(surface, planes)
     # the budget covers the whole run: the cut above, the search, and a reserve for the layout
     # and the checks after it (measured: up to a third of the search's time on the shared meshes)
     left = budget - (time.monotonic() - began)
     settings = SearchSettings(max(0.0, 0.65 * left), seed, planes, price)
-    path = greedy_search(r, loops, start_state(r, loops), settings, on_step)
+    path = greedy_search(r, loops, first, settings, on_step)
     why = ""
     for state in reversed(path):  # the best first, then the states before it
         try:
@@ -124,20 +124,43 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
     raise UncertifiedError(f"no state of the search was certified: {why}")
 
 
+GRIDS = (9, 13, 19)  # candidate planes per axis for a grid start, coarse to fine
+
+
+def _start(surface: Surface, planes: int) -> tuple[Refined, list[SurfaceLoop], list[int]]:
+    """The cut surface, its candidate curves and the start: the cube at genus 0, else (or when
+    no cube is found) the first grid of :data:`GRIDS` that is a polycube loop structure."""
+    reasons = []
+    if surface.genus == 0:
+        r, loops, _ = candidate_loops(surface, planes)
+        try:
+            return r, loops, start_state(r, loops)
+        except StartError as err:
+            reasons.append(str(err))
+    for k in sorted({planes, *GRIDS}):
+        r, loops, _ = candidate_loops(surface, k)
+        try:
+            return r, loops, dense_start(r, loops)
+        except StartError as err:
+            reasons.append(f"{k} planes an axis: {err}")
+    raise StartError(f"no start on this genus-{surface.genus} mesh: " + "; ".join(reasons))
+
+
 def segment_mesh(points: Sequence[Sequence[float]] | np.ndarray,
                  triangles: Sequence[Sequence[int]] | np.ndarray, budget: float = 20.0, seed: int = 0,
                  planes: int = 9, price: float = 0.002,
                  on_step: Callable[[State], None] | None = None) -> SegmentResult:
-    """A certified polycube segmentation of the closed genus-0 triangle mesh ``points``,
-    ``triangles`` (counter-clockwise seen from outside), by the greedy loop search of
-    :mod:`~polyloops.segment.search` within ``budget`` seconds (its order fixed by ``seed``).
+    """A certified polycube segmentation of the closed triangle mesh ``points``, ``triangles``
+    (counter-clockwise seen from outside), by the greedy loop search of
+    :mod:`~polyloops.segment.search` within ``budget`` seconds (its order fixed by ``seed``):
+    from the cube at genus 0, from a grid of section curves at any genus.
 
     Raises
     ------
     SurfaceError
         When the mesh is not a closed, oriented, connected manifold surface with some area.
     StartError
-        When no start was found (or the mesh is not of genus 0).
+        When no start was found (no cube, and no grid that is a polycube loop structure).
     UncertifiedError
         When no state of the search passed both checks (nothing is returned then).
     """

@@ -1,4 +1,4 @@
-"""``polyloops segment``: a certified polycube segmentation of a surface, built by loop moves.
+"""The search of ``polyloops segment``: states of section curves, a start, greedy moves.
 
 The loops are closed curves of axis-aligned plane sections (:mod:`~polyloops.segment.refine`):
 a loop of axis X runs round the X axis, across triangles whose normals are perpendicular to it,
@@ -6,8 +6,10 @@ which is what the paper's Section 5 asks of a loop's path.  The surface is cut o
 candidate planes per axis; a *state* is a set of their section curves, and a move adds one or
 removes one.
 
-1. **Start** (genus 0): the cube, three curves of the planes through the centroid (or nearest
-   it) that cross pairwise twice, checked as a polycube loop structure.
+1. **Start**: at genus 0 the cube, three curves of the planes through the centroid (or nearest
+   it) that cross pairwise twice, checked as a polycube loop structure; at any genus (and at
+   genus 0 when no cube is found) a grid, every candidate curve that crosses another, when it
+   is a polycube loop structure (:func:`dense_start`; finer grids are tried in turn).
 2. **Search**: greedy, under a time budget: every move from the current state is tried in an
    order the seed fixes; a state counts when its structure passes ``verify`` and primalizes; its
    score is the fidelity of the labels it would give (each triangle labelled by the face of the
@@ -36,8 +38,8 @@ from polyloops.segment.refine import Plane, Refined, cut
 from polyloops.segment.surface import Surface
 from polyloops.verify import check_polycube_loop_structure
 
-__all__ = ["SearchSettings", "StartError", "State", "candidate_loops", "fidelity", "greedy_search",
-           "naive_fidelity", "start_state"]
+__all__ = ["SearchSettings", "StartError", "State", "candidate_loops", "dense_start", "fidelity",
+           "greedy_search", "naive_fidelity", "start_state"]
 
 UNIT = np.eye(3)
 DIRECTION_VECTORS = np.array([UNIT[d // 2] * (1 if d % 2 == 0 else -1) for d in range(6)])
@@ -132,6 +134,35 @@ def start_state(r: Refined, loops: list[SurfaceLoop]) -> list[int]:
                 if _valid(r, [loops[i], loops[j], loops[k]]) is not None:
                     return [i, j, k]
     raise StartError(f"no three section curves make a cube ({tried} triples crossing pairwise twice tried)")
+
+
+def dense_start(r: Refined, loops: list[SurfaceLoop]) -> list[int]:
+    """Every candidate curve that crosses another (a curve crossing none is dropped, until none
+    is left): on a surface of any genus, a fine enough grid of sections is often a polycube
+    loop structure, from which the search then removes loops.
+
+    Raises
+    ------
+    StartError
+        When these curves make no polycube loop structure (the message says why).
+    """
+    chosen = list(range(len(loops)))
+    while True:
+        vsets = {i: set(loops[i].vertices) for i in chosen}
+        crossing = [i for i in chosen if any(vsets[i] & vsets[j] for j in chosen if j != i)]
+        if crossing == chosen:
+            break
+        chosen = crossing
+    try:
+        e = read_structure(r, [loops[i] for i in chosen])
+    except NotAStructure as err:
+        raise StartError(f"the grid of {len(chosen)} section curves is no loop structure: {err}") from None
+    report = check_polycube_loop_structure(e.structure)
+    if not report.valid:
+        v = report.violations[0]
+        raise StartError(f"the grid of {len(chosen)} section curves breaks condition {v.condition}: "
+                         f"{v.message}")
+    return chosen
 
 
 class _Scorer:
