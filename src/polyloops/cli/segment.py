@@ -106,31 +106,31 @@ def _write(args: argparse.Namespace, result) -> int:
              f"{result.naive_fidelity:.4f}); {result.seconds:.1f} s",
              f"  the checker: valid, realised by a polycube of {realised} corners; the layout draws "
              f"the loops' polycube of {result.polycube.map.num_corners} corners"]
-    if args.output:
-        write_text(args.output, labels_text(result.mesh))
-        data["output"] = args.output
-        lines.append(f"wrote {args.output}: {len(result.mesh.triangles)} labels")
-    if args.mesh_out:
-        try:
-            write_triangle_mesh(args.mesh_out, result.mesh)
-        except OSError as err:
-            raise write_error(args.mesh_out, err) from None
-        write_text(args.mesh_out + ".facemap", "".join(f"{p}\n" for p in result.face_map))
-        data["mesh_out"] = args.mesh_out
-        lines.append(f"wrote {args.mesh_out}: the labelled mesh, and {args.mesh_out}.facemap: "
-                     "its input triangles")
-    if args.polycube:
-        write_output(args.polycube, result.polycube)
-        data["polycube"] = args.polycube
-        lines.append(f"wrote {args.polycube}: the polycube")
-    if args.png:
+    def labelled_mesh(path: str) -> None:
+        write_triangle_mesh(path, result.mesh)
+        write_text(path + ".facemap", "".join(f"{p}\n" for p in result.face_map))
+
+    def picture(path: str) -> None:
         from polyloops.render.segmentation import render_segmentation
 
+        render_segmentation(result.report, path)
+
+    outputs = [
+        (args.output, "output", lambda path: write_text(path, labels_text(result.mesh)),
+         f"{len(result.mesh.triangles)} labels"),
+        (args.mesh_out, "mesh_out", labelled_mesh,
+         "the labelled mesh, and PATH.facemap: its input triangles"),
+        (args.polycube, "polycube", lambda path: write_output(path, result.polycube), "the polycube"),
+        (args.png, "png", picture, "the labelled mesh, drawn"),
+    ]
+    for path, key, write, what in outputs:
+        if not path:
+            continue
         try:
-            render_segmentation(result.report, args.png)
+            write(path)
         except OSError as err:
-            raise write_error(args.png, err) from None
-        data["png"] = args.png
-        lines.append(f"drew the labelled mesh to {args.png}")
+            raise write_error(path, err) from None
+        data[key] = path
+        lines.append(f"wrote {path}: {what.replace('PATH', path)}")
     print(json.dumps(data, indent=2) if args.json else "\n".join(lines))
     return EXIT_OK
