@@ -3,7 +3,13 @@
 Method (exact when it succeeds, a heuristic when it does not):
 
 1. *Coordinates.*  Along each axis, the zones of the corners are ordered by their level
-   graph; each zone gets its longest-path level, so every boundary goes up by at least one.
+   graph, following the mesh's own coordinates where they agree with it, and each zone gets
+   its rank, so every boundary goes up by at least one.  When the quads below fail, other
+   orders of the zones that keep the level graph's are tried (:data:`TRIES` of them, each a
+   topological order by the mesh's coordinates plus a seeded jitter that grows from try to
+   try until the order is nearly any): the first that passes every check is kept.  A chart
+   that bends in space can need an order far from the mesh's: a hole of the top of DualCube's
+   plane lies outside its outer boundary in the mesh's projection, inside it in the polycube.
 2. *Orientation.*  Reversing all directions gives the same normals and the mirror image
    through the origin, with the opposite signed volume; the one with positive volume is kept
    (zero volume: undecided).
@@ -20,6 +26,7 @@ Method (exact when it succeeds, a heuristic when it does not):
 
 from __future__ import annotations
 
+import random
 from dataclasses import dataclass
 
 import networkx as nx
@@ -41,12 +48,20 @@ class Realisation:
     chart_of_face: tuple[int, ...] = ()
 
 
-def corner_positions(seg: Segmentation, result: GlobalResult) -> list[list[int]]:
+TRIES = 256  # orders of the zones tried before a realisation is given up (a few ms each)
+JITTER = 4.0  # the last try's jitter, in spans of the mesh's coordinates: nearly any order
+
+
+def corner_positions(seg: Segmentation, result: GlobalResult, attempt: int = 0) -> list[list[int]]:
     """Integer coordinates of each corner: per axis, a level for each zone that every
     boundary along the axis climbs.  Where the mesh's own coordinates order the zones
     consistently with the level graph, the levels are their ranks (so the polycube keeps the
     mesh's order type, which places holes inside the charts around them); otherwise zones
-    take distinct levels in a topological order that follows the mesh where it can."""
+    take distinct levels in a topological order that follows the mesh where it can.  A later
+    ``attempt`` takes a topological order of the mesh's coordinates jittered by a seeded
+    amount that grows with the attempt."""
+    rng = random.Random(attempt)
+    jitter = JITTER * attempt / TRIES
     pos = [[0, 0, 0] for _ in seg.corners]
     directions = _closer_to_mesh(seg, result.directions)
     for axis in Axis:
@@ -63,9 +78,13 @@ def corner_positions(seg: Segmentation, result: GlobalResult) -> list[list[int]]
             if seg.boundary_axis(b.id) == axis:
                 u, v = zones[b.start], zones[b.end]  # type: ignore[index]
                 arcs.append((u, v) if directions[b.id] > 0 else (v, u))
-        level = _ranks(mean)
-        if any(level[u] >= level[v] for u, v in arcs):
-            level = _topological_levels(n, arcs, mean)
+        if attempt:
+            span = (max(mean) - min(mean)) if mean else 0.0
+            level = _topological_levels(n, arcs, [m + jitter * span * rng.uniform(-1, 1) for m in mean])
+        else:
+            level = _ranks(mean)
+            if any(level[u] >= level[v] for u, v in arcs):
+                level = _topological_levels(n, arcs, mean)
         for c in range(len(seg.corners)):
             pos[c][axis] = level[zones[c]]
     return pos
@@ -106,10 +125,21 @@ def _topological_levels(n: int, arcs: list[tuple[int, int]], mean: list[float]) 
 
 
 def realise(seg: Segmentation, result: GlobalResult) -> Realisation:
-    """The polycube of the module docstring, or the reason there is none."""
+    """The polycube of the module docstring, or the reason the first order of the zones gave
+    none (when no order of :data:`TRIES` gives one)."""
+    first = None
+    for attempt in range(TRIES):
+        found = _realise_at(seg, result, corner_positions(seg, result, attempt))
+        if found.polycube is not None:
+            return found
+        first = first or found
+    assert first is not None
+    return first
+
+
+def _realise_at(seg: Segmentation, result: GlobalResult, corner_pos: list[list[int]]) -> Realisation:
     from polyloops.verify import check_polycube
 
-    corner_pos = corner_positions(seg, result)
     points: list[tuple[int, int, int]] = [tuple(p) for p in corner_pos]  # type: ignore[misc]
     # Lattice points strictly inside each boundary, from its start to its end.
     inner: list[list[int]] = []
