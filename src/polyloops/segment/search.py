@@ -136,33 +136,75 @@ def start_state(r: Refined, loops: list[SurfaceLoop]) -> list[int]:
     raise StartError(f"no three section curves make a cube ({tried} triples crossing pairwise twice tried)")
 
 
-def dense_start(r: Refined, loops: list[SurfaceLoop]) -> list[int]:
-    """Every candidate curve that crosses another (a curve crossing none is dropped, until none
-    is left): on a surface of any genus, a fine enough grid of sections is often a polycube
-    loop structure, from which the search then removes loops.
+def dense_start(r: Refined, loops: list[SurfaceLoop], repairs: int = 40) -> list[int]:
+    """A grid start: every candidate curve that crosses another, then, while the structure
+    breaks Definition 4, the curve that bounds most of the regions named by its violations
+    removed (at most ``repairs`` times; curves left crossing none are dropped too).  On a
+    surface of any genus a fine enough grid of sections is often a polycube loop structure, and
+    the search then removes loops from it.
 
     Raises
     ------
     StartError
-        When these curves make no polycube loop structure (the message says why).
+        When no such grid was found (the message says why the last one failed).
     """
-    chosen = list(range(len(loops)))
-    while True:
-        vsets = {i: set(loops[i].vertices) for i in chosen}
-        crossing = [i for i in chosen if any(vsets[i] & vsets[j] for j in chosen if j != i)]
-        if crossing == chosen:
-            break
-        chosen = crossing
+    chosen = _crossing_only(loops, list(range(len(loops))))
     try:
         e = read_structure(r, [loops[i] for i in chosen])
     except NotAStructure as err:
         raise StartError(f"the grid of {len(chosen)} section curves is no loop structure: {err}") from None
-    report = check_polycube_loop_structure(e.structure)
-    if not report.valid:
+    for _ in range(repairs + 1):
+        report = check_polycube_loop_structure(e.structure)
+        if report.valid:
+            return chosen
         v = report.violations[0]
-        raise StartError(f"the grid of {len(chosen)} section curves breaks condition {v.condition}: "
-                         f"{v.message}")
-    return chosen
+        why = f"the grid of {len(chosen)} section curves breaks condition {v.condition}: {v.message}"
+        named = {w.witness["region"] for w in report.violations if "region" in w.witness}
+        blamed = _bounding_curves(e, named)
+        # the most blamed curve whose removal leaves a loop structure (the next ones if not)
+        for worst in sorted(blamed, key=lambda k: (-blamed[k], k))[:REPAIR_TRIES]:
+            fewer = _crossing_only(loops, [i for j, i in enumerate(chosen) if j != worst])
+            try:
+                e = read_structure(r, [loops[i] for i in fewer])
+            except NotAStructure:
+                continue
+            chosen = fewer
+            break
+        else:
+            break
+    raise StartError(why)
+
+
+REPAIR_TRIES = 6  # curves tried for one removal before a grid's repair is given up
+
+
+def _crossing_only(loops: list[SurfaceLoop], chosen: list[int]) -> list[int]:
+    """``chosen`` without the curves that cross none of the others (repeatedly)."""
+    while True:
+        vsets = {i: set(loops[i].vertices) for i in chosen}
+        crossing = [i for i in chosen if any(vsets[i] & vsets[j] for j in chosen if j != i)]
+        if crossing == chosen:
+            return chosen
+        chosen = crossing
+
+
+def _bounding_curves(e: Embedded, regions: set[int]) -> dict[int, int]:
+    """Per curve of ``e`` (its index in ``e.loops``), how many of ``regions`` it bounds."""
+    r = e.refined
+    key_of = {}
+    for k, lp in enumerate(e.loops):
+        for u, v in lp.edges():
+            key_of[int(r.edge_key(u, v))] = k
+    pairs, keys = r.adjacency
+    count: dict[int, set[int]] = {}
+    for (a, b), key in zip(pairs.tolist(), keys.tolist(), strict=True):
+        curve = key_of.get(key)
+        if curve is None:
+            continue
+        for g in (int(e.region[a]), int(e.region[b])):
+            if g in regions:
+                count.setdefault(curve, set()).add(g)
+    return {k: len(gs) for k, gs in count.items()}
 
 
 class _Scorer:
