@@ -150,10 +150,11 @@ def test_the_search_improves_and_the_same_seed_gives_the_same_result():
     r, loops, _ = candidate_loops(surface_of(*ellipsoid(2, 1, 0.7, level=2)), 3)
     first = start_state(r, loops)
     runs = [greedy_search(r, loops, first, SearchSettings(budget=60, seed=3)) for _ in range(2)]
-    assert [s.loops for s in runs[0]] == [s.loops for s in runs[1]]
-    scores = [s.score for s in runs[0]]
+    assert runs[0].converged and runs[1].converged
+    assert [s.loops for s in runs[0].states] == [s.loops for s in runs[1].states]
+    scores = [s.score for s in runs[0].states]
     assert scores == sorted(scores) and len(scores) > 1
-    lay = lay_out(r, [loops[i] for i in sorted(runs[0][-1].loops)])
+    lay = lay_out(r, [loops[i] for i in sorted(runs[0].states[-1].loops)])
     assert layout_problem(lay) is None
 
 
@@ -246,3 +247,21 @@ def test_an_expansion_move_is_the_best_of_its_kind(alpha, start, compactness, se
     switches = (np.array(switch, dtype=bool) for switch in product((0, 1), repeat=8))
     best = min(energy(np.where(switch, alpha, lab)) for switch in switches)
     assert energy(_expand(lab, alpha, unary, pairs, weights)) == pytest.approx(best, abs=1e-3)
+
+
+def test_the_loops_are_drawn_on_the_surface_in_their_axes_colours(tmp_path):
+    import matplotlib.image as mpimg
+    from matplotlib.colors import to_rgb
+
+    from polyloops.core.directions import Axis
+    from polyloops.render.colours import AXIS_COLOUR
+    from polyloops.render.loops_on_surface import render_loops_on_surface
+
+    r, loops, _ = candidate_loops(surface_of(*sphere(3)), 3)
+    lay = lay_out(r, [loops[i] for i in start_state(r, loops)])
+    e = lay.embedded
+    edges = {edge: Axis(e.refined.planes[lp.plane].axis) for lp in e.loops for edge in lp.edges()}
+    render_loops_on_surface(e.refined.points, e.refined.triangles, e.region, edges, tmp_path / "l.png")
+    pixels = mpimg.imread(tmp_path / "l.png")[..., :3].reshape(-1, 3)
+    for axis in Axis:  # each axis's loop shows in its colour
+        assert (np.abs(pixels - np.array(to_rgb(AXIS_COLOUR[axis]))).max(axis=1) < 0.02).sum() > 50

@@ -55,6 +55,8 @@ class SegmentResult:
     naive_fidelity: float
     seconds: float
     states: int
+    converged: bool  # the search ended with no improving move, not by the budget
+    layout: Layout  # the loops, regions, corners, paths and patches the labels come from
 
     @property
     def certified(self) -> bool:
@@ -77,7 +79,7 @@ class SegmentResult:
                 "triangles": len(self.mesh.triangles), "charts": self.charts, "corners": self.corners,
                 "loops": self.loops, "polycube_corners": self.polycube.map.num_corners,
                 "fidelity": round(self.fidelity, 6), "naive_fidelity": round(self.naive_fidelity, 6),
-                "seconds": round(self.seconds, 2), "states": self.states}
+                "seconds": round(self.seconds, 2), "states": self.states, "converged": self.converged}
 
 
 def _certify(lay: Layout) -> tuple[LabelledMesh, SegmentationReport] | str:
@@ -103,7 +105,8 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
     # and the checks after it (measured: up to a third of the search's time on the shared meshes)
     left = budget - (time.monotonic() - began)
     settings = SearchSettings(max(0.0, 0.65 * left), seed, planes, price)
-    path = greedy_search(r, loops, first, settings, on_step)
+    searched = greedy_search(r, loops, first, settings, on_step)
+    path = searched.states
     why = ""
     for state in reversed(path):  # the best first, then the states before it
         try:
@@ -120,7 +123,7 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
         return SegmentResult(mesh, tuple(int(p) for p in refined.parent.tolist()), lay.polycube, report,
                              surface.genus, len(surface.triangles), len(state.loops),
                              fidelity(refined.surface, lay.labels), naive_fidelity(surface),
-                             time.monotonic() - began, len(path))
+                             time.monotonic() - began, len(path), searched.converged, lay)
     raise UncertifiedError(f"no state of the search was certified: {why}")
 
 

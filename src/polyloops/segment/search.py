@@ -38,8 +38,8 @@ from polyloops.segment.refine import Plane, Refined, cut
 from polyloops.segment.surface import Surface
 from polyloops.verify import check_polycube_loop_structure
 
-__all__ = ["SearchSettings", "StartError", "State", "candidate_loops", "dense_start", "fidelity",
-           "greedy_search", "naive_fidelity", "start_state"]
+__all__ = ["SearchPath", "SearchSettings", "StartError", "State", "candidate_loops", "dense_start",
+           "fidelity", "greedy_search", "naive_fidelity", "start_state"]
 
 UNIT = np.eye(3)
 DIRECTION_VECTORS = np.array([UNIT[d // 2] * (1 if d % 2 == 0 else -1) for d in range(6)])
@@ -242,9 +242,19 @@ class _Scorer:
         return float((self.areas * agreement).sum() / self.areas.sum())
 
 
+@dataclass(frozen=True)
+class SearchPath:
+    """The states a search went through, the start first and the best last; ``converged`` when
+    its last step tried every move and none improved the score (then the same seed gives the
+    same states on any machine; a search the budget stopped depends on the machine's speed)."""
+
+    states: tuple[State, ...]
+    converged: bool
+
+
 def greedy_search(r: Refined, loops: list[SurfaceLoop], start: list[int], settings: SearchSettings,
-                  on_step: Callable[[State], None] | None = None) -> list[State]:
-    """The states the search went through, the start first and the best last."""
+                  on_step: Callable[[State], None] | None = None) -> SearchPath:
+    """The greedy search from ``start`` (see the module docstring)."""
     deadline = time.monotonic() + settings.budget
     rng = random.Random(settings.seed)
     scorer = _Scorer(r)
@@ -264,24 +274,27 @@ def greedy_search(r: Refined, loops: list[SurfaceLoop], start: list[int], settin
     path = [first]
     if on_step:
         on_step(first)
+    converged = False
     while time.monotonic() < deadline:
         here = path[-1]
         moves = [here.loops | {i} for i in range(len(loops)) if i not in here.loops]
         moves += [here.loops - {i} for i in here.loops if len(here.loops) > 3]
         rng.shuffle(moves)
-        best = None
+        best, complete = None, True
         for chosen in moves:
             if time.monotonic() >= deadline:
+                complete = False
                 break
             s = state(chosen)
             if s is not None and s.score > here.score + 1e-9 and (best is None or s.score > best.score):
                 best = s
         if best is None:
+            converged = complete
             break
         path.append(best)
         if on_step:
             on_step(best)
-    return path
+    return SearchPath(tuple(path), converged)
 
 
 def naive_fidelity(surface: Surface) -> float:

@@ -1,0 +1,94 @@
+"""Pictures of loops on a surface: the mesh shaded in grey, each loop drawn in its axis's colour
+(the colours of every other picture: X purple, Y orange, Z green), from two opposite views.
+
+A pixel is on a loop where its neighbour shows a triangle of another region (the loops are the
+regions' boundaries); it takes the axis of a loop edge of its triangle.  Decided per pixel from
+a depth buffer, like :mod:`polyloops.render.segmentation`, so nothing hidden shows through.
+"""
+
+from __future__ import annotations
+
+import os
+
+import numpy as np
+from matplotlib.colors import to_rgb
+from matplotlib.patches import Patch
+
+from polyloops.core.directions import Axis
+from polyloops.render.colours import AXIS_COLOUR
+from polyloops.render.figure import new_figure, save_figure
+from polyloops.render.projection import View
+from polyloops.render.raster import triangle_buffer
+from polyloops.render.segmentation import VIEWS, _neighbours
+
+__all__ = ["render_loops_on_surface"]
+
+PIXELS = 480
+
+
+def _draw(ax, points: np.ndarray, tris: np.ndarray, region: np.ndarray, axis_of: np.ndarray,
+          view: View) -> None:
+    right, up, toward = (np.asarray(a) for a in (view.right, view.up, view.toward))
+    pu, pv, pd = points @ right, points @ up, points @ toward
+    p = points[tris]
+    normals = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
+    length = np.linalg.norm(normals, axis=1)
+    shade = np.where(length > 0, (normals @ toward) / np.maximum(length, 1e-300), 0.0)
+    front = np.flatnonzero(normals @ toward > 0)
+    lo_u, hi_u, lo_v, hi_v = pu.min(), pu.max(), pv.min(), pv.max()
+    pad = 0.02 * max(hi_u - lo_u, hi_v - lo_v, 1e-12)
+    lo_u, hi_u, lo_v, hi_v = lo_u - pad, hi_u + pad, lo_v - pad, hi_v + pad
+    step = max(hi_u - lo_u, hi_v - lo_v) / PIXELS
+    shape = (max(1, int(np.ceil((hi_v - lo_v) / step))), max(1, int(np.ceil((hi_u - lo_u) / step))))
+    seen, _ = triangle_buffer((pu - lo_u) / step, (hi_v - pv) / step, pd, tris[front], shape)
+    ids = np.where(seen >= 0, front[np.maximum(seen, 0)], -1)
+    image = np.ones((*shape, 4))
+    image[..., 3] = 0.0
+    shown = ids >= 0
+    grey = 0.55 + 0.4 * shade[ids[shown]]
+    image[shown, :3] = grey[:, None]
+    image[shown, 3] = 1.0
+    a, b = _neighbours(ids)
+    ta, tb = ids.ravel()[a], ids.ravel()[b]
+    both = (ta >= 0) & (tb >= 0)
+    edge = both & (region[np.maximum(ta, 0)] != region[np.maximum(tb, 0)])
+    colours = np.array([(*to_rgb(AXIS_COLOUR[axis]), 1.0) for axis in Axis])
+    line = np.full(shape[0] * shape[1], -1, dtype=np.int64)  # per pixel, the axis of a loop drawn there
+    for side in (a, b):
+        tri = ids.ravel()[side[edge]]
+        axis = axis_of[tri]
+        known = axis >= 0
+        line[side[edge][known]] = axis[known]
+    line = line.reshape(shape)
+    for k in (0, 1):  # lines three pixels wide, on the surface only
+        for shift in (1, -1):
+            moved = np.roll(line, shift, k)
+            line = np.where((line < 0) & (moved >= 0), moved, line)
+    drawn = (line >= 0) & shown
+    image[drawn] = colours[line[drawn]]
+    extent = (lo_u, lo_u + shape[1] * step, hi_v - shape[0] * step, hi_v)
+    ax.imshow(image, extent=extent, interpolation="nearest")
+    ax.set_aspect("equal")
+    ax.axis("off")
+
+
+def render_loops_on_surface(points: np.ndarray, triangles: np.ndarray, region: np.ndarray,
+                            loop_edges: dict[tuple[int, int], Axis], path: str | os.PathLike[str],
+                            title: str = "") -> None:
+    """Two opposite views of the surface with its loops: ``region`` per triangle (the loops are
+    the boundaries between regions), ``loop_edges`` each loop edge ``(u, v)`` (``u < v``) with
+    its loop's axis."""
+    axis_of = np.full(len(triangles), -1, dtype=np.int64)
+    for t, (a, b, c) in enumerate(np.asarray(triangles).tolist()):
+        for u, v in ((a, b), (b, c), (c, a)):
+            axis = loop_edges.get((min(u, v), max(u, v)))
+            if axis is not None:
+                axis_of[t] = int(axis)
+    fig = new_figure(9.0, 4.6)
+    for ax, view in zip(fig.subplots(1, 2), VIEWS, strict=True):
+        _draw(ax, np.asarray(points, dtype=float), np.asarray(triangles), np.asarray(region), axis_of, view)
+    if title:
+        fig.suptitle(title, fontsize=10)
+    fig.legend(handles=[Patch(color=AXIS_COLOUR[a], label=f"{a} loops") for a in Axis],
+               loc="lower center", ncol=3, fontsize=8, frameon=False)
+    save_figure(fig, path)
