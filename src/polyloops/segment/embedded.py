@@ -21,6 +21,7 @@ structure with the embedding it came from, or the reason it is no loop structure
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from scipy.sparse import coo_matrix
@@ -29,6 +30,7 @@ from scipy.sparse.csgraph import connected_components
 from polyloops.core.directions import Axis, Direction
 from polyloops.core.errors import PolyloopsError
 from polyloops.core.moves import Addition
+from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LoopStructure
 from polyloops.segment.refine import Refined
 
@@ -66,6 +68,11 @@ class Embedded:
     region: np.ndarray
     crossings: tuple[int, ...]
     structure: LoopStructure
+
+    @cached_property
+    def polycube(self) -> Polycube:
+        """The polycube primalized from :attr:`structure` (kept: the layout and the score ask)."""
+        return self.structure.primalize()
 
     def structure_loop(self, k: int) -> int:
         """The loop of :attr:`structure` that curve ``k`` of :attr:`loops` is (the one through

@@ -39,6 +39,7 @@ __all__ = ["Layout", "lay_out"]
 
 MAX_ROUNDS = 6  # refinements before a layout is given up (each at least halves the edges in the way)
 CORNER_TRIES = 4  # corner vertices tried in a region before it is refined
+DEPTH_WEIGHT = 0.25  # how much being deep inside a region counts beside agreeing with its faces
 
 
 @dataclass(frozen=True, eq=False)
@@ -75,7 +76,7 @@ def lay_out(r: Refined, loops: list[SurfaceLoop]) -> Layout:
     for _ in range(MAX_ROUNDS):
         e = read_structure(r, loops)
         try:
-            polycube = e.structure.primalize()
+            polycube = e.polycube
         except (ValueError, PolyloopsError) as err:
             raise NotAStructure(f"the structure has no polycube: {err}") from None
         attempt = _attempt(e)
@@ -220,8 +221,12 @@ def _region_layout(e: Embedded, g: int, cycle: list[int], sides: list[tuple[int,
     degree = np.bincount(np.concatenate([lu[usable], lv[usable]]), minlength=len(verts))
     targets = [int(index[m]) for _, m in sides]
     # the corner: an inner vertex with a way out to each side, as far from the boundary as can be
+    # the corner: where the surface's normal best agrees with its faces' directions (a corner
+    # of a polycube points along their sum), deep inside the region where that ties
     far = dist[index[inner]]
-    order = [int(v) for v in inner[np.lexsort((-inner, -far))] if degree[index[v]] >= len(sides)]
+    agree = r.vertex_normals[inner] @ _direction_sum(e, sides, crossing_face)
+    score = agree + DEPTH_WEIGHT * far / max(float(far.max()), 1e-300)
+    order = [int(v) for v in inner[np.lexsort((-inner, -score))] if degree[index[v]] >= len(sides)]
     found = None
     for corner in order[:CORNER_TRIES]:
         found = disjoint_paths(len(verts), edges, int(index[corner]), targets)
@@ -254,6 +259,19 @@ def _region_layout(e: Embedded, g: int, cycle: list[int], sides: list[tuple[int,
             return _all_edges(local_tris)
         face_of_sector[s] = crossing_face[c]
     return corner, region_paths, {t: face_of_sector[int(sector[i])] for t, i in local.items()}
+
+
+def _direction_sum(e: Embedded, sides: list[tuple[int, int]], crossing_face: dict[int, int]) -> np.ndarray:
+    """The unit sum of the directions of a region's faces (those of the crossings on its
+    boundary), or zero when they cancel."""
+    polycube = e.polycube
+    total = np.zeros(3)
+    for c, _ in sides:
+        d = polycube.face_normal(crossing_face[c])
+        if d is not None:
+            total[d.axis] += d.sign
+    length = float(np.linalg.norm(total))
+    return total / length if length > 1e-9 else total
 
 
 def _all_edges(local_tris: np.ndarray) -> set[tuple[int, int]]:

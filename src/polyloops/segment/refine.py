@@ -62,6 +62,16 @@ class Refined:
         return Surface(self.points, self.triangles)
 
     @cached_property
+    def vertex_normals(self) -> np.ndarray:
+        """Per vertex, the unit area-weighted mean of its triangles' normals."""
+        s = self.surface
+        out = np.zeros((len(self.points), 3))
+        for k in range(3):
+            np.add.at(out, self.triangles[:, k], s.normals * s.areas[:, None])
+        length = np.linalg.norm(out, axis=1)
+        return out / np.maximum(length, 1e-300)[:, None]
+
+    @cached_property
     def owner(self) -> dict[tuple[int, int], int]:
         """Per directed edge ``(u, v)``, the triangle that runs it (the one on its left)."""
         out = {}

@@ -10,8 +10,9 @@ removes one.
    it) that cross pairwise twice, checked as a polycube loop structure; at any genus (and at
    genus 0 when no cube is found) a grid, every candidate curve that crosses another, when it
    is a polycube loop structure (:func:`dense_start`; finer grids are tried in turn).
-2. **Search**: greedy, under a time budget: every move from the current state is tried in an
-   order the seed fixes; a state counts when its structure passes ``verify`` and primalizes; its
+2. **Search**: greedy, under a time budget: every move from the current state (add a curve,
+   remove one, or replace one by a curve of its axis on another plane) is tried in an order
+   the seed fixes; a state counts when its structure passes ``verify`` and primalizes; its
    score is the fidelity of the labels it would give (each triangle labelled by the face of the
    nearest crossing in its region), less a price per loop; the best move is made while it
    improves the score.
@@ -222,7 +223,7 @@ class _Scorer:
         self.incident = r.incident
 
     def fidelity(self, e: Embedded) -> float:
-        polycube = e.structure.primalize()
+        polycube = e.polycube
         on_loops = np.array(sorted(x for lp in e.loops for x in lp.edges()), dtype=np.int64)
         cut_keys = self.r.edge_key(on_loops[:, 0], on_loops[:, 1])
         keep = ~np.isin(self.edge_keys, cut_keys)
@@ -269,6 +270,7 @@ def greedy_search(r: Refined, loops: list[SurfaceLoop], start: list[int], settin
             return None
         return State(chosen, fid - settings.price * len(chosen), fid, e)
 
+    axis_of = [r.planes[lp.plane].axis for lp in loops]
     first = state(frozenset(start))
     assert first is not None  # start_state checked it
     path = [first]
@@ -279,6 +281,9 @@ def greedy_search(r: Refined, loops: list[SurfaceLoop], start: list[int], settin
         here = path[-1]
         moves = [here.loops | {i} for i in range(len(loops)) if i not in here.loops]
         moves += [here.loops - {i} for i in here.loops if len(here.loops) > 3]
+        # a loop replaced by a curve of its axis on another plane (often the same crossings)
+        moves += [(here.loops - {i}) | {j} for i in sorted(here.loops) for j in range(len(loops))
+                  if j not in here.loops and axis_of[j] == axis_of[i]]
         rng.shuffle(moves)
         best, complete = None, True
         for chosen in moves:
