@@ -20,6 +20,13 @@ def test_a_polycube_labelled_by_its_normals_is_certified(q):
                                                                          for f in range(q.map.num_faces)]
 
 
+@given(polycubes(max_size=6))
+def test_a_polycube_labelled_by_its_normals_has_no_boundary_running_backwards(q):
+    from polyloops.segmentation.quality import backwards_fraction
+
+    assert backwards_fraction(certified_from_polycube(q).report) == 0.0
+
+
 @pytest.mark.parametrize("verdict", [False, None])
 def test_what_the_checker_does_not_pass_is_refused_not_handed_out(verdict, monkeypatch):
     import polyloops.segment.from_polycube as constructor

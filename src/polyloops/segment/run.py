@@ -33,6 +33,7 @@ from polyloops.segment.search import (
 )
 from polyloops.segment.surface import Surface, surface_of
 from polyloops.segmentation import SegmentationReport, check_segmentation
+from polyloops.segmentation.quality import backwards_fraction
 from polyloops.surface.mesh import LabelledMesh
 
 __all__ = ["SegmentResult", "segment_mesh"]
@@ -79,7 +80,12 @@ class SegmentResult:
                 "triangles": len(self.mesh.triangles), "charts": self.charts, "corners": self.corners,
                 "loops": self.loops, "polycube_corners": self.polycube.map.num_corners,
                 "fidelity": round(self.fidelity, 6), "naive_fidelity": round(self.naive_fidelity, 6),
-                "seconds": round(self.seconds, 2), "states": self.states, "converged": self.converged}
+                "backwards": _rounded(backwards_fraction(self.report)), "seconds": round(self.seconds, 2),
+                "states": self.states, "converged": self.converged}
+
+
+def _rounded(x: float | None) -> float | None:
+    return None if x is None else round(x, 6)
 
 
 def _certify(lay: Layout) -> tuple[LabelledMesh, SegmentationReport] | str:
