@@ -106,7 +106,7 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
                     price: float = 0.002, on_step: Callable[[State], None] | None = None) -> SegmentResult:
     """:func:`segment_mesh` on a checked surface."""
     began = time.monotonic()
-    r, loops, first = _start(surface, planes)
+    r, loops, first = _start(surface, planes, budget)
     # the budget covers the whole run: the cut above, the search, and a reserve for the layout
     # and the checks after it (measured: up to a third of the search's time on the shared meshes)
     left = budget - (time.monotonic() - began)
@@ -136,9 +136,12 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
 GRIDS = (9, 13, 19)  # candidate planes per axis for a grid start, coarse to fine
 
 
-def _start(surface: Surface, planes: int) -> tuple[Refined, list[SurfaceLoop], list[int]]:
+def _start(surface: Surface, planes: int, budget: float = float("inf")
+           ) -> tuple[Refined, list[SurfaceLoop], list[int]]:
     """The cut surface, its candidate curves and the start: the cube at genus 0, else (or when
-    no cube is found) the first grid of :data:`GRIDS` that is a polycube loop structure."""
+    no cube is found) the first grid of :data:`GRIDS` that is a polycube loop structure (no
+    finer grid is begun once ``budget`` seconds have gone)."""
+    began = time.monotonic()
     reasons = []
     if surface.genus == 0:
         r, loops, _ = candidate_loops(surface, planes)
@@ -147,6 +150,9 @@ def _start(surface: Surface, planes: int) -> tuple[Refined, list[SurfaceLoop], l
         except StartError as err:
             reasons.append(str(err))
     for k in sorted({planes, *GRIDS}):
+        if reasons and time.monotonic() - began > budget:
+            reasons.append("no finer grid tried: the time budget is spent")
+            break
         r, loops, _ = candidate_loops(surface, k)
         try:
             return r, loops, dense_start(r, loops)
