@@ -5,7 +5,8 @@ For each mesh (``.stl``, ``.obj``, ``.mesh`` in DIR and its subfolders): the per
 and ``segment`` (the given budget and seed), each judged by the checker: its verdict (``valid``,
 ``INVALID``, ``undecided``), its fidelity (area-weighted mean of n . label), the charts, and the
 wall time.  The naive fidelity is the bound no labelling exceeds; "gap" is the bound less the
-fidelity; "converged" says whether segment's search ended with no improving move (else the
+fidelity; "backwards" the share of segment's boundary length that runs against its polycube
+edge's direction; "converged" says whether segment's search ended with no improving move (else the
 budget stopped it).  One Markdown table per subfolder.
 
 Usage: python benchmarks/segment.py DIR [--budget SECONDS] [--seed N] [--only NAME ...]
@@ -28,6 +29,7 @@ from polyloops.segment.run import segment_surface
 from polyloops.segment.search import fidelity
 from polyloops.segment.surface import surface_of
 from polyloops.segmentation import check_segmentation
+from polyloops.segmentation.quality import backwards_fraction
 from polyloops.surface.mesh import LabelledMesh
 
 VERDICT = {True: "valid", False: "INVALID", None: "undecided"}
@@ -37,6 +39,10 @@ def judged(s, labels) -> tuple[str, float, int]:
     mesh = LabelledMesh(tuple(map(tuple, s.points.tolist())), tuple(map(tuple, s.triangles.tolist())), labels)
     report = check_segmentation(mesh)
     return VERDICT[report.valid], fidelity(s, labels), len(report.segmentation.charts)
+
+
+def share(x: float | None) -> str:
+    return "" if x is None else f"{x:.4f}"
 
 
 def row(path: Path, budget: float, seed: int) -> list[object]:
@@ -53,11 +59,11 @@ def row(path: Path, budget: float, seed: int) -> list[object]:
         done = segment_surface(s, budget=budget, seed=seed)
     except Exception as err:  # a benchmark reports every failure in its row
         took = time.perf_counter() - start
-        return [*out, f"none ({type(err).__name__})", "", "", "", "", "", f"{took:.1f}"]
+        return [*out, f"none ({type(err).__name__})", "", "", "", "", "", "", f"{took:.1f}"]
     took = time.perf_counter() - start
     gap = bound - done.fidelity
     return [*out, "certified", f"{done.fidelity:.4f}", f"{gap:.4f}", done.charts, done.loops,
-            "yes" if done.converged else "no", f"{took:.1f}"]
+            share(backwards_fraction(done.report)), "yes" if done.converged else "no", f"{took:.1f}"]
 
 
 def main() -> None:
@@ -69,7 +75,7 @@ def main() -> None:
     args = parser.parse_args()
     header = ["mesh", "triangles", "genus", "naive fidelity (bound)", "naive", "naive charts", "graph-cut",
               "graph-cut fidelity", "graph-cut charts", "graph-cut s", "segment", "fidelity", "gap", "charts",
-              "loops", "converged", "segment s"]
+              "loops", "backwards", "converged", "segment s"]
     meshes = sorted(p for p in args.folder.rglob("*") if p.suffix.lower() in (".stl", ".obj", ".mesh"))
     for folder in sorted({p.parent for p in meshes}):
         rows = [row(p, args.budget, args.seed) for p in meshes
