@@ -1,0 +1,49 @@
+"""Runs on a real ``dask.distributed`` scheduler (a local cluster of worker processes, reached by
+its ``tcp://`` address as a remote one would be): the bytes of one process, and a worker that
+dies in the middle of a job has the job run again elsewhere."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import pytest
+
+distributed = pytest.importorskip("distributed")
+
+
+@pytest.fixture(scope="module")
+def scheduler():
+    cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                       dashboard_address=None)
+    try:
+        yield cluster.scheduler_address
+    finally:
+        cluster.close()
+
+
+def _dies_once(item: tuple[str, int]) -> int:
+    """Square ``n``; the first worker to take item 3 dies there (its process ends at once)."""
+    marker, n = item
+    if n == 3 and not Path(marker).exists():
+        Path(marker).write_text(str(os.getpid()))
+        os._exit(1)
+    return n * n
+
+
+def test_a_worker_that_dies_mid_job_has_its_job_run_again(scheduler, tmp_path):
+    from polyloops.parallel import run_jobs
+
+    marker = str(tmp_path / "died")
+    got = list(run_jobs(_dies_once, [(marker, n) for n in range(8)], dask=scheduler, ordered=True))
+    assert got == [n * n for n in range(8)] and Path(marker).exists()
+
+
+def test_a_catalog_on_a_scheduler_address_is_the_one_process_catalog(scheduler, tmp_path):
+    from polyloops.catalog.run import build_catalog
+
+    assert scheduler.startswith("tcp://")
+    on_cluster = build_catalog(tmp_path / "d", 18, generator="plantri", dask=scheduler)
+    alone = build_catalog(tmp_path / "r", 18, generator="plantri")
+    assert (tmp_path / "d" / "catalog.jsonl").read_bytes() == (tmp_path / "r" / "catalog.jsonl").read_bytes()
+    assert on_cluster.summary["counts"] == alone.summary["counts"]
