@@ -12,7 +12,8 @@ removes one.
    is a polycube loop structure (:func:`dense_start`; finer grids are tried in turn).
 2. **Search**: greedy, under a time budget: every move from the current state (add a curve,
    remove one, or replace one by a curve of its axis on another plane) is tried in an order
-   the seed fixes; a state counts when its structure passes ``verify`` and primalizes; its
+   the seed fixes; a state counts when its structure passes ``verify`` and primalizes and no
+   region is a sliver (under :data:`MIN_REGION_SHARE` of the area); its
    score is the fidelity of the labels it would give (each triangle labelled by the face of the
    nearest crossing in its region), less a price per loop; the best move is made while it
    improves the score.
@@ -48,6 +49,9 @@ DIRECTION_VECTORS = np.array([UNIT[d // 2] * (1 if d % 2 == 0 else -1) for d in 
 
 class StartError(PolyloopsError, ValueError):
     """No start was found on the surface (no three central curves cross pairwise twice)."""
+
+
+MIN_REGION_SHARE = 0.002  # a move leaving a region smaller than this share of the area is not made
 
 
 @dataclass(frozen=True)
@@ -264,6 +268,8 @@ def greedy_search(r: Refined, loops: list[SurfaceLoop], start: list[int], settin
         e = _valid(r, [loops[i] for i in sorted(chosen)])
         if e is None:
             return None
+        if chosen != frozenset(start) and np.bincount(e.region, weights=scorer.areas).min() < tiny:
+            return None  # a loop that cuts off a sliver of the surface: a corner no face can fit
         try:
             fid = scorer.fidelity(e)
         except (PolyloopsError, ValueError):
@@ -271,6 +277,7 @@ def greedy_search(r: Refined, loops: list[SurfaceLoop], start: list[int], settin
         return State(chosen, fid - settings.price * len(chosen), fid, e)
 
     axis_of = [r.planes[lp.plane].axis for lp in loops]
+    tiny = MIN_REGION_SHARE * float(scorer.areas.sum())
     first = state(frozenset(start))
     assert first is not None  # start_state checked it
     path = [first]
