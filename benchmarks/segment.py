@@ -24,9 +24,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _common import markdown_table
 
 from polyloops.io.labelled_mesh import read_triangle_mesh
-from polyloops.segment.labellings import graphcut_labels, naive_labels
+from polyloops.segment.labellings import fidelity, graphcut_labels, naive_labels
 from polyloops.segment.run import segment_surface
-from polyloops.segment.search import fidelity
 from polyloops.segment.surface import surface_of
 from polyloops.segmentation import check_segmentation
 from polyloops.segmentation.quality import backwards_fraction

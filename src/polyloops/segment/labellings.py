@@ -1,5 +1,6 @@
-"""The labellings other methods start from, for comparison (``benchmarks/segment.py``): the naive
-one (each triangle its closest direction) and the graph-cut one (a Potts model).
+"""Labellings of a surface and their fidelity: the naive one (each triangle its closest direction,
+whose fidelity bounds every labelling's) and the graph-cut one (a Potts model), which other
+methods start from and ``benchmarks/segment.py`` compares ``polyloops segment`` with.
 
 The graph-cut labelling minimises
 
@@ -20,6 +21,8 @@ True
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import numpy as np
 from scipy.sparse import csr_matrix
 from scipy.sparse.csgraph import breadth_first_order, maximum_flow
@@ -27,15 +30,27 @@ from scipy.sparse.csgraph import breadth_first_order, maximum_flow
 from polyloops.core.directions import Direction
 from polyloops.segment.surface import Surface
 
-__all__ = ["energy", "graphcut_labels", "naive_labels"]
+__all__ = ["DIRECTION_VECTORS", "energy", "fidelity", "graphcut_labels", "naive_fidelity", "naive_labels"]
 
-VECTORS = np.array([np.eye(3)[d // 2] * (1 if d % 2 == 0 else -1) for d in range(6)])
+# the unit vector of each Direction, in its order (+X, -X, +Y, -Y, +Z, -Z)
+DIRECTION_VECTORS = np.array([np.eye(3)[d // 2] * (1 if d % 2 == 0 else -1) for d in range(6)])
 SCALE = 10_000  # capacities are integers: costs in units of 1 / SCALE
 
 
 def naive_labels(s: Surface) -> tuple[Direction, ...]:
     """Each triangle labelled by the direction closest to its normal."""
-    return tuple(Direction(int(k)) for k in (s.normals @ VECTORS.T).argmax(axis=1))
+    return tuple(Direction(int(k)) for k in (s.normals @ DIRECTION_VECTORS.T).argmax(axis=1))
+
+
+def fidelity(surface: Surface, labels: Sequence[Direction]) -> float:
+    """The area-weighted mean of ``n . label`` over the triangles."""
+    vectors = DIRECTION_VECTORS[np.array([int(d) for d in labels])]
+    return float((surface.areas * (surface.normals * vectors).sum(axis=1)).sum() / surface.areas.sum())
+
+
+def naive_fidelity(surface: Surface) -> float:
+    """The fidelity of the naive labelling: the upper bound of every labelling's fidelity."""
+    return float((surface.areas * np.abs(surface.normals).max(axis=1)).sum() / surface.areas.sum())
 
 
 def _edges(s: Surface) -> tuple[np.ndarray, np.ndarray]:
@@ -55,7 +70,7 @@ def _edges(s: Surface) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _costs(s: Surface, compactness: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    unary = s.areas[:, None] * (1 - s.normals @ VECTORS.T) / s.areas.mean()
+    unary = s.areas[:, None] * (1 - s.normals @ DIRECTION_VECTORS.T) / s.areas.mean()
     pairs, lengths = _edges(s)
     return unary, pairs, compactness * lengths / lengths.mean()
 

@@ -18,6 +18,7 @@ from polyloops.core.polycube import Polycube
 from polyloops.segment.certify import layout_problem
 from polyloops.segment.embedded import NotAStructure, SurfaceLoop
 from polyloops.segment.from_polycube import UncertifiedError
+from polyloops.segment.labellings import fidelity, naive_fidelity
 from polyloops.segment.layout import Layout, lay_out
 from polyloops.segment.refine import Refined
 from polyloops.segment.search import (
@@ -26,9 +27,7 @@ from polyloops.segment.search import (
     State,
     candidate_loops,
     dense_start,
-    fidelity,
     greedy_search,
-    naive_fidelity,
     start_state,
 )
 from polyloops.segment.surface import Surface, surface_of

@@ -33,19 +33,15 @@ import numpy as np
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import dijkstra
 
-from polyloops.core.directions import Direction
 from polyloops.core.errors import PolyloopsError
 from polyloops.segment.embedded import Embedded, NotAStructure, SurfaceLoop, read_structure
+from polyloops.segment.labellings import DIRECTION_VECTORS
 from polyloops.segment.refine import Plane, Refined, cut
 from polyloops.segment.surface import Surface
 from polyloops.verify import check_polycube_loop_structure
 
 __all__ = ["SearchPath", "SearchSettings", "StartError", "State", "candidate_loops", "dense_start",
-           "fidelity", "greedy_search", "naive_fidelity", "start_state"]
-
-UNIT = np.eye(3)
-DIRECTION_VECTORS = np.array([UNIT[d // 2] * (1 if d % 2 == 0 else -1) for d in range(6)])
-
+           "greedy_search", "start_state"]
 
 class StartError(PolyloopsError, ValueError):
     """No start was found on the surface (no three central curves cross pairwise twice)."""
@@ -307,15 +303,3 @@ def greedy_search(r: Refined, loops: list[SurfaceLoop], start: list[int], settin
         if on_step:
             on_step(best)
     return SearchPath(tuple(path), converged)
-
-
-def naive_fidelity(surface: Surface) -> float:
-    """The fidelity of the per-triangle labelling (each triangle its closest direction): the
-    upper bound of every labelling's fidelity."""
-    return float((surface.areas * np.abs(surface.normals).max(axis=1)).sum() / surface.areas.sum())
-
-
-def fidelity(surface: Surface, labels: list[Direction] | tuple[Direction, ...]) -> float:
-    """The area-weighted mean of ``n . label`` over the triangles."""
-    vectors = DIRECTION_VECTORS[np.array([int(d) for d in labels])]
-    return float((surface.areas * (surface.normals * vectors).sum(axis=1)).sum() / surface.areas.sum())
