@@ -17,9 +17,10 @@ removes one.
    score is the fidelity of the labels it would give (each triangle labelled by the face of the
    nearest crossing in its region), less a price per loop; the best move is made while it
    improves the score.
-3. **Layout and certificate**: the best state is laid out (:mod:`~polyloops.segment.layout`)
-   and checked twice (:mod:`~polyloops.segment.certify`); a state whose layout or check fails
-   is dropped for the best certified one before it.
+3. **Layout and certificate** (:mod:`~polyloops.segment.run`): the last states are laid out
+   (:mod:`~polyloops.segment.layout`) and checked twice (:mod:`~polyloops.segment.certify`),
+   and the certified one whose labels score best is kept; when none passes, the states before
+   them are tried in turn.
 """
 
 from __future__ import annotations
