@@ -1,12 +1,30 @@
-"""The room for constructors of segmentations: what they build comes with the checker's report,
-and nothing uncertified is handed out."""
+"""The constructors of segmentations: what they build comes with the checker's report, and
+nothing uncertified is handed out; ``polyloops segment`` (loops on a surface, moves tied to the
+kernel's, the layout and its check, the labellings it is compared with, the command)."""
 
+import json
+from pathlib import Path
+
+import numpy as np
 import pytest
-from hypothesis import given
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
+from polyloops.cli import main
+from polyloops.core.canonical import canonical_form
+from polyloops.core.moves import add_loop, remove_loop
+from polyloops.io.labelled_mesh import parse_labels, read_triangle_mesh
+from polyloops.segment.certify import layout_problem
+from polyloops.segment.embedded import kernel_addition
+from polyloops.segment.flow import disjoint_paths
 from polyloops.segment.from_polycube import UncertifiedError, certified_from_polycube
+from polyloops.segment.layout import lay_out
+from polyloops.segment.run import segment_mesh
+from polyloops.segment.search import SearchSettings, candidate_loops, greedy_search, start_state
+from polyloops.segment.surface import SurfaceError, surface_of
 from polyloops.segmentation import check_segmentation
 from polyloops.shapes.builders import box
+from polyloops.shapes.meshes import ellipsoid, octahedron, sphere, torus
 from strategies import polycubes
 
 
@@ -42,26 +60,6 @@ def test_what_the_checker_does_not_pass_is_refused_not_handed_out(verdict, monke
 
 
 # -- polyloops segment: loops on a surface ------------------------------------------------------
-
-import json  # noqa: E402
-from pathlib import Path  # noqa: E402
-
-import numpy as np  # noqa: E402
-from hypothesis import settings  # noqa: E402
-from hypothesis import strategies as st  # noqa: E402
-
-from polyloops.cli import main  # noqa: E402
-from polyloops.core.canonical import canonical_form  # noqa: E402
-from polyloops.core.moves import add_loop, remove_loop  # noqa: E402
-from polyloops.io.labelled_mesh import parse_labels, read_triangle_mesh  # noqa: E402
-from polyloops.segment.certify import layout_problem  # noqa: E402
-from polyloops.segment.embedded import kernel_addition  # noqa: E402
-from polyloops.segment.flow import disjoint_paths  # noqa: E402
-from polyloops.segment.layout import lay_out  # noqa: E402
-from polyloops.segment.run import segment_mesh  # noqa: E402
-from polyloops.segment.search import SearchSettings, candidate_loops, greedy_search, start_state  # noqa: E402
-from polyloops.segment.surface import SurfaceError, surface_of  # noqa: E402
-from polyloops.shapes.meshes import ellipsoid, octahedron, sphere, torus  # noqa: E402
 
 SHARED = Path(__file__).resolve().parents[2] / "shared" / "meshes"
 
