@@ -18,30 +18,18 @@ from polyloops.core.directions import Axis
 from polyloops.render.colours import AXIS_COLOUR
 from polyloops.render.figure import new_figure, save_figure
 from polyloops.render.projection import View
-from polyloops.render.raster import triangle_buffer
-from polyloops.render.segmentation import VIEWS, _neighbours
+from polyloops.render.segmentation import VIEWS, _neighbours, mesh_view
 
 __all__ = ["render_loops_on_surface"]
-
-PIXELS = 480
 
 
 def _draw(ax, points: np.ndarray, tris: np.ndarray, region: np.ndarray, axis_of: np.ndarray,
           view: View) -> None:
-    right, up, toward = (np.asarray(a) for a in (view.right, view.up, view.toward))
-    pu, pv, pd = points @ right, points @ up, points @ toward
-    p = points[tris]
-    normals = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
-    length = np.linalg.norm(normals, axis=1)
-    shade = np.where(length > 0, (normals @ toward) / np.maximum(length, 1e-300), 0.0)
-    front = np.flatnonzero(normals @ toward > 0)
-    lo_u, hi_u, lo_v, hi_v = pu.min(), pu.max(), pv.min(), pv.max()
-    pad = 0.02 * max(hi_u - lo_u, hi_v - lo_v, 1e-12)
-    lo_u, hi_u, lo_v, hi_v = lo_u - pad, hi_u + pad, lo_v - pad, hi_v + pad
-    step = max(hi_u - lo_u, hi_v - lo_v) / PIXELS
-    shape = (max(1, int(np.ceil((hi_v - lo_v) / step))), max(1, int(np.ceil((hi_u - lo_u) / step))))
-    seen, _ = triangle_buffer((pu - lo_u) / step, (hi_v - pv) / step, pd, tris[front], shape)
-    ids = np.where(seen >= 0, front[np.maximum(seen, 0)], -1)
+    seen_from = mesh_view(points, tris, view)
+    ids, shape = seen_from.ids, seen_from.ids.shape
+    length = np.linalg.norm(seen_from.normals, axis=1)
+    toward = np.asarray(view.toward)
+    shade = np.where(length > 0, (seen_from.normals @ toward) / np.maximum(length, 1e-300), 0.0)
     image = np.ones((*shape, 4))
     image[..., 3] = 0.0
     shown = ids >= 0
@@ -66,8 +54,7 @@ def _draw(ax, points: np.ndarray, tris: np.ndarray, region: np.ndarray, axis_of:
             line = np.where((line < 0) & (moved >= 0), moved, line)
     drawn = (line >= 0) & shown
     image[drawn] = colours[line[drawn]]
-    extent = (lo_u, lo_u + shape[1] * step, hi_v - shape[0] * step, hi_v)
-    ax.imshow(image, extent=extent, interpolation="nearest")
+    ax.imshow(image, extent=seen_from.extent, interpolation="nearest")
     ax.set_aspect("equal")
     ax.axis("off")
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import os
 from collections.abc import Callable
+from dataclasses import dataclass
 from itertools import pairwise
 from typing import Any
 
@@ -54,6 +55,45 @@ def hot_parts(report: Any) -> tuple[set[int], set[int]]:
     return charts, boundaries
 
 
+@dataclass(frozen=True)
+class MeshView:
+    """A triangle mesh seen from a view: per pixel the nearest front-facing triangle (``ids``,
+    -1 for none), the vertices' screen coordinates ``pu``, ``pv``, the triangles' normals (not
+    normalised), and the pixel grid's origin ``lo_u``, ``hi_v`` and ``step``."""
+
+    ids: np.ndarray
+    pu: np.ndarray
+    pv: np.ndarray
+    normals: np.ndarray
+    lo_u: float
+    hi_v: float
+    step: float
+
+    @property
+    def extent(self) -> tuple[float, float, float, float]:
+        """The image's extent for ``imshow``."""
+        h, w = self.ids.shape
+        return (self.lo_u, self.lo_u + w * self.step, self.hi_v - h * self.step, self.hi_v)
+
+
+def mesh_view(points: np.ndarray, tris: np.ndarray, view: View, pixels: int = PIXELS) -> MeshView:
+    """The depth buffer of a triangle mesh's front-facing triangles from ``view``
+    (:func:`~polyloops.render.raster.triangle_buffer`), ``pixels`` on its longer side."""
+    right, up, toward = (np.asarray(a) for a in (view.right, view.up, view.toward))
+    pu, pv, pd = points @ right, points @ up, points @ toward
+    p = points[tris]
+    normals = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
+    front = np.flatnonzero(normals @ toward > 0)
+    lo_u, hi_u, lo_v, hi_v = pu.min(initial=0), pu.max(initial=1), pv.min(initial=0), pv.max(initial=1)
+    pad = 0.02 * max(hi_u - lo_u, hi_v - lo_v, 1e-12)
+    lo_u, hi_u, lo_v, hi_v = lo_u - pad, hi_u + pad, lo_v - pad, hi_v + pad
+    step = max(hi_u - lo_u, hi_v - lo_v) / pixels
+    shape = (max(1, int(np.ceil((hi_v - lo_v) / step))), max(1, int(np.ceil((hi_u - lo_u) / step))))
+    seen, _ = triangle_buffer((pu - lo_u) / step, (hi_v - pv) / step, pd, tris[front], shape)
+    ids = np.where(seen >= 0, front[np.maximum(seen, 0)], -1)
+    return MeshView(ids, pu, pv, normals, float(lo_u), float(hi_v), float(step))
+
+
 def draw_segmentation(ax, report, view: View, pixels: int = PIXELS) -> None:
     """Draw one view from a depth buffer of the mesh's front-facing triangles
     (:func:`~polyloops.render.raster.triangle_buffer`): each pixel shows the nearest triangle
@@ -72,18 +112,10 @@ def draw_segmentation(ax, report, view: View, pixels: int = PIXELS) -> None:
     hot_edges = {frozenset(e) for b in hot_boundaries for e in pairwise(seg.boundaries[b].vertices)}
     points = np.asarray(mesh.points, dtype=float).reshape(-1, 3)
     tris = np.asarray(mesh.triangles, dtype=np.int64).reshape(-1, 3)
-    right, up, toward = (np.asarray(a) for a in (view.right, view.up, view.toward))
-    pu, pv, pd = points @ right, points @ up, points @ toward
-    p = points[tris]
-    normals = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
-    front = np.flatnonzero(normals @ toward > 0)
-    lo_u, hi_u, lo_v, hi_v = pu.min(initial=0), pu.max(initial=1), pv.min(initial=0), pv.max(initial=1)
-    pad = 0.02 * max(hi_u - lo_u, hi_v - lo_v, 1e-12)
-    lo_u, hi_u, lo_v, hi_v = lo_u - pad, hi_u + pad, lo_v - pad, hi_v + pad
-    step = max(hi_u - lo_u, hi_v - lo_v) / pixels
-    shape = (max(1, int(np.ceil((hi_v - lo_v) / step))), max(1, int(np.ceil((hi_u - lo_u) / step))))
-    seen, _ = triangle_buffer((pu - lo_u) / step, (hi_v - pv) / step, pd, tris[front], shape)
-    ids = np.where(seen >= 0, front[np.maximum(seen, 0)], -1)
+    seen_from = mesh_view(points, tris, view, pixels)
+    ids, pu, pv = seen_from.ids, seen_from.pu, seen_from.pv
+    lo_u, hi_v, step = seen_from.lo_u, seen_from.hi_v, seen_from.step
+    shape = ids.shape
     chart_of = np.asarray(seg.chart_of_triangle, dtype=np.int64)
     fills = {d: to_rgb(direction_colour(d)) for d in Direction}
     fill = np.array([fills[label] for label in mesh.labels]).reshape(-1, 3)
