@@ -347,3 +347,22 @@ def test_sigterm_during_a_run_leaves_a_directory_the_rerun_finishes(tmp_path):
         text = (cat / "catalog.jsonl").read_text()
         whole = whole or text
         assert text == whole and len(read_catalog(cat)) == 35
+
+
+def test_a_spill_written_record_by_record_leaves_nothing_half_written(tmp_path):
+    """``spilling`` writes records as they come to a temporary body beside the file: when the
+    block fails, neither the file nor the body is left; when it ends, the file reads back whole
+    and the body is gone."""
+    from polyloops.generate.spill import SpillTag, read_spill, spilling
+
+    tag = SpillTag("test", 1, 5)
+    with pytest.raises(RuntimeError), spilling(tmp_path / "x.bin", tag) as out:
+        out.add(b"one")
+        raise RuntimeError("stopped")
+    assert list(tmp_path.iterdir()) == []
+    with spilling(tmp_path / "x.bin", tag) as out:
+        out.extend([b"one", b"two"])
+        out.meta = {"n": 2}
+    assert [p.name for p in tmp_path.iterdir()] == ["x.bin"]
+    spill = read_spill(tmp_path / "x.bin", tag)
+    assert spill.records == (b"one", b"two") and spill.meta == {"n": 2}

@@ -31,11 +31,14 @@ polyloops.generate.spill.SpillMismatch: ...x.bin: made for bound 12, not 14
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import json
 import os
+import shutil
 import stat
 import struct
+import tempfile
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -45,7 +48,7 @@ from polyloops.core.errors import PolyloopsError
 from polyloops.io.files import OutputError, writing
 
 __all__ = ["FORMAT_VERSION", "MAGIC", "SPILL_VERSION", "Spill", "SpillMismatch", "SpillRefused", "SpillTag",
-           "iter_spill", "read_spill", "spill_state", "write_spill"]
+           "SpillWriter", "iter_spill", "read_spill", "spill_state", "spilling", "write_spill"]
 
 # The searches' own version, in every tag (``{"schema": SPILL_VERSION, ...}``): raised when a
 # search changes what it spills, so that files of an older search are computed again.
@@ -112,22 +115,71 @@ def write_spill(path: Path, tag: SpillTag, records: Iterable[bytes],
     SpillRefused
         When ``path`` is a link or not a regular file.
     """
+    with spilling(path, tag) as out:
+        out.extend(records)
+        out.meta = meta or {}
+
+
+class SpillWriter:
+    """Records added one at a time to a temporary body beside the file, counted and digested as
+    they come, so that a run spills more than it could hold in memory; :func:`spilling` writes
+    the header and the body when the block ends (``meta`` may be set until then)."""
+
+    def __init__(self, body: Any):
+        self._body = body
+        self._digest = hashlib.sha256()
+        self.records = 0
+        self.body_bytes = 0
+        self.meta: dict[str, Any] = {}
+
+    def add(self, record: bytes) -> None:
+        """Add one record."""
+        chunk = _LEN.pack(len(record)) + record
+        self._body.write(chunk)
+        self._digest.update(chunk)
+        self.records += 1
+        self.body_bytes += len(chunk)
+
+    def extend(self, records: Iterable[bytes]) -> None:
+        """Add records, in order."""
+        for record in records:
+            self.add(record)
+
+    def header(self, tag: SpillTag) -> bytes:
+        """The header of the records added so far, under ``tag``."""
+        return json.dumps({"format": FORMAT_VERSION, "kind": tag.kind, "version": tag.version,
+                           "bound": tag.bound, "records": self.records, "body_bytes": self.body_bytes,
+                           "sha256": self._digest.hexdigest(), "meta": self.meta}, sort_keys=True).encode()
+
+
+@contextlib.contextmanager
+def spilling(path: Path, tag: SpillTag) -> Iterator[SpillWriter]:
+    """A :class:`SpillWriter` for ``path``; when the block ends without an error the file is
+    written atomically (header, then the body copied from the temporary one), and the
+    temporary body is removed either way.
+
+    Raises
+    ------
+    SpillRefused
+        When ``path`` is a link or not a regular file.
+    """
     spill_state(path)
-    body = bytearray()
-    count = 0
-    for rec in records:
-        body += _LEN.pack(len(rec)) + rec
-        count += 1
-    header = json.dumps({"format": FORMAT_VERSION, "kind": tag.kind, "version": tag.version,
-                         "bound": tag.bound, "records": count, "body_bytes": len(body),
-                         "sha256": hashlib.sha256(body).hexdigest(), "meta": meta or {}},
-                        sort_keys=True).encode()
+    fd, body_name = tempfile.mkstemp(prefix=f".{Path(path).name}.", suffix=".body", dir=Path(path).parent)
     try:
-        with writing(path) as pending, open(pending.path, "wb") as fh:
-            fh.write(MAGIC + _LEN.pack(len(header)) + header)
-            fh.write(body)
-    except OutputError as err:
-        raise SpillRefused(str(err)) from None
+        with os.fdopen(fd, "w+b") as body:
+            out = SpillWriter(body)
+            yield out
+            header = out.header(tag)
+            body.seek(0)
+            try:
+                with writing(path) as pending, open(pending.path, "wb") as fh:
+                    fh.write(MAGIC + _LEN.pack(len(header)) + header)
+                    shutil.copyfileobj(body, fh, 1 << 20)
+            except OutputError as err:
+                raise SpillRefused(str(err)) from None
+    finally:
+        with contextlib.suppress(FileNotFoundError):
+            os.unlink(body_name)
 
 
 def _header(path: Path, fh: Any, tag: SpillTag) -> tuple[dict[str, Any], int]:

@@ -33,7 +33,7 @@ region (cut 5, :attr:`Cuts.meet`).  The search itself is the compiled extension 
 from __future__ import annotations
 
 import array
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from dataclasses import asdict, astuple, dataclass, field, fields
 from functools import cached_property
 
@@ -287,7 +287,8 @@ class Frontier:
 # shares); the top then costs 6.1 s at 32 corners (0.2 s to three loops), the shares minutes.
 SPLIT_LOOPS = 7
 
-Expander = Callable[[list["Arrangement | None"], int, Cuts], list[tuple[list["Arrangement"], "SearchStats"]]]
+Expander = Callable[[list["Arrangement | None"], int, Cuts],
+                    Iterable[tuple[list["Arrangement"], "SearchStats"]]]
 
 
 def expand(nodes: list[Arrangement | None], max_corners: int, cuts: Cuts = ALL_CUTS
@@ -298,20 +299,26 @@ def expand(nodes: list[Arrangement | None], max_corners: int, cuts: Cuts = ALL_C
 
 def frontier(max_corners: int, loops: int = SPLIT_LOOPS,
              on_stats: Callable[[SearchStats], None] | None = None,
-             expander: Expander = expand, cuts: Cuts = ALL_CUTS) -> Frontier:
+             expander: Expander = expand, cuts: Cuts = ALL_CUTS,
+             roots_to: Callable[[list[Arrangement]], None] | None = None) -> Frontier:
     """The top of the search tree, down to the arrangements with ``loops`` loops: the roots of
     the subtrees that shares of a split search take (see :data:`SPLIT_LOOPS`).  Its first two
     levels (the second and third loops, drawn with the whole budget) are most of the top's
-    cost; ``expander`` may spread each level over workers (it must return :func:`expand`'s
-    answer)."""
+    cost; ``expander`` may spread each level over workers (it must yield :func:`expand`'s
+    answer, in order).  With ``roots_to``, the roots are handed to it as they come, in order,
+    and not kept (the returned frontier has none): the largest level never sits in memory."""
     level: list[Arrangement | None] = [None]
     shallow: list[Arrangement] = []
-    for _ in range(loops - 1):
+    for depth in range(loops - 1):
+        last = depth == loops - 2
         nxt: list[Arrangement] = []
         for kids, stats in expander(level, max_corners, cuts):
             if on_stats:
                 on_stats(stats)
-            nxt.extend(kids)
+            if last and roots_to is not None:
+                roots_to(kids)
+            else:
+                nxt.extend(kids)
         shallow.extend(node for node in level if node is not None and node.candidate)
         level = list(nxt)
     return Frontier(loops, tuple(node for node in level if node is not None), tuple(shallow))
