@@ -37,7 +37,8 @@ def add_command(command: Callable[..., argparse.ArgumentParser]) -> None:
     p.add_argument("--polycube", metavar="FILE", help="write the polycube of the loops (.json, .obj, ...)")
     p.add_argument("--png", metavar="FILE", help="draw the labelled mesh (two views, charts outlined)")
     p.add_argument("--budget", type=float, default=20.0, metavar="SECONDS",
-                   help="time for the search of loop moves (default 20)")
+                   help="seconds for the whole run, most of them searching loop moves (default 20; "
+                   "finding a start on a mesh of positive genus can take longer)")
     p.add_argument("--seed", type=int, default=0, help="the seed of the search's move order (default 0)")
 
 
