@@ -28,9 +28,7 @@ def layout_problem(lay: Layout) -> str | None:
     corner_region = {}
     for g, c in enumerate(lay.corners):
         corner_region[c] = g
-    owner = {}
-    for t, (a, b, c) in enumerate(tris.tolist()):
-        owner[a, b] = owner[b, c] = owner[c, a] = t
+    owner = r.owner
     for f, face in enumerate(faces):
         mine = np.nonzero(lay.patch == f)[0]
         if len(mine) == 0:

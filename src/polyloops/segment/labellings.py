@@ -55,18 +55,8 @@ def naive_fidelity(surface: Surface) -> float:
 
 def _edges(s: Surface) -> tuple[np.ndarray, np.ndarray]:
     """The pairs of triangles sharing an edge, and the edges' lengths."""
-    tris = s.triangles
-    directed = np.concatenate([tris[:, [0, 1]], tris[:, [1, 2]], tris[:, [2, 0]]])
-    owner = np.tile(np.arange(len(tris)), 3)
-    n = len(s.points)
-    key = directed[:, 0] * n + directed[:, 1]
-    reverse = directed[:, 1] * n + directed[:, 0]
-    order = np.argsort(key)
-    other = owner[order[np.searchsorted(key[order], reverse)]]
-    mine = directed[:, 0] < directed[:, 1]
-    pairs = np.stack([owner[mine], other[mine]], axis=1)
-    lengths = np.linalg.norm(s.points[directed[mine, 0]] - s.points[directed[mine, 1]], axis=1)
-    return pairs, lengths
+    pairs, ends = s.adjacency
+    return pairs, np.linalg.norm(s.points[ends[:, 0]] - s.points[ends[:, 1]], axis=1)
 
 
 def _costs(s: Surface, compactness: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

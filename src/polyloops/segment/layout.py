@@ -97,11 +97,12 @@ def _normal(q: Polycube, f: int) -> Direction:
     return d
 
 
-def _boundary_cycle(tris: np.ndarray, region: np.ndarray, g: int, owner: dict[tuple[int, int], int]
-                    ) -> list[int]:
-    """Region ``g``'s boundary, counter-clockwise round the region (the region on the left)."""
+def _boundary_cycle(tris: np.ndarray, region: np.ndarray, g: int, mine: np.ndarray,
+                    owner: dict[tuple[int, int], int]) -> list[int]:
+    """Region ``g``'s boundary (its triangles ``mine``), counter-clockwise round the region
+    (the region on the left)."""
     nxt = {}
-    for t in np.nonzero(region == g)[0].tolist():
+    for t in mine.tolist():
         a, b, c = tris[t].tolist()
         for u, v in ((a, b), (b, c), (c, a)):
             if region[owner[v, u]] != g:
@@ -124,7 +125,8 @@ def _attempt(e: Embedded) -> tuple[tuple[int, ...], Paths, np.ndarray] | set:
     owner = r.owner
     crossing_face = {v: f for f, v in enumerate(e.crossings)}
     count = int(e.region.max()) + 1
-    cycles = [_boundary_cycle(tris, e.region, g, owner) for g in range(count)]
+    triangles_of = e.region_triangles
+    cycles = [_boundary_cycle(tris, e.region, g, triangles_of[g], owner) for g in range(count)]
     # the point in the middle of each side, the same from both regions beside it
     to_split: set[tuple[int, int]] = set()
     middle: dict[frozenset[int], int] = {}
@@ -162,7 +164,7 @@ def _attempt(e: Embedded) -> tuple[tuple[int, ...], Paths, np.ndarray] | set:
     corners, paths = [], []
     patch = np.full(len(tris), -1, dtype=np.int64)
     for g in range(count):
-        found = _region_layout(e, g, cycles[g], sides[g], owner, crossing_face)
+        found = _region_layout(e, triangles_of[g], cycles[g], sides[g], owner, crossing_face)
         if isinstance(found, set):
             to_split |= found
             continue
@@ -189,12 +191,11 @@ def _middle(arc: list[int], pts: np.ndarray, usable: Callable[[int], bool]) -> i
     return arc[min(inner, key=lambda i: (abs(along[i] - along[-1] / 2), i))]
 
 
-def _region_layout(e: Embedded, g: int, cycle: list[int], sides: list[tuple[int, int]],
+def _region_layout(e: Embedded, mine: np.ndarray, cycle: list[int], sides: list[tuple[int, int]],
                    owner: dict[tuple[int, int], int], crossing_face: dict[int, int]
                    ) -> tuple[int, tuple[tuple[int, ...], ...], dict[int, int]] | set:
     r = e.refined
     tris, pts = r.triangles, r.points
-    mine = np.nonzero(e.region == g)[0]
     local_tris = tris[mine]
     verts = np.unique(local_tris)
     index = np.full(len(pts), -1, dtype=np.int64)

@@ -83,10 +83,8 @@ class Refined:
     def adjacency(self) -> tuple[np.ndarray, np.ndarray]:
         """Per edge (each once): the two triangles beside it (k x 2), and its key
         ``u * (n + 1) + v`` with ``u < v`` (:meth:`edge_key`)."""
-        owner = self.owner
-        pairs = [(t, owner[v, u], u, v) for (u, v), t in owner.items() if u < v]
-        arr = np.array(pairs, dtype=np.int64).reshape(-1, 4)
-        return arr[:, :2], self.edge_key(arr[:, 2], arr[:, 3])
+        pairs, ends = self.surface.adjacency
+        return pairs, self.edge_key(ends[:, 0], ends[:, 1])
 
     def edge_key(self, u: np.ndarray | int, v: np.ndarray | int) -> np.ndarray:
         """The key of edge ``(u, v)`` (``u < v``) in :attr:`adjacency`."""

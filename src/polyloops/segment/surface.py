@@ -57,6 +57,20 @@ class Surface:
         out[ok] = self._cross[ok] / length[ok, None]
         return out
 
+    @cached_property
+    def adjacency(self) -> tuple[np.ndarray, np.ndarray]:
+        """Per edge, each once: the two triangles beside it (k x 2, the one that runs it from
+        its lower vertex first) and its two vertices (k x 2, lower first)."""
+        tris = self.triangles
+        directed = np.concatenate([tris[:, [0, 1]], tris[:, [1, 2]], tris[:, [2, 0]]])
+        owner = np.tile(np.arange(len(tris)), 3)
+        n = len(self.points)
+        key = directed[:, 0] * n + directed[:, 1]
+        order = np.argsort(key)
+        other = owner[order[np.searchsorted(key[order], directed[:, 1] * n + directed[:, 0])]]
+        mine = directed[:, 0] < directed[:, 1]
+        return np.stack([owner[mine], other[mine]], axis=1), directed[mine]
+
     @property
     def area(self) -> float:
         """The total area."""
