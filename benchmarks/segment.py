@@ -7,9 +7,12 @@ and ``segment`` (the given budget and seed), each judged by the checker: its ver
 wall time.  The naive fidelity is the bound no labelling exceeds; "gap" is the bound less the
 fidelity; "backwards" the share of segment's boundary length that runs against its polycube
 edge's direction; "converged" says whether segment's search ended with no improving move (else the
-budget stopped it).  One Markdown table per subfolder.
+budget stopped it); "start" how its search began (the cube, a grid of sections, or a start given
+by ``--start MESH=START``, which is what ``segment --start START`` takes).  One Markdown table per
+subfolder.
 
 Usage: python benchmarks/segment.py DIR [--budget SECONDS] [--seed N] [--only NAME ...]
+       [--start MESH=START ...]
 """
 
 from __future__ import annotations
@@ -23,6 +26,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from _common import markdown_table
 
+from polyloops.cli.segment import read_start
 from polyloops.io.labelled_mesh import read_triangle_mesh
 from polyloops.segment.labellings import fidelity, graphcut_labels, naive_labels
 from polyloops.segment.run import segment_surface
@@ -44,7 +48,7 @@ def share(x: float | None) -> str:
     return "" if x is None else f"{x:.4f}"
 
 
-def row(path: Path, budget: float, seed: int) -> list[object]:
+def row(path: Path, budget: float, seed: int, start_arg: str | None) -> list[object]:
     s = surface_of(*read_triangle_mesh(path))
     naive = judged(s, naive_labels(s))
     start = time.perf_counter()
@@ -55,14 +59,17 @@ def row(path: Path, budget: float, seed: int) -> list[object]:
                          cut[0], f"{cut[1]:.4f}", cut[2], f"{cut_time:.1f}"]
     start = time.perf_counter()
     try:
-        done = segment_surface(s, budget=budget, seed=seed)
+        done = segment_surface(s, budget=budget, seed=seed,
+                               start=read_start(start_arg) if start_arg else None)
     except Exception as err:  # a benchmark reports every failure in its row
         took = time.perf_counter() - start
-        return [*out, f"none ({type(err).__name__})", "", "", "", "", "", "", f"{took:.1f}"]
+        return [*out, f"none ({type(err).__name__})", "", "", "", "", "", "", f"{took:.1f}",
+                f"given {start_arg}" if start_arg else ""]
     took = time.perf_counter() - start
     gap = bound - done.fidelity
     return [*out, "certified", f"{done.fidelity:.4f}", f"{gap:.4f}", done.charts, done.loops,
-            share(backwards_fraction(done.report)), "yes" if done.converged else "no", f"{took:.1f}"]
+            share(backwards_fraction(done.report)), "yes" if done.converged else "no", f"{took:.1f}",
+            done.start.replace("the given start", f"given {start_arg}")]
 
 
 def main() -> None:
@@ -71,13 +78,16 @@ def main() -> None:
     parser.add_argument("--budget", type=float, default=20.0)
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--only", nargs="*", help="mesh names (stems) to run")
+    parser.add_argument("--start", action="append", default=[], metavar="MESH=START",
+                        help="begin segment on mesh MESH (its stem) from START, as segment --start")
     args = parser.parse_args()
+    starts = dict(item.split("=", 1) for item in args.start)
     header = ["mesh", "triangles", "genus", "naive fidelity (bound)", "naive", "naive charts", "graph-cut",
               "graph-cut fidelity", "graph-cut charts", "graph-cut s", "segment", "fidelity", "gap", "charts",
-              "loops", "backwards", "converged", "segment s"]
+              "loops", "backwards", "converged", "segment s", "start"]
     meshes = sorted(p for p in args.folder.rglob("*") if p.suffix.lower() in (".stl", ".obj", ".mesh"))
     for folder in sorted({p.parent for p in meshes}):
-        rows = [row(p, args.budget, args.seed) for p in meshes
+        rows = [row(p, args.budget, args.seed, starts.get(p.stem)) for p in meshes
                 if p.parent == folder and (not args.only or p.stem in args.only)]
         if rows:
             print(f"\n### {folder.name}\n")

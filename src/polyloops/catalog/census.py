@@ -25,6 +25,7 @@ from typing import Any
 
 from polyloops.catalog import records
 from polyloops.catalog.records import CatalogEntry, CatalogError, CatalogMismatchError
+from polyloops.core.structure import LoopStructure
 from polyloops.core.symmetry import Symmetry
 from polyloops.io.files import InputError, read_bytes, read_text
 
@@ -297,6 +298,30 @@ def read_catalog(directory: Path | str | None = None, *, genus: int | None = Non
 
 
 SHIPPED_GENERA = (0, 1)
+
+
+def shipped_class(name: str) -> LoopStructure:
+    """The representative of a class of a shipped catalog by its name (``P16.2``, ``T32.1``),
+    the genus read from the name's prefix.
+
+    >>> shipped_class("T32.1").genus, shipped_class("P8.1").map.num_corners
+    (1, 8)
+
+    Raises
+    ------
+    CatalogError
+        For a name that is no class name, of a genus no catalog ships, or not in the catalog
+        (the message says how far the catalog goes).
+    """
+    if not NAME.fullmatch(name):
+        raise CatalogError(f"{name[:40]!r} is not a class name such as P16.2 or T32.1")
+    genus = 1 if name.startswith("T") else int(name[1:name.index("-")]) if name.startswith("G") else 0
+    census = read_catalog(genus=genus)
+    entry = census.by_name.get(name)
+    if entry is None:
+        raise CatalogError(f"no class {name} in the shipped genus-{genus} catalog (names up to its "
+                           f"{census.max_corners} corners, up to {census.symmetry.up_to})")
+    return entry.structure()
 
 
 def summary_problem(summary: Any) -> str | None:

@@ -11,10 +11,12 @@ from typing import Any
 from polyloops.cli.load import (
     EXIT_INVALID,
     EXIT_OK,
+    EXIT_USAGE,
     CliError,
     check_output,
     check_readable_file,
     picture_output,
+    read_loop_structure,
     write_error,
     write_output,
     write_text,
@@ -24,8 +26,8 @@ from polyloops.cli.load import (
 def add_command(command: Callable[..., argparse.ArgumentParser]) -> None:
     p = command("segment", cmd_segment, "label each triangle of a closed mesh +X..-Z so that a polycube "
                 "realises the labels, by adding and removing loops (from the cube at genus 0, from a grid of "
-                "plane sections at any genus); every output is certified by two checks (exit 0 written, "
-                "1 no start or nothing certified, 2 bad input)",
+                "plane sections at any genus, or from --start); every output is certified by two checks "
+                "(exit 0 written, 1 no start or nothing certified, 2 bad input)",
                 file_arg=False)
     p.add_argument("mesh", metavar="MESH", help="a closed, oriented, connected triangle mesh (.obj, .stl or "
                    "MEDIT .mesh), triangles counter-clockwise seen from outside; or example:NAME, a made "
@@ -40,6 +42,9 @@ def add_command(command: Callable[..., argparse.ArgumentParser]) -> None:
                    help="seconds for the whole run, most of them searching loop moves (default 20; "
                    "finding a start on a mesh of positive genus can take longer)")
     p.add_argument("--seed", type=int, default=0, help="the seed of the search's move order (default 0)")
+    p.add_argument("--start", metavar="START", help="begin from this polycube loop structure of the mesh's "
+                   "genus, embedded by plane sections (any symmetry of it): a shipped class name such as "
+                   "T32.1, sig:SIGNATURE, example:NAME or a structure or polycube file")
 
 
 def cmd_segment(args: argparse.Namespace) -> int:
@@ -58,6 +63,7 @@ def cmd_segment(args: argparse.Namespace) -> int:
     from polyloops.segment.from_polycube import UncertifiedError
     from polyloops.segment.run import segment_mesh
     from polyloops.segment.search import StartError
+    from polyloops.segment.start import StartMismatch
     from polyloops.segment.surface import SurfaceError
 
     points: Any
@@ -78,12 +84,15 @@ def cmd_segment(args: argparse.Namespace) -> int:
             raise CliError(str(err)) from None
         except FormatError as err:  # the readers' errors name the line or the face
             raise CliError(f"{getattr(err, 'where', None) or args.mesh}: {err}") from None
+    start = read_start(args.start) if args.start else None
     bar = tqdm(desc="segment", unit="state", disable=None, file=sys.stderr)
     try:
         result = segment_mesh(points, triangles, budget=args.budget, seed=args.seed,
-                              on_step=lambda state: bar.update(1))
+                              on_step=lambda state: bar.update(1), start=start)
     except SurfaceError as err:
         raise CliError(f"{args.mesh}: {err}") from None
+    except StartMismatch as err:
+        raise CliError(f"{args.start}: not a start for {args.mesh}: {err}") from None
     except (StartError, UncertifiedError) as err:
         bar.close()
         message = f"{args.mesh}: nothing written: {err}"
@@ -94,6 +103,22 @@ def cmd_segment(args: argparse.Namespace) -> int:
     finally:
         bar.close()
     return _write(args, result)
+
+
+def read_start(arg: str):
+    """``--start``: a shipped class by name, else a FILE argument as an oriented loop structure
+    (a polycube is dualized); anything unreadable is bad input (exit 2)."""
+    from polyloops.catalog.census import NAME, CatalogError, shipped_class
+
+    if NAME.fullmatch(arg):
+        try:
+            return shipped_class(arg)
+        except CatalogError as err:
+            raise CliError(f"--start {arg}: {err}") from None
+    try:
+        return read_loop_structure(arg, oriented=True)
+    except CliError as err:
+        raise CliError(str(err) if str(err).startswith(arg) else f"{arg}: {err}", EXIT_USAGE) from None
 
 
 def _write(args: argparse.Namespace, result) -> int:

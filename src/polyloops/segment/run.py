@@ -15,6 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from polyloops.core.polycube import Polycube
+from polyloops.core.structure import LoopStructure
 from polyloops.segment.certify import layout_problem
 from polyloops.segment.embedded import NotAStructure, SurfaceLoop
 from polyloops.segment.from_polycube import UncertifiedError
@@ -30,6 +31,7 @@ from polyloops.segment.search import (
     greedy_search,
     start_state,
 )
+from polyloops.segment.start import embed_start
 from polyloops.segment.surface import Surface, surface_of
 from polyloops.segmentation import SegmentationReport, check_segmentation
 from polyloops.segmentation.quality import backwards_fraction
@@ -57,6 +59,7 @@ class SegmentResult:
     states: int
     converged: bool  # the search ended with no improving move, not by the budget
     layout: Layout  # the loops, regions, corners, paths and patches the labels come from
+    start: str  # how the search began: the cube, a grid, or the given start and its turn
 
     @property
     def certified(self) -> bool:
@@ -80,7 +83,7 @@ class SegmentResult:
                 "loops": self.loops, "polycube_corners": self.polycube.map.num_corners,
                 "fidelity": round(self.fidelity, 6), "naive_fidelity": round(self.naive_fidelity, 6),
                 "backwards": _rounded(backwards_fraction(self.report)), "seconds": round(self.seconds, 2),
-                "states": self.states, "converged": self.converged}
+                "states": self.states, "converged": self.converged, "start": self.start}
 
 
 def _rounded(x: float | None) -> float | None:
@@ -102,10 +105,15 @@ def _certify(lay: Layout) -> tuple[LabelledMesh, SegmentationReport] | str:
 
 
 def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, planes: int = 9,
-                    price: float = 0.002, on_step: Callable[[State], None] | None = None) -> SegmentResult:
+                    price: float = 0.002, on_step: Callable[[State], None] | None = None,
+                    start: LoopStructure | None = None) -> SegmentResult:
     """:func:`segment_mesh` on a checked surface."""
     began = time.monotonic()
-    r, loops, first = _start(surface, planes, budget)
+    if start is None:
+        r, loops, first, how = _start(surface, planes, budget)
+    else:
+        r, loops, placed = embed_start(surface, start, GRIDS, budget)
+        first, how = list(placed.curves), f"the given start, turned by {placed.symmetry}"
     # the budget covers the whole run: the cut above, the search, and a reserve for the layout
     # and the checks of the finalists after it (each about 0.5 to 1.5 s on the shared meshes)
     left = budget - (time.monotonic() - began)
@@ -139,7 +147,7 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
     return SegmentResult(mesh, tuple(int(p) for p in refined.parent.tolist()), lay.polycube, report,
                          surface.genus, len(surface.triangles), len(state.loops), fid,
                          naive_fidelity(surface), time.monotonic() - began, len(path), searched.converged,
-                         lay)
+                         lay, how)
 
 
 FINALISTS = 4  # the last states of the search laid out and certified, the best labels kept
@@ -149,7 +157,7 @@ GRIDS = (9, 13, 19)  # candidate planes per axis for a grid start, coarse to fin
 
 
 def _start(surface: Surface, planes: int, budget: float = float("inf")
-           ) -> tuple[Refined, list[SurfaceLoop], list[int]]:
+           ) -> tuple[Refined, list[SurfaceLoop], list[int], str]:
     """The cut surface, its candidate curves and the start: the cube at genus 0, else (or when
     no cube is found) the first grid of :data:`GRIDS` that is a polycube loop structure (no
     finer grid is begun once ``budget`` seconds have gone)."""
@@ -158,7 +166,7 @@ def _start(surface: Surface, planes: int, budget: float = float("inf")
     if surface.genus == 0:
         r, loops, _ = candidate_loops(surface, planes)
         try:
-            return r, loops, start_state(r, loops)
+            return r, loops, start_state(r, loops), "the cube"
         except StartError as err:
             reasons.append(str(err))
     for k in sorted({planes, *GRIDS}):
@@ -167,7 +175,7 @@ def _start(surface: Surface, planes: int, budget: float = float("inf")
             break
         r, loops, _ = candidate_loops(surface, k)
         try:
-            return r, loops, dense_start(r, loops)
+            return r, loops, dense_start(r, loops), f"a grid of {k} planes an axis"
         except StartError as err:
             reasons.append(f"{k} planes an axis: {err}")
     raise StartError(f"no start on this genus-{surface.genus} mesh: " + "; ".join(reasons))
@@ -176,19 +184,25 @@ def _start(surface: Surface, planes: int, budget: float = float("inf")
 def segment_mesh(points: Sequence[Sequence[float]] | np.ndarray,
                  triangles: Sequence[Sequence[int]] | np.ndarray, budget: float = 20.0, seed: int = 0,
                  planes: int = 9, price: float = 0.002,
-                 on_step: Callable[[State], None] | None = None) -> SegmentResult:
+                 on_step: Callable[[State], None] | None = None,
+                 start: LoopStructure | None = None) -> SegmentResult:
     """A certified polycube segmentation of the closed triangle mesh ``points``, ``triangles``
     (counter-clockwise seen from outside), by the greedy loop search of
     :mod:`~polyloops.segment.search` within ``budget`` seconds (its order fixed by ``seed``):
-    from the cube at genus 0, from a grid of section curves at any genus.
+    from ``start`` when given (a polycube loop structure of the mesh's genus, embedded by
+    :mod:`~polyloops.segment.start`), else from the cube at genus 0 and from a grid of section
+    curves at any genus.
 
     Raises
     ------
     SurfaceError
         When the mesh is not a closed, oriented, connected manifold surface with some area.
+    StartMismatch
+        When ``start`` has another genus than the mesh, or is no polycube loop structure.
     StartError
-        When no start was found (no cube, and no grid that is a polycube loop structure).
+        When no start was found (no cube, and no grid that is a polycube loop structure; or
+        the given start is not reproduced by plane sections).
     UncertifiedError
         When no state of the search passed both checks (nothing is returned then).
     """
-    return segment_surface(surface_of(points, triangles), budget, seed, planes, price, on_step)
+    return segment_surface(surface_of(points, triangles), budget, seed, planes, price, on_step, start)

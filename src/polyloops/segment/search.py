@@ -150,7 +150,7 @@ def dense_start(r: Refined, loops: list[SurfaceLoop], repairs: int = 40) -> list
     StartError
         When no such grid was found (the message says why the last one failed).
     """
-    chosen = _crossing_only(loops, list(range(len(loops))))
+    chosen = crossing_only(loops, list(range(len(loops))))
     try:
         e = read_structure(r, [loops[i] for i in chosen])
     except NotAStructure as err:
@@ -165,7 +165,7 @@ def dense_start(r: Refined, loops: list[SurfaceLoop], repairs: int = 40) -> list
         blamed = _bounding_curves(e, named)
         # the most blamed curve whose removal leaves a loop structure (the next ones if not)
         for worst in sorted(blamed, key=lambda k: (-blamed[k], k))[:REPAIR_TRIES]:
-            fewer = _crossing_only(loops, [i for j, i in enumerate(chosen) if j != worst])
+            fewer = crossing_only(loops, [i for j, i in enumerate(chosen) if j != worst])
             try:
                 e = read_structure(r, [loops[i] for i in fewer])
             except NotAStructure:
@@ -180,7 +180,7 @@ def dense_start(r: Refined, loops: list[SurfaceLoop], repairs: int = 40) -> list
 REPAIR_TRIES = 6  # curves tried for one removal before a grid's repair is given up
 
 
-def _crossing_only(loops: list[SurfaceLoop], chosen: list[int]) -> list[int]:
+def crossing_only(loops: list[SurfaceLoop], chosen: list[int]) -> list[int]:
     """``chosen`` without the curves that cross none of the others (repeatedly)."""
     while True:
         vsets = {i: set(loops[i].vertices) for i in chosen}

@@ -306,22 +306,39 @@ def frontier(max_corners: int, loops: int = SPLIT_LOOPS,
     levels (the second and third loops, drawn with the whole budget) are most of the top's
     cost; ``expander`` may spread each level over workers (it must yield :func:`expand`'s
     answer, in order).  With ``roots_to``, the roots are handed to it as they come, in order,
-    and not kept (the returned frontier has none): the largest level never sits in memory."""
+    and not kept (the returned frontier has none), and the level before them is made a slice
+    at a time (:data:`STREAM_SLICES`) and expanded at once: neither of the two largest levels
+    ever sits in memory whole, and the roots come in the same order as level by level."""
+    streamed = roots_to is not None and loops >= 3
     level: list[Arrangement | None] = [None]
     shallow: list[Arrangement] = []
-    for depth in range(loops - 1):
-        last = depth == loops - 2
-        nxt: list[Arrangement] = []
-        for kids, stats in expander(level, max_corners, cuts):
+
+    def children(nodes: list[Arrangement | None]) -> Iterator[list[Arrangement]]:
+        for kids, stats in expander(nodes, max_corners, cuts):
             if on_stats:
                 on_stats(stats)
-            if last and roots_to is not None:
-                roots_to(kids)
-            else:
-                nxt.extend(kids)
+            yield kids
+
+    for _ in range(loops - (3 if streamed else 1)):
+        nxt = [kid for kids in children(level) for kid in kids]
         shallow.extend(node for node in level if node is not None and node.candidate)
         level = list(nxt)
-    return Frontier(loops, tuple(node for node in level if node is not None), tuple(shallow))
+    if not streamed:
+        return Frontier(loops, tuple(node for node in level if node is not None), tuple(shallow))
+    assert roots_to is not None
+    # level holds the arrangements two levels above the roots; depth first from here
+    before: list[Arrangement] = []  # the candidates of the level before the roots, in order
+    step = max(1, -(-len(level) // STREAM_SLICES))
+    for i in range(0, len(level), step):
+        middle = [kid for kids in children(level[i:i + step]) for kid in kids]
+        before.extend(node for node in middle if node.candidate)
+        for kids in children(list(middle)):
+            roots_to(kids)
+    shallow.extend(node for node in level if node is not None and node.candidate)
+    return Frontier(loops, (), (*shallow, *before))
+
+
+STREAM_SLICES = 64  # slices of the level two above the roots, each expanded down to its roots
 
 
 def candidate_arrangements(max_corners: int, res: int = 0, mod: int = 1,
