@@ -30,7 +30,7 @@ if __name__ == "__main__":
     done = segment_mesh(*MESH_EXAMPLES["pebble"](), budget=600.0, seed=0)  # converges: reproducible
     assert done.converged
     e = done.layout.embedded
-    edges = {edge: Axis(e.refined.planes[lp.plane].axis) for lp in e.loops for edge in lp.edges()}
+    edges = {edge: Axis(lp.axis_in(e.refined)) for lp in e.loops for edge in lp.edges()}
     render_loops_on_surface(e.refined.points, e.refined.triangles, e.region, edges,
                             OUT / "segment-pebble-loops.png",
                             title=f"the {done.loops} loops on the surface (plane sections)")

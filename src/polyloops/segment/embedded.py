@@ -20,6 +20,7 @@ structure with the embedding it came from, or the reason it is no loop structure
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -34,7 +35,8 @@ from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LoopStructure
 from polyloops.segment.refine import Refined
 
-__all__ = ["Embedded", "NotAStructure", "SurfaceLoop", "kernel_addition", "read_structure"]
+__all__ = ["Embedded", "Loop", "NotAStructure", "PathLoop", "SurfaceLoop", "cycle_edges", "kernel_addition",
+           "read_structure"]
 
 
 class NotAStructure(PolyloopsError, ValueError):
@@ -42,18 +44,70 @@ class NotAStructure(PolyloopsError, ValueError):
     region without crossings, two regions meeting twice); the message says which."""
 
 
+def cycle_edges(vs: tuple[int, ...]) -> set[tuple[int, int]]:
+    """The edges of a cycle of vertices, each as ``(u, v)`` with ``u < v``."""
+    return {(min(a, b), max(a, b)) for a, b in zip(vs, vs[1:] + vs[:1], strict=True)}
+
+
 @dataclass(frozen=True)
 class SurfaceLoop:
     """A closed curve of a plane's section: the plane's index in ``Refined.planes`` and the
-    curve's cycle of vertices."""
+    curve's cycle of vertices; its ``+`` side is the side of greater coordinate."""
 
     plane: int
     vertices: tuple[int, ...]
 
     def edges(self) -> set[tuple[int, int]]:
         """The curve's edges, each as ``(u, v)`` with ``u < v``."""
+        return cycle_edges(self.vertices)
+
+    def axis_in(self, r: Refined) -> int:
+        """The loop's axis (0, 1, 2 for X, Y, Z)."""
+        return r.planes[self.plane].axis
+
+    def plus_side(self, r: Refined, t: int, edge: tuple[int, int]) -> bool:
+        """Whether triangle ``t``, beside the loop's ``edge``, lies on its ``+`` side."""
+        plane = r.planes[self.plane]
+        return bool(r.points[r.triangles[t]].mean(axis=0)[plane.axis] > plane.value)
+
+    def forward(self, r: Refined) -> tuple[int, ...]:
+        """The vertices in the order that keeps the ``+`` side on the right."""
+        vs = list(self.vertices)
+        u, v = vs[0], vs[1]
+        return tuple(vs) if self.plus_side(r, r.owner[v, u], (u, v)) else tuple(vs[::-1])
+
+
+@dataclass(frozen=True)
+class PathLoop:
+    """A closed path of mesh edges drawn for a loop of ``axis`` (not a plane section): its
+    vertices in the order that keeps its ``+`` side on the right (:mod:`~polyloops.segment.paths`)."""
+
+    axis: int
+    vertices: tuple[int, ...]
+
+    def edges(self) -> set[tuple[int, int]]:
+        """The path's edges, each as ``(u, v)`` with ``u < v``."""
+        return cycle_edges(self.vertices)
+
+    def axis_in(self, r: Refined) -> int:
+        """The loop's axis (0, 1, 2 for X, Y, Z)."""
+        return self.axis
+
+    def plus_side(self, r: Refined, t: int, edge: tuple[int, int]) -> bool:
+        """Whether triangle ``t``, beside the loop's ``edge``, lies on its ``+`` side (the right)."""
+        u, w = edge
         vs = self.vertices
-        return {(min(a, b), max(a, b)) for a, b in zip(vs, vs[1:] + vs[:1], strict=True)}
+        i = vs.index(u)
+        if vs[(i + 1) % len(vs)] != w:
+            u, w = w, u  # the path runs w -> u
+        return r.owner[w, u] == t  # the triangle on the right of u -> w runs w -> u
+
+    def forward(self, r: Refined) -> tuple[int, ...]:
+        """The vertices, ``+`` side on the right."""
+        return self.vertices
+
+
+Loop = SurfaceLoop | PathLoop
 
 
 @dataclass(frozen=True, eq=False)
@@ -64,7 +118,7 @@ class Embedded:
     edge that ends its sector) and the loops."""
 
     refined: Refined
-    loops: tuple[SurfaceLoop, ...]
+    loops: tuple[Loop, ...]
     region: np.ndarray
     crossings: tuple[int, ...]
     structure: LoopStructure
@@ -99,7 +153,7 @@ def regions_of(r: Refined, loop_edges: set[tuple[int, int]]) -> np.ndarray:
     return labels
 
 
-def read_structure(r: Refined, loops: list[SurfaceLoop]) -> Embedded:
+def read_structure(r: Refined, loops: Sequence[Loop]) -> Embedded:
     """The loop structure the ``loops`` make on ``r``, oriented by the planes' sides.
 
     Raises
@@ -125,7 +179,6 @@ def read_structure(r: Refined, loops: list[SurfaceLoop]) -> Embedded:
     _check_discs(r, region)
     owner = r.owner
     faces, labels = [], {}
-    centroid = r.points[r.triangles].mean(axis=1)
     for v in crossings:
         sectors = _sectors_round(v, r.incident[v][0], r.triangles, owner, loop_of_edge)
         if len(sectors) != 4:
@@ -137,9 +190,9 @@ def read_structure(r: Refined, loops: list[SurfaceLoop]) -> Embedded:
         for k in range(4):
             _, spoke = sectors[k]
             t_next = sectors[(k + 1) % 4][0]
-            plane = r.planes[loops[loop_of_edge[spoke]].plane]
-            plus = centroid[t_next, plane.axis] > plane.value
-            labels[face[k], face[(k + 1) % 4]] = Direction.of(Axis(plane.axis), 1 if plus else -1)
+            lp = loops[loop_of_edge[spoke]]
+            plus = lp.plus_side(r, t_next, spoke)
+            labels[face[k], face[(k + 1) % 4]] = Direction.of(Axis(lp.axis_in(r)), 1 if plus else -1)
     if len(set(region.tolist())) != len({c for f in faces for c in f}):
         raise NotAStructure("a region touches no crossing")
     try:
@@ -219,19 +272,14 @@ def _boundary_darts(r: Refined, region: np.ndarray) -> np.ndarray:
     u, v = keys[differ] // n, keys[differ] % n
     return np.concatenate([np.stack([u, v], axis=1), np.stack([v, u], axis=1)])
 
-def kernel_addition(e: Embedded, new: SurfaceLoop) -> Addition:
+def kernel_addition(e: Embedded, new: Loop) -> Addition:
     """The kernel's description of adding curve ``new`` to ``e``: its axis and the regions of
     ``e`` it walks through, in order, walked with its ``+`` side (greater coordinate) on the
     right.  :func:`polyloops.core.moves.add_loop` with it must give the structure read off the
     surface with ``new`` added (a self-test of both)."""
     r = e.refined
     owner = r.owner
-    plane = r.planes[new.plane]
-    vs = list(new.vertices)
-    u, v = vs[0], vs[1]
-    centroid = r.points[r.triangles[owner[v, u]]].mean(axis=0)  # the triangle on the walk's right
-    if centroid[plane.axis] < plane.value:
-        vs = vs[::-1]
+    vs = list(new.forward(r))
     walk = [int(e.region[owner[a, b]]) for a, b in zip(vs, vs[1:] + vs[:1], strict=True)]
     cycle = [g for i, g in enumerate(walk) if g != walk[i - 1]]
-    return Addition(Axis(plane.axis), tuple(cycle))
+    return Addition(Axis(new.axis_in(r)), tuple(cycle))

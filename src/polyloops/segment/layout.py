@@ -21,7 +21,7 @@ that cannot keep apart) the surface is refined there and the structure read agai
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -31,7 +31,7 @@ from scipy.sparse.csgraph import connected_components, dijkstra
 from polyloops.core.directions import Direction
 from polyloops.core.errors import PolyloopsError
 from polyloops.core.polycube import Polycube
-from polyloops.segment.embedded import Embedded, NotAStructure, SurfaceLoop, read_structure
+from polyloops.segment.embedded import Embedded, Loop, NotAStructure, PathLoop, SurfaceLoop, read_structure
 from polyloops.segment.flow import disjoint_paths
 from polyloops.segment.refine import Refined, split_edges
 
@@ -56,16 +56,29 @@ class Layout:
     labels: tuple[Direction, ...]
 
 
-def relocate(r: Refined, loops: list[SurfaceLoop]) -> list[SurfaceLoop]:
-    """The same loops on a further refined ``r`` (a refinement keeps the old vertices)."""
-    out = []
+def relocate(r: Refined, loops: Sequence[Loop]) -> list[Loop]:
+    """The same loops on a further refined ``r`` (a refinement keeps the old vertices and puts
+    a new one in the middle of each edge it cuts)."""
+    out: list[Loop] = []
     for lp in loops:
-        mark = lp.vertices[0]
-        out.append(next(SurfaceLoop(lp.plane, c) for c in r.sections(lp.plane) if mark in c))
+        if isinstance(lp, SurfaceLoop):
+            mark = lp.vertices[0]
+            out.append(next(SurfaceLoop(lp.plane, c) for c in r.sections(lp.plane) if mark in c))
+            continue
+        vs: list[int] = []
+        for a, b in zip(lp.vertices, lp.vertices[1:] + lp.vertices[:1], strict=True):
+            vs.append(a)
+            if (a, b) not in r.owner:  # cut: its middle is the one vertex beside both ends
+                around_a = {v for t in r.incident[a] for v in r.triangles[t].tolist()}
+                around_b = {v for t in r.incident[b] for v in r.triangles[t].tolist()}
+                middle = [v for v in around_a & around_b
+                          if np.allclose(r.points[v], (r.points[a] + r.points[b]) / 2)]
+                vs.append(middle[0])
+        out.append(PathLoop(lp.axis, tuple(vs)))
     return out
 
 
-def lay_out(r: Refined, loops: list[SurfaceLoop]) -> Layout:
+def lay_out(r: Refined, loops: Sequence[Loop]) -> Layout:
     """The layout of the structure the ``loops`` make on ``r`` (refined where needed).
 
     Raises

@@ -119,6 +119,7 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
     left = budget - (time.monotonic() - began)
     settings = SearchSettings(max(0.0, 0.65 * left), seed, planes, price)
     searched = greedy_search(r, loops, first, settings, on_step)
+    pool = searched.loops  # the candidates and the paths the search drew
     path = searched.states
     # The last states are laid out and certified, and the one whose labels score best is kept
     # (the search's estimate and the labels' fidelity mostly agree, not always); when none of
@@ -128,7 +129,7 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
         if best is not None and (k >= FINALISTS or time.monotonic() - began > budget):
             break
         try:
-            lay = lay_out(r, [loops[i] for i in sorted(state.loops)])
+            lay = lay_out(r, [pool[i] for i in sorted(state.loops)])
         except NotAStructure as err:
             why = str(err)
             continue

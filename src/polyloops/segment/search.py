@@ -1,22 +1,24 @@
-"""The search of ``polyloops segment``: states of section curves, a start, greedy moves.
+"""The search of ``polyloops segment``: states of loops on the surface, a start, greedy moves.
 
-The loops are closed curves of axis-aligned plane sections (:mod:`~polyloops.segment.refine`):
-a loop of axis X runs round the X axis, across triangles whose normals are perpendicular to it,
-which is what the paper's Section 5 asks of a loop's path.  The surface is cut once by a set of
-candidate planes per axis; a *state* is a set of their section curves, and a move adds one or
-removes one.
+Two kinds of loop are drawn on the surface.  *Section curves* are closed curves of
+axis-aligned plane sections (:mod:`~polyloops.segment.refine`): a loop of axis X runs round the
+X axis, across triangles whose normals are perpendicular to it, which is what the paper's
+Section 5 asks of a loop's path; the surface is cut once by a set of candidate planes per axis.
+*Drawn additions* are the kernel's valid additions of the current structure drawn as cheapest
+paths (:mod:`~polyloops.segment.paths`), valid by construction.  A *state* is a set of loops.
 
 1. **Start**: at genus 0 the cube, three curves of the planes through the centroid (or nearest
    it) that cross pairwise twice, checked as a polycube loop structure; at any genus (and at
    genus 0 when no cube is found) a grid, every candidate curve that crosses another, when it
-   is a polycube loop structure (:func:`dense_start`; finer grids are tried in turn).
-2. **Search**: greedy, under a time budget: every move from the current state (add a curve,
-   remove one, or replace one by a curve of its axis on another plane) is tried in an order
-   the seed fixes; a state counts when its structure passes ``verify`` and primalizes and no
-   region is a sliver (under :data:`MIN_REGION_SHARE` of the area); its
-   score is the fidelity of the labels it would give (each triangle labelled by the face of the
-   nearest crossing in its region), less a price per loop; the best move is made while it
-   improves the score.
+   is a polycube loop structure (:func:`dense_start`; finer grids are tried in turn); or a
+   given start (:mod:`~polyloops.segment.start`).
+2. **Search**: greedy, under a time budget: every move from the current state (add a section
+   curve, add one of the first :data:`PATH_MOVES` valid additions of each axis drawn as a path,
+   remove a loop, or replace one by a curve of its axis) is tried in an order the seed fixes;
+   a state counts when its structure passes ``verify`` and primalizes and no region is a sliver
+   (under :data:`MIN_REGION_SHARE` of the area); its score is the fidelity of the labels it
+   would give (each triangle labelled by the face of the nearest crossing in its region), less
+   a price per loop; the best move is made while it improves the score.
 3. **Layout and certificate** (:mod:`~polyloops.segment.run`): the last states are laid out
    (:mod:`~polyloops.segment.layout`) and checked twice (:mod:`~polyloops.segment.certify`),
    and the certified one whose labels score best is kept; when none passes, the states before
@@ -25,18 +27,22 @@ removes one.
 
 from __future__ import annotations
 
+import itertools
 import random
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import dijkstra
 
+from polyloops.core.directions import Axis
 from polyloops.core.errors import PolyloopsError
-from polyloops.segment.embedded import Embedded, NotAStructure, SurfaceLoop, read_structure
+from polyloops.core.moves import valid_additions
+from polyloops.segment.embedded import Embedded, Loop, NotAStructure, SurfaceLoop, read_structure
 from polyloops.segment.labellings import DIRECTION_VECTORS
+from polyloops.segment.paths import addition_path
 from polyloops.segment.refine import Plane, Refined, cut
 from polyloops.segment.surface import Surface
 from polyloops.verify import check_polycube_loop_structure
@@ -94,7 +100,7 @@ def candidate_loops(surface: Surface, planes_per_axis: int) -> tuple[Refined, li
     return r, loops, [i for i, lp in enumerate(loops) if lp.plane < 3]
 
 
-def _valid(r: Refined, loops: list[SurfaceLoop]) -> Embedded | None:
+def _valid(r: Refined, loops: Sequence[Loop]) -> Embedded | None:
     try:
         e = read_structure(r, loops)
     except NotAStructure:
@@ -244,6 +250,22 @@ class _Scorer:
         return float((self.areas * agreement).sum() / self.areas.sum())
 
 
+PATH_MOVES = 2  # valid additions per axis drawn as paths at each step of the search
+
+
+def _drawn_additions(e: Embedded, loops: list[Loop]) -> list[int]:
+    """The first :data:`PATH_MOVES` valid additions of each axis of ``e``'s structure, drawn
+    as paths (:mod:`~polyloops.segment.paths`) and appended to ``loops``: their indices."""
+    out = []
+    for axis in Axis:
+        for move in itertools.islice(valid_additions(e.structure, axis), PATH_MOVES):
+            path = addition_path(e, move)
+            if path is not None:
+                loops.append(path)
+                out.append(len(loops) - 1)
+    return out
+
+
 @dataclass(frozen=True)
 class SearchPath:
     """The states a search went through, the start first and the best last; ``converged`` when
@@ -252,12 +274,14 @@ class SearchPath:
 
     states: tuple[State, ...]
     converged: bool
+    loops: tuple[Loop, ...]  # the candidates and the paths drawn: what the states' indices name
 
 
-def greedy_search(r: Refined, loops: list[SurfaceLoop], start: list[int], settings: SearchSettings,
+def greedy_search(r: Refined, loops: Sequence[Loop], start: list[int], settings: SearchSettings,
                   on_step: Callable[[State], None] | None = None) -> SearchPath:
     """The greedy search from ``start`` (see the module docstring)."""
     deadline = time.monotonic() + settings.budget
+    loops = list(loops)  # the paths drawn are added to a copy, returned with the states
     rng = random.Random(settings.seed)
     scorer = _Scorer(r)
 
@@ -273,7 +297,7 @@ def greedy_search(r: Refined, loops: list[SurfaceLoop], start: list[int], settin
             return None
         return State(chosen, fid - settings.price * len(chosen), fid, e)
 
-    axis_of = [r.planes[lp.plane].axis for lp in loops]
+    axis_of = [lp.axis_in(r) for lp in loops]
     tiny = MIN_REGION_SHARE * float(scorer.areas.sum())
     first = state(frozenset(start))
     assert first is not None  # start_state checked it
@@ -284,6 +308,10 @@ def greedy_search(r: Refined, loops: list[SurfaceLoop], start: list[int], settin
     while time.monotonic() < deadline:
         here = path[-1]
         moves = [here.loops | {i} for i in range(len(loops)) if i not in here.loops]
+        # the kernel's valid additions, drawn as cheapest paths (valid by construction)
+        for i in _drawn_additions(here.embedded, loops):
+            axis_of.append(loops[i].axis_in(r))
+            moves.append(here.loops | {i})
         moves += [here.loops - {i} for i in here.loops if len(here.loops) > 3]
         # a loop replaced by a curve of its axis on another plane (often the same crossings)
         moves += [(here.loops - {i}) | {j} for i in sorted(here.loops) for j in range(len(loops))
@@ -303,4 +331,4 @@ def greedy_search(r: Refined, loops: list[SurfaceLoop], start: list[int], settin
         path.append(best)
         if on_step:
             on_step(best)
-    return SearchPath(tuple(path), converged)
+    return SearchPath(tuple(path), converged, tuple(loops))
