@@ -21,6 +21,11 @@ from polyloops.surface.construct import labelled_mesh_from_polycube
 from polyloops.surface.mesh import LabelledMesh
 
 
+def slab_cubes(holes: int) -> list[tuple[int, int, int]]:
+    """A slab one cube thick, ``2 * holes + 1`` long and 3 wide, with ``holes`` holes along Z."""
+    return [(x, y, 0) for x in range(2 * holes + 1) for y in range(3) if not (y == 1 and x % 2 == 1)]
+
+
 @dataclass(frozen=True)
 class Example:
     """A bundled example: its name, whether it is valid, what it shows, and its file."""
@@ -63,6 +68,11 @@ _ALL = [
     Example("two-axis-holes", "two square rings sharing a bar (genus 2), one hole along Z and one "
             "along Y: loop moves keep each hole's orientation", True,
             lambda: polycube_from_voxels(TWO_AXIS_HOLES_CUBES)),
+    Example("slab-2-holes", "a slab of 5 x 3 unit cubes with two holes along Z (genus 2): a start for "
+            "segment on shapes with two holes side by side", True,
+            lambda: polycube_from_voxels(slab_cubes(2))),
+    Example("slab-3-holes", "a slab of 7 x 3 unit cubes with three holes along Z (genus 3)", True,
+            lambda: polycube_from_voxels(slab_cubes(3))),
     Example("self-intersecting", "a slab whose dent reaches down to its own bottom face: a valid "
             "polycube whose surface meets itself", True, builders.dented_slab),
     Example("torus-cycle", "a flat 3x3 torus grid: its X- and Y-graphs are cycles (Condition 5)",

@@ -14,11 +14,12 @@ paths (:mod:`~polyloops.segment.paths`), valid by construction.  A *state* is a 
    given start (:mod:`~polyloops.segment.start`).
 2. **Search**: greedy, under a time budget: every move from the current state (add a section
    curve, add one of the first :data:`PATH_MOVES` valid additions of each axis drawn as a path,
-   remove a loop, or replace one by a curve of its axis) is tried in an order the seed fixes;
-   a state counts when its structure passes ``verify`` and primalizes and no region is a sliver
-   (under :data:`MIN_REGION_SHARE` of the area); its score is the fidelity of the labels it
-   would give (each triangle labelled by the face of the nearest crossing in its region), less
-   a price per loop; the best move is made while it improves the score.
+   remove a loop the kernel's removal test allows, or replace one by a curve of its axis) is
+   tried in an order the seed fixes; a state counts when its structure passes ``verify`` and
+   primalizes and no region is a sliver (under :data:`MIN_REGION_SHARE` of the area); its
+   score is the fidelity of the labels it would give (each triangle labelled by the face of the
+   nearest crossing in its region), less a price per loop; the best move is made while it
+   improves the score.
 3. **Layout and certificate** (:mod:`~polyloops.segment.run`): the last states are laid out
    (:mod:`~polyloops.segment.layout`) and checked twice (:mod:`~polyloops.segment.certify`),
    and the certified one whose labels score best is kept; when none passes, the states before
@@ -39,7 +40,7 @@ from scipy.sparse.csgraph import dijkstra
 
 from polyloops.core.directions import Axis
 from polyloops.core.errors import PolyloopsError
-from polyloops.core.moves import valid_additions
+from polyloops.core.moves import removals, valid_additions
 from polyloops.segment.embedded import Embedded, Loop, NotAStructure, SurfaceLoop, read_structure
 from polyloops.segment.labellings import DIRECTION_VECTORS
 from polyloops.segment.paths import addition_path
@@ -312,7 +313,10 @@ def greedy_search(r: Refined, loops: Sequence[Loop], start: list[int], settings:
         for i in _drawn_additions(here.embedded, loops):
             axis_of.append(loops[i].axis_in(r))
             moves.append(here.loops | {i})
-        moves += [here.loops - {i} for i in here.loops if len(here.loops) > 3]
+        # removals the kernel's removal test allows (the structure left is valid by the theorem)
+        removable = set(removals(here.embedded.structure))
+        moves += [here.loops - {i} for k, i in enumerate(sorted(here.loops))
+                  if len(here.loops) > 3 and here.embedded.structure_loop(k) in removable]
         # a loop replaced by a curve of its axis on another plane (often the same crossings)
         moves += [(here.loops - {i}) | {j} for i in sorted(here.loops) for j in range(len(loops))
                   if j not in here.loops and axis_of[j] == axis_of[i]]
