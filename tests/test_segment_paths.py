@@ -25,7 +25,7 @@ def cube_on(a, b, c, jitter=0.0, seed=0):
     return read_structure(r, [loops[i] for i in start_state(r, loops)])
 
 
-@settings(max_examples=5, deadline=None)
+@settings(max_examples=4, deadline=None)
 @given(st.floats(0.7, 2.0), st.floats(0.7, 2.0), st.floats(0.7, 2.0), st.floats(0, 0.03), st.integers(0, 50))
 def test_a_path_drawn_for_a_valid_addition_is_that_addition(a, b, c, jitter, seed):
     """For every valid addition of the cube (both levels of additions: from the cube and
