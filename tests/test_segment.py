@@ -15,16 +15,17 @@ from polyloops.core.canonical import canonical_form
 from polyloops.core.moves import add_loop, remove_loop
 from polyloops.io.labelled_mesh import parse_labels, read_triangle_mesh
 from polyloops.segment.certify import layout_problem
-from polyloops.segment.embedded import kernel_addition
+from polyloops.segment.embedded import kernel_addition, read_structure
 from polyloops.segment.flow import disjoint_paths
 from polyloops.segment.from_polycube import UncertifiedError, certified_from_polycube
 from polyloops.segment.layout import lay_out
 from polyloops.segment.run import segment_mesh
-from polyloops.segment.search import SearchSettings, candidate_loops, greedy_search, start_state
+from polyloops.segment.search import SearchSettings, candidate_loops, dense_start, greedy_search, start_state
 from polyloops.segment.surface import SurfaceError, surface_of
 from polyloops.segmentation import check_segmentation
 from polyloops.shapes.builders import box
 from polyloops.shapes.meshes import ellipsoid, octahedron, sphere, torus
+from polyloops.verify import check_polycube_loop_structure
 from strategies import polycubes
 
 
@@ -208,9 +209,19 @@ def test_segment_command_refuses_bad_input_with_one_line(tmp_path, capsys):
         assert len(err) == 1 and words in err[0] and argv[1] in err[0]
 
 
+def test_a_grid_of_sections_is_a_genus_one_start_on_a_torus():
+    """Genus 1 without a given start: the grid of section curves, read off the torus, is a
+    polycube loop structure of genus 1 (segmenting from it: the slow test below)."""
+    r, loops, _ = candidate_loops(surface_of(*torus(2.0, 0.7, 32, 16)), 9)
+    e = read_structure(r, [loops[i] for i in dense_start(r, loops)])
+    assert e.structure.genus == 1 and check_polycube_loop_structure(e.structure).valid
+
+
+@pytest.mark.slow
 def test_a_torus_is_segmented_from_a_grid_of_sections():
     """Genus 1 without a given start: the grid of section curves is a polycube loop structure,
-    and the search certifies a segmentation of the torus with it."""
+    and the search certifies a segmentation of the torus with it (6 s: most of it the layout of
+    the grid's 300 regions)."""
     done = segment_mesh(*torus(2.0, 0.7, 32, 16), budget=1.0)
     assert done.certified and done.genus == 1 and done.report.polycube.genus == 1
     assert check_segmentation(done.mesh).valid is True
