@@ -329,3 +329,20 @@ def test_a_spilled_top_gives_each_share_its_part(tmp_path):
         assert mine == theirs and [a.candidate for a in mine.roots] == [a.candidate for a in theirs.roots]
         assert mine_search == (search if res == 0 else None)
     assert spill_frontier(20, 1, None, tmp_path) == path and path.stat().st_mtime_ns == stamp
+
+
+@pytest.mark.parametrize("slice_size", [1, 7, 1000])
+def test_the_streamed_top_is_the_top_level_by_level(slice_size):
+    """Walked depth first a slice at a time, the top hands out the roots the level-by-level
+    top holds, in the same order, and the same shallow candidates and statistics."""
+    from polyloops.generate.loops.arrangements import SearchStats
+
+    stats: list[SearchStats] = []
+    whole = frontier(26, on_stats=stats.append)
+    roots: list = []
+    streamed_stats: list[SearchStats] = []
+    streamed = frontier(26, on_stats=streamed_stats.append, roots_to=roots.extend, slice_size=slice_size)
+    assert len(whole.roots) > 300 and streamed.roots == ()
+    assert [a.code for a in roots] == [a.code for a in whole.roots]
+    assert [a.code for a in streamed.shallow] == [a.code for a in whole.shallow]
+    assert sum(streamed_stats, SearchStats()) == sum(stats, SearchStats())

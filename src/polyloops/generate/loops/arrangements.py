@@ -33,7 +33,7 @@ region (cut 5, :attr:`Cuts.meet`).  The search itself is the compiled extension 
 from __future__ import annotations
 
 import array
-from collections.abc import Callable, Iterable, Iterator
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import asdict, astuple, dataclass, field, fields
 from functools import cached_property
 
@@ -300,45 +300,50 @@ def expand(nodes: list[Arrangement | None], max_corners: int, cuts: Cuts = ALL_C
 def frontier(max_corners: int, loops: int = SPLIT_LOOPS,
              on_stats: Callable[[SearchStats], None] | None = None,
              expander: Expander = expand, cuts: Cuts = ALL_CUTS,
-             roots_to: Callable[[list[Arrangement]], None] | None = None) -> Frontier:
+             roots_to: Callable[[list[Arrangement]], None] | None = None,
+             slice_size: int | None = None) -> Frontier:
     """The top of the search tree, down to the arrangements with ``loops`` loops: the roots of
     the subtrees that shares of a split search take (see :data:`SPLIT_LOOPS`).  Its first two
     levels (the second and third loops, drawn with the whole budget) are most of the top's
     cost; ``expander`` may spread each level over workers (it must yield :func:`expand`'s
     answer, in order).  With ``roots_to``, the roots are handed to it as they come, in order,
-    and not kept (the returned frontier has none), and the level before them is made a slice
-    at a time (:data:`STREAM_SLICES`) and expanded at once: neither of the two largest levels
-    ever sits in memory whole, and the roots come in the same order as level by level."""
-    streamed = roots_to is not None and loops >= 3
-    level: list[Arrangement | None] = [None]
-    shallow: list[Arrangement] = []
+    and not kept (the returned frontier has none), and the top is walked depth first, at most
+    ``slice_size`` (:data:`STREAM_SLICE`) arrangements of a level expanded at once: no level
+    ever sits in memory whole, and the roots and candidates come in the same order as level by
+    level (a level is, in order, the children of each node of the level above)."""
+    levels: list[list[Arrangement]] = [[] for _ in range(loops - 1)]  # candidates per level
 
-    def children(nodes: list[Arrangement | None]) -> Iterator[list[Arrangement]]:
-        for kids, stats in expander(nodes, max_corners, cuts):
+    def children(nodes: Sequence[Arrangement | None]) -> Iterator[list[Arrangement]]:
+        for kids, stats in expander(list(nodes), max_corners, cuts):
             if on_stats:
                 on_stats(stats)
             yield kids
 
-    for _ in range(loops - (3 if streamed else 1)):
-        nxt = [kid for kids in children(level) for kid in kids]
-        shallow.extend(node for node in level if node is not None and node.candidate)
-        level = list(nxt)
-    if not streamed:
-        return Frontier(loops, tuple(node for node in level if node is not None), tuple(shallow))
-    assert roots_to is not None
-    # level holds the arrangements two levels above the roots; depth first from here
-    before: list[Arrangement] = []  # the candidates of the level before the roots, in order
-    step = max(1, -(-len(level) // STREAM_SLICES))
-    for i in range(0, len(level), step):
-        middle = [kid for kids in children(level[i:i + step]) for kid in kids]
-        before.extend(node for node in middle if node.candidate)
-        for kids in children(list(middle)):
-            roots_to(kids)
-    shallow.extend(node for node in level if node is not None and node.candidate)
-    return Frontier(loops, (), (*shallow, *before))
+    if roots_to is None:
+        level: list[Arrangement | None] = [None]
+        for depth in range(loops - 1):
+            nxt = [kid for kids in children(level) for kid in kids]
+            levels[depth] = [node for node in level if node is not None and node.candidate]
+            level = list(nxt)
+        return Frontier(loops, tuple(node for node in level if node is not None),
+                        tuple(node for lv in levels for node in lv))
+    out, step = roots_to, slice_size or STREAM_SLICE
+
+    def walk(nodes: Sequence[Arrangement | None], depth: int) -> None:
+        for i in range(0, len(nodes), step):
+            part = nodes[i:i + step]
+            levels[depth].extend(node for node in part if node is not None and node.candidate)
+            if depth == loops - 2:
+                for kids in children(part):
+                    out(kids)
+            else:
+                walk([kid for kids in children(part) for kid in kids], depth + 1)
+
+    walk([None], 0)
+    return Frontier(loops, (), tuple(node for lv in levels for node in lv))
 
 
-STREAM_SLICES = 64  # slices of the level two above the roots, each expanded down to its roots
+STREAM_SLICE = 20_000  # arrangements of a level expanded at once when the top is streamed
 
 
 def candidate_arrangements(max_corners: int, res: int = 0, mod: int = 1,
