@@ -38,7 +38,7 @@ from polyloops.segment.search import StartError, candidate_loops, crossing_only
 from polyloops.segment.surface import Surface
 from polyloops.verify import check_polycube_loop_structure
 
-__all__ = ["Level", "StartMismatch", "StartPlacement", "embed_start", "start_levels"]
+__all__ = ["Level", "StartMismatch", "StartPlacement", "check_start", "embed_start", "start_levels"]
 
 
 class StartMismatch(PolyloopsError, ValueError):
@@ -134,7 +134,8 @@ def embed_start(surface: Surface, start: LoopStructure, grids: tuple[int, ...] =
     began = time.monotonic()
     turned = _turned(start)
     if not turned:
-        raise StartError("no loop of the start is a plane section in any turn of it")
+        start_levels(start)  # raises, naming a loop that is no plane section
+        raise StartError("no turn of the start has all its loops plane sections")
     reasons: list[str] = []
     tries = 0
     for k in grids:
