@@ -266,11 +266,10 @@ def _check_discs(r: Refined, region: np.ndarray) -> None:
 
 def _boundary_darts(r: Refined, region: np.ndarray) -> np.ndarray:
     """The directed edges with another region on their right."""
-    pairs, keys = r.adjacency
-    differ = region[pairs[:, 0]] != region[pairs[:, 1]]
-    n = len(r.points) + 1
-    u, v = keys[differ] // n, keys[differ] % n
-    return np.concatenate([np.stack([u, v], axis=1), np.stack([v, u], axis=1)])
+    pairs, ends = r.surface.adjacency
+    differ = ends[region[pairs[:, 0]] != region[pairs[:, 1]]]
+    return np.concatenate([differ, differ[:, ::-1]])
+
 
 def kernel_addition(e: Embedded, new: Loop) -> Addition:
     """The kernel's description of adding curve ``new`` to ``e``: its axis and the regions of

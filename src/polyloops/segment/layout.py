@@ -234,9 +234,9 @@ def _region_layout(e: Embedded, mine: np.ndarray, cycle: list[int], sides: list[
     edges = list(zip(lu[usable].tolist(), lv[usable].tolist(), lengths[usable].tolist(), strict=True))
     degree = np.bincount(np.concatenate([lu[usable], lv[usable]]), minlength=len(verts))
     targets = [int(index[m]) for _, m in sides]
-    # the corner: an inner vertex with a way out to each side, as far from the boundary as can be
-    # the corner: where the surface's normal best agrees with its faces' directions (a corner
-    # of a polycube points along their sum), deep inside the region where that ties
+    # the corner: an inner vertex with a way out to each side, where the surface's normal best
+    # agrees with its faces' directions (a corner of a polycube points along their sum), deep
+    # inside the region where that ties
     far = dist[index[inner]]
     agree = r.vertex_normals[inner] @ _direction_sum(e, sides, crossing_face)
     score = agree + DEPTH_WEIGHT * far / max(float(far.max()), 1e-300)

@@ -60,16 +60,13 @@ def addition_path(e: Embedded, move: Addition) -> PathLoop | None:
     r = e.refined
     tris = r.triangles
     n = len(r.points)
-    on_loop = np.zeros(n, dtype=bool)
+    inner = np.ones(n, dtype=bool)  # on no loop
     for lp in e.loops:
-        on_loop[list(lp.vertices)] = True
-    # per vertex: its region when it is inner; per vertex on one loop: its two regions
-    vertex_region = np.full(n, -1)
+        inner[list(lp.vertices)] = False
+    vertex_region = np.full(n, -1)  # the region of an inner vertex
     vertex_region[tris.ravel()] = np.repeat(e.region, 3)
-    inner = ~on_loop
     layer_of_region = {g: i for i, g in enumerate(cycle)}
-    pairs, keys = r.adjacency
-    u, v = keys // (n + 1), keys % (n + 1)
+    pairs, ends = r.surface.adjacency
     ra, rb = e.region[pairs[:, 0]], e.region[pairs[:, 1]]
     # gates: the vertices in the middle of each segment the cycle crosses (two regions meet
     # along one segment at most, so the pair names it)
@@ -87,6 +84,14 @@ def addition_path(e: Embedded, move: Addition) -> PathLoop | None:
     def node(kind: int, x: int) -> int:
         return index.setdefault((kind, x), len(index))
 
+    # the edges the graph can use: inside a region of the cycle, or between an inner vertex and
+    # a gate (the rest of the surface is left out before the loop below)
+    u, v = ends[:, 0], ends[:, 1]
+    gate = np.zeros(n, dtype=bool)
+    gate[list(gate_layer)] = True
+    within = inner[u] & inner[v] & (ra == rb) & np.isin(ra, cycle)
+    used = within | (inner[u] & gate[v]) | (gate[u] & inner[v])
+    pairs, u, v, ra, rb = pairs[used], u[used], v[used], ra[used], rb[used]
     axis = np.eye(3)[int(move.axis)]
     normals = r.surface.normals
     d = r.points[v] - r.points[u]

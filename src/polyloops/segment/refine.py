@@ -111,9 +111,8 @@ class Refined:
         """The edges on ``plane``, each once as ``(u, v)`` with ``u < v``."""
         mark = np.zeros(len(self.points), dtype=bool)
         mark[self._plane_vertices.get(plane, np.zeros(0, dtype=np.int64))] = True
-        _, keys = self.adjacency
-        n = len(self.points) + 1
-        u, v = keys // n, keys % n
+        _, ends = self.surface.adjacency
+        u, v = ends[:, 0], ends[:, 1]
         both = mark[u] & mark[v]
         return sorted(zip(u[both].tolist(), v[both].tolist(), strict=True))
 

@@ -51,6 +51,7 @@ from polyloops.verify import check_polycube_loop_structure
 __all__ = ["SearchPath", "SearchSettings", "StartError", "State", "candidate_loops", "dense_start",
            "greedy_search", "start_state"]
 
+
 class StartError(PolyloopsError, ValueError):
     """No start was found on the surface (no three central curves cross pairwise twice)."""
 
@@ -298,7 +299,6 @@ def greedy_search(r: Refined, loops: Sequence[Loop], start: list[int], settings:
             return None
         return State(chosen, fid - settings.price * len(chosen), fid, e)
 
-    axis_of = [lp.axis_in(r) for lp in loops]
     tiny = MIN_REGION_SHARE * float(scorer.areas.sum())
     first = state(frozenset(start))
     assert first is not None  # start_state checked it
@@ -310,9 +310,8 @@ def greedy_search(r: Refined, loops: Sequence[Loop], start: list[int], settings:
         here = path[-1]
         moves = [here.loops | {i} for i in range(len(loops)) if i not in here.loops]
         # the kernel's valid additions, drawn as cheapest paths (valid by construction)
-        for i in _drawn_additions(here.embedded, loops):
-            axis_of.append(loops[i].axis_in(r))
-            moves.append(here.loops | {i})
+        moves += [here.loops | {i} for i in _drawn_additions(here.embedded, loops)]
+        axis_of = [lp.axis_in(r) for lp in loops]
         # removals the kernel's removal test allows (the structure left is valid by the theorem)
         removable = set(removals(here.embedded.structure))
         moves += [here.loops - {i} for k, i in enumerate(sorted(here.loops))
