@@ -18,9 +18,10 @@ from polyloops.segment.certify import layout_problem
 from polyloops.segment.embedded import kernel_addition, read_structure
 from polyloops.segment.flow import disjoint_paths
 from polyloops.segment.from_polycube import UncertifiedError, certified_from_polycube
+from polyloops.segment.grid import grid_start
 from polyloops.segment.layout import lay_out
 from polyloops.segment.run import segment_mesh
-from polyloops.segment.search import SearchSettings, candidate_loops, dense_start, greedy_search, start_state
+from polyloops.segment.search import SearchSettings, candidate_loops, greedy_search, start_state
 from polyloops.segment.surface import SurfaceError, surface_of
 from polyloops.segmentation import check_segmentation
 from polyloops.shapes.builders import box
@@ -212,8 +213,8 @@ def test_segment_command_refuses_bad_input_with_one_line(tmp_path, capsys):
 def test_a_grid_of_sections_is_a_genus_one_start_on_a_torus():
     """Genus 1 without a given start: the grid of section curves, read off the torus, is a
     polycube loop structure of genus 1 (segmenting from it: the slow test below)."""
-    r, loops, _ = candidate_loops(surface_of(*torus(2.0, 0.7, 32, 16)), 9)
-    e = read_structure(r, [loops[i] for i in dense_start(r, loops)])
+    r, loops, chosen = grid_start(surface_of(*torus(2.0, 0.7, 32, 16)), 9)
+    e = read_structure(r, [loops[i] for i in chosen])
     assert e.structure.genus == 1 and check_polycube_loop_structure(e.structure).valid
 
 
@@ -239,7 +240,20 @@ def test_the_shared_genus0_meshes_are_segmented_and_certified():
         result = segment_mesh(points, triangles, budget=5)
         assert result.certified, path
         done += 1
-    assert done > 10, index  # (genus 1 and more: measured by benchmarks/segment.py, see the docs)
+    assert done > 10, index
+
+
+@pytest.mark.slow
+@pytest.mark.skipif(not SHARED.is_dir(), reason="../shared/meshes is not here")
+@pytest.mark.parametrize("name", ["b.S1/bottle1.stl", "d.C1/rod.stl"])
+def test_a_jug_and_a_two_holed_rod_are_segmented_without_a_start(name):
+    """Plane sections of neither make a start; those of their polycube-like deformation,
+    mended, do (about a minute each)."""
+    points, triangles = read_triangle_mesh(SHARED / name)
+    result = segment_mesh(points, triangles)
+    assert result.certified and result.genus == surface_of(points, triangles).genus >= 1
+    assert "deformation" in result.start
+    assert check_segmentation(result.mesh).valid is True
 
 
 @settings(max_examples=20, deadline=None)

@@ -52,7 +52,7 @@ def cycle_edges(vs: tuple[int, ...]) -> set[tuple[int, int]]:
 @dataclass(frozen=True)
 class SurfaceLoop:
     """A closed curve of a plane's section: the plane's index in ``Refined.planes`` and the
-    curve's cycle of vertices; its ``+`` side is the side of greater coordinate."""
+    curve's cycle of vertices; its ``+`` side is the side of greater level (coordinate)."""
 
     plane: int
     vertices: tuple[int, ...]
@@ -68,7 +68,7 @@ class SurfaceLoop:
     def plus_side(self, r: Refined, t: int, edge: tuple[int, int]) -> bool:
         """Whether triangle ``t``, beside the loop's ``edge``, lies on its ``+`` side."""
         plane = r.planes[self.plane]
-        return bool(r.points[r.triangles[t]].mean(axis=0)[plane.axis] > plane.value)
+        return bool(r.heights[r.triangles[t]].mean(axis=0)[plane.axis] > plane.value)
 
     def forward(self, r: Refined) -> tuple[int, ...]:
         """The vertices in the order that keeps the ``+`` side on the right."""
@@ -250,25 +250,22 @@ def _check_discs(r: Refined, region: np.ndarray) -> None:
     inner = a == b
     edges = np.bincount(a[inner], minlength=count) + np.bincount(a[~inner], minlength=count) \
         + np.bincount(b[~inner], minlength=count)
-    verts = np.bincount(np.unique(np.repeat(region, 3) * n + tris.ravel()) // n, minlength=count)
+    # int64: region * n passes 2**31 on a finely cut mesh with thousands of regions
+    lab = region.astype(np.int64)
+    verts = np.bincount(np.unique(np.repeat(lab, 3) * n + tris.ravel()) // n, minlength=count)
     euler = verts - edges + faces
     if (euler != 1).any():
         g = int(np.nonzero(euler != 1)[0][0])
         raise NotAStructure(f"region {g} is not a disc (Euler characteristic {euler[g]})")
-    # a pinch: a vertex where the region's boundary passes twice
-    owner = r.owner
-    starts = []
-    for (u, v) in (tuple(x) for x in _boundary_darts(r, region)):
-        starts.append(int(region[owner[u, v]]) * n + u)
-    if len(starts) != len(set(starts)):
-        raise NotAStructure("a region touches itself on its boundary")
-
-
-def _boundary_darts(r: Refined, region: np.ndarray) -> np.ndarray:
-    """The directed edges with another region on their right."""
+    # a pinch: a vertex where the region's boundary passes twice, i.e. two boundary darts of
+    # one region leaving one vertex (the first triangle of a pair runs its edge from the lower
+    # vertex, the second from the upper: Surface.adjacency)
     pairs, ends = r.surface.adjacency
-    differ = ends[region[pairs[:, 0]] != region[pairs[:, 1]]]
-    return np.concatenate([differ, differ[:, ::-1]])
+    differ = region[pairs[:, 0]] != region[pairs[:, 1]]
+    starts = np.concatenate([lab[pairs[differ, 0]] * n + ends[differ, 0],
+                             lab[pairs[differ, 1]] * n + ends[differ, 1]])
+    if len(np.unique(starts)) != len(starts):
+        raise NotAStructure("a region touches itself on its boundary")
 
 
 def kernel_addition(e: Embedded, new: Loop) -> Addition:

@@ -1,7 +1,12 @@
 """A surface refined so that curves on it run along its edges: cut by planes, edges split.
 
 A loop of axis X labelled on a surface runs round the X axis; the plane sections ``x = c`` are
-such curves.  :func:`cut` splits every triangle a plane crosses, so that each section is a
+such curves.  The planes cut the surface's *heights*: per vertex, the coordinates themselves, or
+those of a polycube-like deformation of the surface (:mod:`~polyloops.segment.deform`), whose
+level sets follow a thin handle or a tilted arm where planes would not; either way a section is
+a closed curve of the surface, with the side of greater level its ``+`` side, and everything
+measured (areas, normals, lengths) stays on the surface's own points.  :func:`cut` splits every
+triangle a plane crosses, so that each section is a
 union of closed paths of edges; a vertex remembers the planes it lies on (a new vertex on an
 edge lies on the planes both ends lie on, and on the cutting plane), so that an edge lies on a
 plane exactly when both its ends do (a triangle meets a plane in a straight segment).  The
@@ -40,21 +45,31 @@ class Plane:
 @dataclass(frozen=True, eq=False)
 class Refined:
     """A refined surface: points, triangles (counter-clockwise from outside), ``parent`` (per
-    triangle, the input triangle it lies in), ``planes`` (the cutting planes, in order) and
-    ``on`` (per vertex, the indices of the planes it lies on)."""
+    triangle, the input triangle it lies in), ``planes`` (the cutting planes, in order), ``on``
+    (per vertex, the indices of the planes it lies on) and ``heights`` (per vertex, the
+    coordinates the planes cut: the points, or a deformation of them)."""
 
     points: np.ndarray
     triangles: np.ndarray
     parent: np.ndarray
     planes: tuple[Plane, ...]
     on: tuple[frozenset[int], ...]
+    heights: np.ndarray
 
     @classmethod
-    def of(cls, surface: Surface) -> Refined:
-        """The surface itself, not yet cut."""
+    def of(cls, surface: Surface, heights: np.ndarray | None = None) -> Refined:
+        """The surface itself, not yet cut, its planes to cut ``heights`` (default: the points)."""
         n = len(surface.points)
+        lv = surface.points if heights is None else np.asarray(heights, dtype=float)
+        if lv.shape != surface.points.shape:
+            raise ValueError(f"heights of shape {lv.shape} for {n} points")
         return cls(surface.points, surface.triangles, np.arange(len(surface.triangles)), (),
-                   (frozenset(),) * n)
+                   (frozenset(),) * n, lv)
+
+    @property
+    def deformed(self) -> bool:
+        """Whether the planes cut other heights than the points."""
+        return self.heights is not self.points
 
     @cached_property
     def surface(self) -> Surface:
@@ -167,6 +182,7 @@ class _Builder:
 
     def __init__(self, r: Refined):
         self.points = [tuple(p) for p in r.points.tolist()]
+        self.heights = None if not r.deformed else [tuple(p) for p in r.heights.tolist()]
         self.on = list(r.on)
         self.mid: dict[tuple[int, int], int] = {}
 
@@ -176,20 +192,25 @@ class _Builder:
             pu, pv = self.points[u], self.points[v]
             self.mid[key] = len(self.points)
             self.points.append(tuple(a + t * (b - a) for a, b in zip(pu, pv, strict=True)))
+            if self.heights is not None:  # the same point of the edge, in the heights
+                lu, lv = self.heights[u], self.heights[v]
+                self.heights.append(tuple(a + t * (b - a) for a, b in zip(lu, lv, strict=True)))
             extra = frozenset() if plane is None else frozenset({plane})
             self.on.append((self.on[u] & self.on[v]) | extra)
         return self.mid[key]
 
     def done(self, r: Refined, triangles: list[tuple[int, int, int]], parent: list[int],
              planes: tuple[Plane, ...]) -> Refined:
-        return Refined(np.array(self.points, dtype=float), np.array(triangles, dtype=np.int64).reshape(-1, 3),
-                       np.array(parent, dtype=np.int64), planes, tuple(self.on))
+        points = np.array(self.points, dtype=float)
+        heights = points if self.heights is None else np.array(self.heights, dtype=float)
+        return Refined(points, np.array(triangles, dtype=np.int64).reshape(-1, 3),
+                       np.array(parent, dtype=np.int64), planes, tuple(self.on), heights)
 
 
 def _clear_of_vertices(r: Refined, plane: Plane) -> Plane:
     """``plane`` moved a hair's breadth when a vertex lies on it (so no section passes through
     a vertex and every cut point is a new vertex)."""
-    coords = r.points[:, plane.axis]
+    coords = r.heights[:, plane.axis]
     scale = max(float(np.ptp(coords)), 1e-12)
     value = plane.value
     for _ in range(64):
@@ -208,27 +229,42 @@ def cut(r: Refined, planes: Iterable[Plane]) -> Refined:
 
 
 def _cut_one(r: Refined, plane: Plane) -> Refined:
+    """``r`` cut by one plane: each crossed triangle (a, b, c), with ``a`` alone on its side,
+    becomes (a, ab, ca), (ab, b, c), (ab, c, ca); a new point per crossed edge, shared by the
+    two triangles beside it and numbered in the order the triangles meet it."""
     index = len(r.planes)
-    sd = r.points[:, plane.axis] - plane.value
+    sd = r.heights[:, plane.axis] - plane.value
     side = sd > 0
-    b = _Builder(r)
-    tris: list[tuple[int, int, int]] = []
-    parent: list[int] = []
-    crossed = np.nonzero(side[r.triangles].any(axis=1) & ~side[r.triangles].all(axis=1))[0]
-    keep = np.ones(len(r.triangles), dtype=bool)
-    keep[crossed] = False
-    for t in crossed.tolist():
-        tri = r.triangles[t].tolist()
-        s = [bool(side[v]) for v in tri]
-        # the vertex alone on its side first: (a, b, c) counter-clockwise
-        k = next(i for i in range(3) if s[i] != s[(i + 1) % 3] and s[i] != s[(i + 2) % 3])
-        a, bb, c = tri[k], tri[(k + 1) % 3], tri[(k + 2) % 3]
-        p_ab = b.point_on(a, bb, float(sd[a] / (sd[a] - sd[bb])), index)
-        p_ca = b.point_on(c, a, float(sd[c] / (sd[c] - sd[a])), index)
-        tris += [(a, p_ab, p_ca), (p_ab, bb, c), (p_ab, c, p_ca)]
-        parent += [int(r.parent[t])] * 3
-    old = [tuple(x) for x in r.triangles[keep].tolist()]
-    return b.done(r, old + tris, r.parent[keep].tolist() + parent, (*r.planes, plane))
+    sides = side[r.triangles]
+    crossed = sides.any(axis=1) & ~sides.all(axis=1)
+    tri = r.triangles[crossed]
+    s3 = sides[crossed]
+    alone = (s3 != np.roll(s3, -1, axis=1)) & (s3 != np.roll(s3, -2, axis=1))
+    k = np.argmax(alone, axis=1)
+    rows = np.arange(len(tri))
+    a, b, c = tri[rows, k], tri[rows, (k + 1) % 3], tri[rows, (k + 2) % 3]
+    # the crossed edges in the order they are met: (a, b) then (c, a), triangle by triangle
+    u = np.column_stack([a, c]).ravel()
+    v = np.column_stack([b, a]).ravel()
+    n = len(r.points)
+    key = np.minimum(u, v).astype(np.int64) * n + np.maximum(u, v)
+    unique, first, inverse = np.unique(key, return_index=True, return_inverse=True)
+    rank = np.empty(len(unique), dtype=np.int64)
+    rank[np.argsort(first, kind="stable")] = np.arange(len(unique))
+    new_id = n + rank[inverse.ravel()]
+    fu, fv = u[np.sort(first)], v[np.sort(first)]  # each new point from its first meeting
+    t = (sd[fu] / (sd[fu] - sd[fv]))[:, None]
+    points = np.concatenate([r.points, r.points[fu] + t * (r.points[fv] - r.points[fu])])
+    heights = points if not r.deformed else np.concatenate(
+        [r.heights, r.heights[fu] + t * (r.heights[fv] - r.heights[fu])])
+    mark = frozenset({index})
+    on = r.on + tuple((r.on[x] & r.on[y]) | mark for x, y in zip(fu.tolist(), fv.tolist(), strict=True))
+    ab, ca = new_id[0::2], new_id[1::2]
+    pieces = np.stack([np.column_stack([a, ab, ca]), np.column_stack([ab, b, c]),
+                       np.column_stack([ab, c, ca])], axis=1).reshape(-1, 3)
+    triangles = np.concatenate([r.triangles[~crossed], pieces]).astype(np.int64)
+    parent = np.concatenate([r.parent[~crossed], np.repeat(r.parent[crossed], 3)]).astype(np.int64)
+    return Refined(points, triangles, parent, (*r.planes, plane), on, heights)
 
 
 def split_edges(r: Refined, edges: Iterable[tuple[int, int]]) -> Refined:

@@ -9,7 +9,7 @@
 from __future__ import annotations
 
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -17,8 +17,10 @@ import numpy as np
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LoopStructure
 from polyloops.segment.certify import layout_problem
+from polyloops.segment.deform import polycube_heights
 from polyloops.segment.embedded import NotAStructure, SurfaceLoop
 from polyloops.segment.from_polycube import UncertifiedError
+from polyloops.segment.grid import grid_start
 from polyloops.segment.labellings import fidelity, naive_fidelity
 from polyloops.segment.layout import Layout, lay_out
 from polyloops.segment.refine import Refined
@@ -27,7 +29,6 @@ from polyloops.segment.search import (
     StartError,
     State,
     candidate_loops,
-    dense_start,
     greedy_search,
     start_state,
 )
@@ -107,26 +108,48 @@ def _certify(lay: Layout) -> tuple[LabelledMesh, SegmentationReport] | str:
 def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, planes: int = 9,
                     price: float = 0.002, on_step: Callable[[State], None] | None = None,
                     start: LoopStructure | None = None) -> SegmentResult:
-    """:func:`segment_mesh` on a checked surface."""
+    """:func:`segment_mesh` on a checked surface: the search from each start in turn (the
+    given one, or those of :func:`_starts`) until one ends certified."""
     began = time.monotonic()
-    if start is None:
-        r, loops, first, how = _start(surface, planes, budget)
-    else:
+    if start is not None:
         r, loops, placed = embed_start(surface, start, GRIDS, budget)
-        first, how = list(placed.curves), f"the given start, turned by {placed.symmetry}"
+        how = f"the given start, turned by {placed.symmetry}" + (
+            " (sections of the polycube-like deformation)" if placed.deformed else "")
+        return _search_from(surface, (r, loops, list(placed.curves), how), began, budget, seed, planes, price,
+                            on_step)
+    failed = []
+    for found in _starts(surface, planes, budget, began):
+        try:
+            return _search_from(surface, found, began, budget, seed, planes, price, on_step)
+        except UncertifiedError as err:
+            failed.append(f"from {found[3]}: {err}")
+    raise UncertifiedError("; ".join(failed))
+
+
+def _search_from(surface: Surface, found: tuple[Refined, list[SurfaceLoop], list[int], str], began: float,
+                 budget: float, seed: int, planes: int, price: float,
+                 on_step: Callable[[State], None] | None) -> SegmentResult:
+    """The search from one start, its last states laid out and certified."""
+    r, loops, first, how = found
     # the budget covers the whole run: the cut above, the search, and a reserve for the layout
-    # and the checks of the finalists after it (each about 0.5 to 1.5 s on the shared meshes)
+    # and the checks of the finalists after it (each about 0.5 to 1.5 s on the shared meshes);
+    # a start that took longer (a grid mended at positive genus) still leaves the search a
+    # quarter of the budget, as a start is seldom the best state and may not lay out
     left = budget - (time.monotonic() - began)
-    settings = SearchSettings(max(0.0, 0.65 * left), seed, planes, price)
+    settings = SearchSettings(max(SEARCH_SHARE * budget, 0.65 * left), seed, planes, price)
     searched = greedy_search(r, loops, first, settings, on_step)
     pool = searched.loops  # the candidates and the paths the search drew
     path = searched.states
     # The last states are laid out and certified, and the one whose labels score best is kept
     # (the search's estimate and the labels' fidelity mostly agree, not always); when none of
-    # them passes, the states before them are tried, best first, until one does.
+    # them passes, the states before them are tried, best first, until one does (past the
+    # finalists, only while the budget lasts: the next start may do better).
     why, best = "", None
+    deadline = time.monotonic() + max(budget - (time.monotonic() - began), SEARCH_SHARE * budget)
     for k, state in enumerate(reversed(path)):
-        if best is not None and (k >= FINALISTS or time.monotonic() - began > budget):
+        if k >= FINALISTS and (best is not None or time.monotonic() > deadline):
+            break
+        if best is not None and time.monotonic() - began > budget:
             break
         try:
             lay = lay_out(r, [pool[i] for i in sorted(state.loops)])
@@ -151,35 +174,61 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
                          lay, how)
 
 
+SEARCH_SHARE = 0.25  # of the budget, the least the search is given whatever the start took
 FINALISTS = 4  # the last states of the search laid out and certified, the best labels kept
 
 
 GRIDS = (9, 13, 19)  # candidate planes per axis for a grid start, coarse to fine
+OVERRUN = 3.0  # times the budget after which no further start is begun (when the first ones fail)
+MENDING = 20.0  # seconds a grid may be mended at least (half the budget when that is more)
 
 
-def _start(surface: Surface, planes: int, budget: float = float("inf")
-           ) -> tuple[Refined, list[SurfaceLoop], list[int], str]:
-    """The cut surface, its candidate curves and the start: the cube at genus 0, else (or when
-    no cube is found) the first grid of :data:`GRIDS` that is a polycube loop structure (no
-    finer grid is begun once ``budget`` seconds have gone)."""
-    began = time.monotonic()
+def _starts(surface: Surface, planes: int, budget: float, began: float
+            ) -> Iterator[tuple[Refined, list[SurfaceLoop], list[int], str]]:
+    """The cut surface, its candidate curves and a start, in turn: the cube at genus 0, then
+    (at any genus, or when the cube's search is not certified) each grid of :data:`GRIDS`
+    mended into a polycube loop structure (:mod:`~polyloops.segment.grid`), each grid cut in the
+    surface's coordinates and then in a polycube-like deformation of it
+    (:mod:`~polyloops.segment.deform`); nothing more is begun once :data:`OVERRUN` times
+    ``budget`` seconds have gone since ``began`` (a :func:`time.monotonic` time).
+
+    Raises
+    ------
+    StartError
+        When no start was found at all (the message gives each grid's reason).
+    """
     reasons = []
+    given = 0
     if surface.genus == 0:
         r, loops, _ = candidate_loops(surface, planes)
         try:
-            return r, loops, start_state(r, loops), "the cube"
+            first = start_state(r, loops)
         except StartError as err:
             reasons.append(str(err))
+        else:
+            given += 1
+            yield r, loops, first, "the cube"
+    deformed = None
     for k in sorted({planes, *GRIDS}):
-        if reasons and time.monotonic() - began > budget:
-            reasons.append("no finer grid tried: the time budget is spent")
-            break
-        r, loops, _ = candidate_loops(surface, k)
-        try:
-            return r, loops, dense_start(r, loops), f"a grid of {k} planes an axis"
-        except StartError as err:
-            reasons.append(f"{k} planes an axis: {err}")
-    raise StartError(f"no start on this genus-{surface.genus} mesh: " + "; ".join(reasons))
+        for kind in ("coordinates", "deformation"):
+            if (given or reasons) and time.monotonic() - began > OVERRUN * budget:
+                if not given:
+                    raise StartError(f"no start on this genus-{surface.genus} mesh: " + "; ".join(
+                        [*reasons, "nothing more tried: the time budget is spent"]))
+                return
+            if kind == "deformation" and deformed is None:
+                deformed = polycube_heights(surface)
+            try:
+                r, loops, chosen = grid_start(surface, k, deformed if kind == "deformation" else None,
+                                              deadline=time.monotonic() + max(budget / 2, MENDING))
+            except StartError as err:
+                reasons.append(f"{k} planes an axis in the {kind}: {err}")
+                continue
+            given += 1
+            yield r, loops, chosen, f"a grid of {k} planes an axis" + (
+                " of the polycube-like deformation" if kind == "deformation" else "")
+    if not given:
+        raise StartError(f"no start on this genus-{surface.genus} mesh: " + "; ".join(reasons))
 
 
 def segment_mesh(points: Sequence[Sequence[float]] | np.ndarray,

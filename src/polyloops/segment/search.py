@@ -9,9 +9,9 @@ paths (:mod:`~polyloops.segment.paths`), valid by construction.  A *state* is a 
 
 1. **Start**: at genus 0 the cube, three curves of the planes through the centroid (or nearest
    it) that cross pairwise twice, checked as a polycube loop structure; at any genus (and at
-   genus 0 when no cube is found) a grid, every candidate curve that crosses another, when it
-   is a polycube loop structure (:func:`dense_start`; finer grids are tried in turn); or a
-   given start (:mod:`~polyloops.segment.start`).
+   genus 0 when no cube is found) a grid of section curves mended into a polycube loop
+   structure (:mod:`~polyloops.segment.grid`; finer grids, and grids of a polycube-like
+   deformation, are tried in turn); or a given start (:mod:`~polyloops.segment.start`).
 2. **Search**: greedy, under a time budget: every move from the current state (add a section
    curve, add one of the first :data:`PATH_MOVES` valid additions of each axis drawn as a path,
    remove a loop the kernel's removal test allows, or replace one by a curve of its axis) is
@@ -48,8 +48,16 @@ from polyloops.segment.refine import Plane, Refined, cut
 from polyloops.segment.surface import Surface
 from polyloops.verify import check_polycube_loop_structure
 
-__all__ = ["SearchPath", "SearchSettings", "StartError", "State", "candidate_loops", "dense_start",
-           "greedy_search", "start_state"]
+__all__ = [
+    "SearchPath",
+    "SearchSettings",
+    "StartError",
+    "State",
+    "candidate_loops",
+    "greedy_search",
+    "section_loops",
+    "start_state",
+]
 
 
 class StartError(PolyloopsError, ValueError):
@@ -80,26 +88,35 @@ class State:
     embedded: Embedded = field(compare=False, repr=False)
 
 
-def candidate_loops(surface: Surface, planes_per_axis: int) -> tuple[Refined, list[SurfaceLoop], list[int]]:
+def candidate_loops(surface: Surface, planes_per_axis: int, heights: np.ndarray | None = None
+                    ) -> tuple[Refined, list[SurfaceLoop], list[int]]:
     """The surface cut by the candidate planes (per axis, one through the area centroid, then
-    ``planes_per_axis`` evenly spread), their section curves, and the indices of the three
+    ``planes_per_axis`` evenly spread, all in the ``heights``: the points by default, see
+    :mod:`~polyloops.segment.refine`), their section curves, and the indices of the three
     central planes' first curves."""
     areas = surface.areas
-    centroid = (surface.points[surface.triangles].mean(axis=1) * areas[:, None]).sum(axis=0) / areas.sum()
-    lo, hi = surface.points.min(axis=0), surface.points.max(axis=0)
+    hv = surface.points if heights is None else heights
+    centroid = (hv[surface.triangles].mean(axis=1) * areas[:, None]).sum(axis=0) / areas.sum()
+    lo, hi = hv.min(axis=0), hv.max(axis=0)
     planes = [Plane(a, float(centroid[a])) for a in range(3)]
     for a in range(3):
         step = (hi[a] - lo[a]) / (planes_per_axis + 1)
         planes += [Plane(a, float(lo[a] + step * (k + 1))) for k in range(planes_per_axis)
                    if abs(lo[a] + step * (k + 1) - centroid[a]) > step / 4]
-    r = cut(Refined.of(surface), planes)
+    r = cut(Refined.of(surface, heights), planes)
+    loops = section_loops(r)
+    return r, loops, [i for i, lp in enumerate(loops) if lp.plane < 3]
+
+
+def section_loops(r: Refined) -> list[SurfaceLoop]:
+    """Every closed curve of every plane's section of ``r``, plane by plane."""
     loops: list[SurfaceLoop] = []
     for p in range(len(r.planes)):
         try:
             loops += [SurfaceLoop(p, c) for c in r.sections(p)]
         except ValueError:
             continue  # a degenerate section: its curves are not candidates
-    return r, loops, [i for i, lp in enumerate(loops) if lp.plane < 3]
+    return loops
 
 
 def _valid(r: Refined, loops: Sequence[Loop]) -> Embedded | None:
@@ -146,48 +163,6 @@ def start_state(r: Refined, loops: list[SurfaceLoop]) -> list[int]:
     raise StartError(f"no three section curves make a cube ({tried} triples crossing pairwise twice tried)")
 
 
-def dense_start(r: Refined, loops: list[SurfaceLoop], repairs: int = 40) -> list[int]:
-    """A grid start: every candidate curve that crosses another, then, while the structure
-    breaks Definition 4, the curve that bounds most of the regions named by its violations
-    removed (at most ``repairs`` times; curves left crossing none are dropped too).  On a
-    surface of any genus a fine enough grid of sections is often a polycube loop structure, and
-    the search then removes loops from it.
-
-    Raises
-    ------
-    StartError
-        When no such grid was found (the message says why the last one failed).
-    """
-    chosen = crossing_only(loops, list(range(len(loops))))
-    try:
-        e = read_structure(r, [loops[i] for i in chosen])
-    except NotAStructure as err:
-        raise StartError(f"the grid of {len(chosen)} section curves is no loop structure: {err}") from None
-    for _ in range(repairs + 1):
-        report = check_polycube_loop_structure(e.structure)
-        if report.valid:
-            return chosen
-        v = report.violations[0]
-        why = f"the grid of {len(chosen)} section curves breaks condition {v.condition}: {v.message}"
-        named = {w.witness["region"] for w in report.violations if "region" in w.witness}
-        blamed = _bounding_curves(e, named)
-        # the most blamed curve whose removal leaves a loop structure (the next ones if not)
-        for worst in sorted(blamed, key=lambda k: (-blamed[k], k))[:REPAIR_TRIES]:
-            fewer = crossing_only(loops, [i for j, i in enumerate(chosen) if j != worst])
-            try:
-                e = read_structure(r, [loops[i] for i in fewer])
-            except NotAStructure:
-                continue
-            chosen = fewer
-            break
-        else:
-            break
-    raise StartError(why)
-
-
-REPAIR_TRIES = 6  # curves tried for one removal before a grid's repair is given up
-
-
 def crossing_only(loops: list[SurfaceLoop], chosen: list[int]) -> list[int]:
     """``chosen`` without the curves that cross none of the others (repeatedly)."""
     while True:
@@ -196,25 +171,6 @@ def crossing_only(loops: list[SurfaceLoop], chosen: list[int]) -> list[int]:
         if crossing == chosen:
             return chosen
         chosen = crossing
-
-
-def _bounding_curves(e: Embedded, regions: set[int]) -> dict[int, int]:
-    """Per curve of ``e`` (its index in ``e.loops``), how many of ``regions`` it bounds."""
-    r = e.refined
-    key_of = {}
-    for k, lp in enumerate(e.loops):
-        for u, v in lp.edges():
-            key_of[int(r.edge_key(u, v))] = k
-    pairs, keys = r.adjacency
-    count: dict[int, set[int]] = {}
-    for (a, b), key in zip(pairs.tolist(), keys.tolist(), strict=True):
-        curve = key_of.get(key)
-        if curve is None:
-            continue
-        for g in (int(e.region[a]), int(e.region[b])):
-            if g in regions:
-                count.setdefault(curve, set()).add(g)
-    return {k: len(gs) for k, gs in count.items()}
 
 
 class _Scorer:

@@ -13,6 +13,10 @@ itself, labels and sides included (:func:`~polyloops.core.canonical.is_isomorphi
 an orientation-preserving homeomorphism of the surfaces then carries each loop of the start to
 its curve, so every loop is embedded in its homology class, and the search begins from there.
 
+When no choice in the surface's coordinates reproduces the start, the planes cut a
+polycube-like deformation of the surface instead (:mod:`~polyloops.segment.deform`), whose
+sections follow a thin handle or a tilted arm where planes of the coordinates fall apart.
+
 A loop whose segments span no common level (it is no plane section of its polycube) cannot be
 drawn this way; such a start is refused with its reason, as is a surface on which no choice
 within the tries reproduces the start.
@@ -32,6 +36,7 @@ from polyloops.core.canonical import is_isomorphic, signature, transformed
 from polyloops.core.errors import PolyloopsError
 from polyloops.core.structure import LoopStructure
 from polyloops.core.symmetry import SIGNED_PERMUTATIONS, SignedPermutation, Symmetry
+from polyloops.segment.deform import polycube_heights
 from polyloops.segment.embedded import NotAStructure, SurfaceLoop, read_structure
 from polyloops.segment.refine import Refined
 from polyloops.segment.search import StartError, candidate_loops, crossing_only
@@ -59,11 +64,12 @@ class Level:
 @dataclass(frozen=True)
 class StartPlacement:
     """Where a start was embedded: the signed permutation that turned it, the curves (indices
-    into the candidates) and the tries it took."""
+    into the candidates), the tries it took and whether the planes cut the deformation."""
 
     symmetry: SignedPermutation
     curves: tuple[int, ...]
     tries: int
+    deformed: bool = False  # the planes cut the polycube-like deformation, not the coordinates
 
 
 def start_levels(start: LoopStructure) -> tuple[tuple[Level, ...], ...]:
@@ -138,16 +144,21 @@ def embed_start(surface: Surface, start: LoopStructure, grids: tuple[int, ...] =
         raise StartError("no turn of the start has all its loops plane sections")
     reasons: list[str] = []
     tries = 0
+    deformed = None
     for k in grids:
-        if reasons and time.monotonic() - began > budget:
-            reasons.append("no finer grid tried: the time budget is spent")
-            break
-        r, loops, _ = candidate_loops(surface, k)
-        found = _place(r, loops, turned, began + budget)
-        if isinstance(found, StartPlacement):
-            return r, loops, StartPlacement(found.symmetry, found.curves, tries + found.tries)
-        tries += found
-        reasons.append(f"{k} planes an axis: no choice of {found} reproduced it")
+        for kind in ("coordinates", "deformation"):
+            if reasons and time.monotonic() - began > budget:
+                reasons.append("nothing more tried: the time budget is spent")
+                raise StartError("the start was not found among plane sections: " + "; ".join(reasons))
+            if kind == "deformation" and deformed is None:
+                deformed = polycube_heights(surface)
+            r, loops, _ = candidate_loops(surface, k, deformed if kind == "deformation" else None)
+            found = _place(r, loops, turned, began + budget)
+            if isinstance(found, StartPlacement):
+                return r, loops, StartPlacement(found.symmetry, found.curves, tries + found.tries,
+                                                kind == "deformation")
+            tries += found
+            reasons.append(f"{k} planes an axis in the {kind}: no choice of {found} reproduced it")
     raise StartError("the start was not found among plane sections: " + "; ".join(reasons))
 
 
@@ -179,8 +190,8 @@ def _place(r: Refined, loops: list[SurfaceLoop], turned: list[Turn], deadline: f
     curves_on: dict[int, list[int]] = {}
     for i, lp in enumerate(loops):
         curves_on.setdefault(lp.plane, []).append(i)
-    lo = r.surface.points.min(axis=0)
-    span = r.surface.points.max(axis=0) - lo
+    lo = r.heights.min(axis=0)
+    span = r.heights.max(axis=0) - lo
     place = {p: (pl.value - lo[pl.axis]) / span[pl.axis] for p, pl in enumerate(r.planes)}
     count = {p: len(curves_on.get(p, ())) for p in place}
     for a in range(3):
