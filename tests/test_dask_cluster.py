@@ -47,3 +47,45 @@ def test_a_catalog_on_a_scheduler_address_is_the_one_process_catalog(scheduler, 
     alone = build_catalog(tmp_path / "r", 18, generator="plantri")
     assert (tmp_path / "d" / "catalog.jsonl").read_bytes() == (tmp_path / "r" / "catalog.jsonl").read_bytes()
     assert on_cluster.summary["counts"] == alone.summary["counts"]
+
+
+class _DieOnce(distributed.WorkerPlugin):
+    """A worker plugin: the first worker to begin its ``nth`` task ends its process there and
+    then (a marker file makes it happen once in the whole cluster, restarted workers included)."""
+
+    name = "die-once"
+
+    def __init__(self, marker: str, nth: int):
+        self.marker, self.nth, self.begun = marker, nth, 0
+
+    def setup(self, worker):
+        self.begun = 0
+
+    def transition(self, key, start, finish, **kwargs):
+        if finish == "executing":
+            self.begun += 1
+            if self.begun == self.nth and not Path(self.marker).exists():
+                Path(self.marker).write_text(str(os.getpid()))
+                os._exit(1)
+
+
+def test_a_catalog_survives_a_worker_killed_during_the_run(tmp_path):
+    """A loops catalog through 26 corners (its top's levels and sixteen shares run as jobs) on a
+    cluster of two worker processes, one of which dies in the middle of its third job: the
+    job runs again and the records are those of one process, byte for byte."""
+    from polyloops.catalog.run import build_catalog
+
+    marker = tmp_path / "died"
+    cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                       dashboard_address=None)
+    try:
+        with distributed.Client(cluster) as client:
+            client.register_plugin(_DieOnce(str(marker), 3))
+            on_cluster = build_catalog(tmp_path / "d", 26, generator="loops", workers=2,
+                                       dask=cluster.scheduler_address)
+    finally:
+        cluster.close()
+    alone = build_catalog(tmp_path / "r", 26, generator="loops")
+    assert marker.exists()  # a worker did die mid-job
+    assert (tmp_path / "d" / "catalog.jsonl").read_bytes() == (tmp_path / "r" / "catalog.jsonl").read_bytes()
+    assert on_cluster.summary["counts"] == alone.summary["counts"]
