@@ -73,7 +73,7 @@ def test_a_start_no_plane_section_reproduces_is_reported_not_forced():
     """A ring with a bridge over it: a round torus has no plane sections that make it."""
     with pytest.raises(StartError, match="not found among plane sections"):
         embed_start(surface_of(*torus(2.0, 0.7, 24, 12)), as_loop_structure(load_example("bridged-ring")),
-                    grids=(5,))
+                    grids=(5,), budget=1.0)
 
 
 def test_levels_are_the_middles_of_what_each_loops_segments_span():
