@@ -23,8 +23,10 @@ ROOT = Path(__file__).resolve().parent.parent
 PAGES = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md")), ROOT / "catalogs" / "README.md"]
 
 # Shown to say how a shipped catalog was made: each takes from half an hour to hours of CPU, or
-# writes into the shipped catalog's own folder.  Parsed, never run by the tests.
+# writes into the shipped catalog's own folder, or runs on a cluster (docs/cluster.md).  Parsed,
+# never run by the tests.
 REPRODUCTIONS = ("--max-corners 30 --generator plantri", "--max-corners 36 --generator loops",
+                 "--max-corners 38 --generator loops", "/shared/genus0-44",
                  "--genus 1 --max-corners 44", "-o catalogs/genus0/", "-o catalogs/genus1/",
                  "tools/ship_catalog.py")
 # Commands that draw, build or replay: seconds to minutes each, run with --run-slow.

@@ -8,9 +8,10 @@ of an axis that cuts it apart: the axis neither curve has for a region with two 
 region meeting one side twice the other axis along which the region is longest.  So each round
 cuts one plane through the middle of each violating region (in the heights the planes cut, see
 :mod:`~polyloops.segment.refine`) and adds the curve of its section that passes there; when a
-round's additions are weighed against removing one of the curves that bound most violating
-regions (a sliver, a crossing too close to another are mended so), and the step to the fewest
-violations is made, never back to a grid met before.  What comes out is checked
+round's additions are made when they leave fewer violations; otherwise they are weighed
+against removing one of the curves that bound most violating regions (a sliver, a crossing too
+close to another are mended so), and the step to the fewest violations is made, never back to
+a grid met before.  What comes out is checked
 like any start; the search then removes the loops it does not need.
 
 >>> from polyloops.shapes.meshes import torus
@@ -24,6 +25,7 @@ from __future__ import annotations
 
 import itertools
 import time
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -35,13 +37,48 @@ from polyloops.segment.surface import Surface
 from polyloops.verify import check_polycube_loop_structure
 from polyloops.verify.report import Condition, Report
 
-__all__ = ["ROUNDS", "grid_start"]
+__all__ = ["ROUNDS", "CutGrid", "cut_grid", "grid_start", "mend"]
 
 ROUNDS = 24  # rounds of additions or removals before a grid is given up
 REMOVALS = 3  # the most blamed curves whose removal is weighed against the additions each round
 SAME_PLANE = 0.01  # planes closer than this share of the extent are one plane in a round
 
 Grid = tuple[Refined, list[SurfaceLoop], list[int]]
+
+
+@dataclass(frozen=True, eq=False)
+class CutGrid:
+    """A grid as cut, before mending: the cut surface, its candidate curves, the chosen ones
+    (every curve that crosses another), the structure they make and its report."""
+
+    refined: Refined
+    loops: list[SurfaceLoop]
+    chosen: list[int]
+    embedded: Embedded
+    report: Report
+
+    @property
+    def violations(self) -> int:
+        """How many violations of Definition 4 the grid has as cut."""
+        return len(self.report.violations)
+
+
+def cut_grid(surface: Surface, planes_per_axis: int, heights: np.ndarray | None = None) -> CutGrid:
+    """The grid of ``planes_per_axis`` planes an axis (in ``heights``; the points by default),
+    every curve that crosses another chosen, read off the surface and checked.
+
+    Raises
+    ------
+    StartError
+        When those curves make no loop structure at all.
+    """
+    r, loops, _ = candidate_loops(surface, planes_per_axis, heights)
+    chosen = crossing_only(loops, list(range(len(loops))))
+    try:
+        e = read_structure(r, [loops[i] for i in chosen])
+    except NotAStructure as err:
+        raise StartError(f"the grid of {len(chosen)} section curves is no loop structure: {err}") from None
+    return CutGrid(r, loops, chosen, e, check_polycube_loop_structure(e.structure))
 
 
 def grid_start(surface: Surface, planes_per_axis: int, heights: np.ndarray | None = None,
@@ -56,13 +93,18 @@ def grid_start(surface: Surface, planes_per_axis: int, heights: np.ndarray | Non
     StartError
         When no polycube loop structure came of it (the message says what the last one broke).
     """
-    r, loops, _ = candidate_loops(surface, planes_per_axis, heights)
-    chosen = crossing_only(loops, list(range(len(loops))))
-    try:
-        e = read_structure(r, [loops[i] for i in chosen])
-    except NotAStructure as err:
-        raise StartError(f"the grid of {len(chosen)} section curves is no loop structure: {err}") from None
-    report = check_polycube_loop_structure(e.structure)
+    return mend(cut_grid(surface, planes_per_axis, heights), rounds, deadline)
+
+
+def mend(grid: CutGrid, rounds: int = ROUNDS, deadline: float = float("inf")) -> Grid:
+    """``grid`` mended into a polycube loop structure (see the module docstring).
+
+    Raises
+    ------
+    StartError
+        When no polycube loop structure came of it (the message says what the last one broke).
+    """
+    r, loops, chosen, e, report = grid.refined, grid.loops, grid.chosen, grid.embedded, grid.report
     seen = {_key(loops, chosen)}
     for done in itertools.count():
         if report.valid:
@@ -73,13 +115,18 @@ def grid_start(surface: Surface, planes_per_axis: int, heights: np.ndarray | Non
             why += f" (after {done} rounds of mending" + (
                 ")" if done == rounds else ", when the time budget was spent)")
             break
-        # the step to the fewest violations among the additions and a few removals, never
-        # back to a grid already met (so the mending cannot go round in a circle)
-        steps = [s for s in [_add_curves(r, loops, chosen, e, report), *_removals(loops, chosen, e, report)]
-                 if s is not None and _key(s[1], s[2]) not in seen]
-        if not steps:
+        # the additions when they leave fewer violations; else the step to the fewest among
+        # them and a few removals, never back to a grid already met (so the mending cannot go
+        # round in a circle)
+        checked = []
+        added = _add_curves(r, loops, chosen, e, report)
+        if added is not None and _key(added[1], added[2]) not in seen:
+            checked.append((check_polycube_loop_structure(added[3].structure), added))
+        if not checked or len(checked[0][0].violations) >= len(report.violations):
+            checked += [(check_polycube_loop_structure(s[3].structure), s)
+                        for s in _removals(loops, chosen, e, report) if _key(s[1], s[2]) not in seen]
+        if not checked:
             break
-        checked = [(check_polycube_loop_structure(s[3].structure), s) for s in steps]
         report, (r, loops, chosen, e) = min(checked, key=lambda c: len(c[0].violations))
         seen.add(_key(loops, chosen))
     raise StartError(why)

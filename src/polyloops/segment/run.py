@@ -20,7 +20,7 @@ from polyloops.segment.certify import layout_problem
 from polyloops.segment.deform import polycube_heights
 from polyloops.segment.embedded import NotAStructure, SurfaceLoop
 from polyloops.segment.from_polycube import UncertifiedError
-from polyloops.segment.grid import grid_start
+from polyloops.segment.grid import cut_grid, mend
 from polyloops.segment.labellings import fidelity, naive_fidelity
 from polyloops.segment.layout import Layout, lay_out
 from polyloops.segment.refine import Refined
@@ -187,10 +187,11 @@ def _starts(surface: Surface, planes: int, budget: float, began: float
             ) -> Iterator[tuple[Refined, list[SurfaceLoop], list[int], str]]:
     """The cut surface, its candidate curves and a start, in turn: the cube at genus 0, then
     (at any genus, or when the cube's search is not certified) each grid of :data:`GRIDS`
-    mended into a polycube loop structure (:mod:`~polyloops.segment.grid`), each grid cut in the
-    surface's coordinates and then in a polycube-like deformation of it
-    (:mod:`~polyloops.segment.deform`); nothing more is begun once :data:`OVERRUN` times
-    ``budget`` seconds have gone since ``began`` (a :func:`time.monotonic` time).
+    mended into a polycube loop structure (:mod:`~polyloops.segment.grid`), each size cut in the
+    surface's coordinates and in a polycube-like deformation of it
+    (:mod:`~polyloops.segment.deform`), the one with fewer violations as cut mended first;
+    nothing more is begun once :data:`OVERRUN` times ``budget`` seconds have gone since
+    ``began`` (a :func:`time.monotonic` time).
 
     Raises
     ------
@@ -210,17 +211,27 @@ def _starts(surface: Surface, planes: int, budget: float, began: float
             yield r, loops, first, "the cube"
     deformed = None
     for k in sorted({planes, *GRIDS}):
-        for kind in ("coordinates", "deformation"):
-            if (given or reasons) and time.monotonic() - began > OVERRUN * budget:
-                if not given:
-                    raise StartError(f"no start on this genus-{surface.genus} mesh: " + "; ".join(
-                        [*reasons, "nothing more tried: the time budget is spent"]))
-                return
-            if kind == "deformation" and deformed is None:
-                deformed = polycube_heights(surface)
+        if (given or reasons) and time.monotonic() - began > OVERRUN * budget:
+            if not given:
+                raise StartError(f"no start on this genus-{surface.genus} mesh: " + "; ".join(
+                    [*reasons, "nothing more tried: the time budget is spent"]))
+            return
+        if deformed is None:
+            deformed = polycube_heights(surface)
+        # both grids of this size as cut, the one nearer a polycube loop structure (fewer
+        # violations of Definition 4) mended first
+        grids = []
+        for kind, heights in (("coordinates", None), ("deformation", deformed)):
             try:
-                r, loops, chosen = grid_start(surface, k, deformed if kind == "deformation" else None,
-                                              deadline=time.monotonic() + max(budget / 2, MENDING))
+                grids.append((cut_grid(surface, k, heights), kind))
+            except StartError as err:
+                reasons.append(f"{k} planes an axis in the {kind}: {err}")
+        grids.sort(key=lambda g: g[0].violations)
+        for grid, kind in grids:
+            if given and time.monotonic() - began > OVERRUN * budget:
+                return
+            try:
+                r, loops, chosen = mend(grid, deadline=time.monotonic() + max(budget / 2, MENDING))
             except StartError as err:
                 reasons.append(f"{k} planes an axis in the {kind}: {err}")
                 continue
