@@ -98,6 +98,7 @@ def test_gallery_filters_copy_and_links(chromium, tmp_path, capsys):
 
 
 @pytest.mark.browser
+@pytest.mark.slow
 def test_the_gallery_walks_the_move_graph(chromium, tmp_path, capsys):
     """From the non-incremental polycube's page a user reaches the cube by clicks: along its
     detour and then removals; from a class to the class a removal leaves and back by the

@@ -125,6 +125,7 @@ def test_every_configuration_has_a_small_witness():
         assert c.id in corner_histogram(q)[0]
 
 
+@pytest.mark.slow
 def test_picture_renders_and_is_not_blank(tmp_path):
     import matplotlib.image as mpimg
     import numpy as np

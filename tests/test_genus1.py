@@ -30,8 +30,10 @@ def reached(name: str, max_corners: int, tmp: Path) -> list[str]:
     return stored_signatures(tmp / name)
 
 
+@pytest.mark.slow
 def test_the_shipped_genus_one_certificate_checks():
-    """The certificate settles every class of the shipped genus-1 catalog within its type."""
+    """The certificate settles every class of the shipped genus-1 catalog within its type (the
+    default run checks it too: the doctest of ``Certificate.check``)."""
     census = read_catalog(G1)
     top = complete_range(census, 1)
     check = check_certificate(CERT.read_text().splitlines(), G1)
@@ -179,6 +181,7 @@ def test_a_genus_one_certificate_claims_only_what_it_checked(extended):
         check_certificate([json.dumps(header), *lines[1:]], catalog)
 
 
+@pytest.mark.slow
 def test_the_gallery_walks_to_the_base_of_each_orientation(tmp_path):
     """A genus-1 gallery: each class page leads to the base of its orientation type (no class
     of genus 1 reaches the cube), and the move graph starts at the certificate's bases."""

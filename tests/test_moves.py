@@ -346,6 +346,7 @@ def test_counting_within_a_time_limit_on_a_large_slab():
     assert all(full.complete.values()) and full.counts == count_additions(small)
 
 
+@pytest.mark.slow
 def test_moves_cli_on_a_large_slab(tmp_path, capsys):
     import time
 
