@@ -67,6 +67,7 @@ def test_viewer_turns_toggles_and_stays_quiet(chromium, tmp_path, capsys):
 
 
 @pytest.mark.browser
+@pytest.mark.slow
 def test_gallery_filters_copy_and_links(chromium, tmp_path, capsys):
     site = tmp_path / "site"
     assert main(["gallery", "-o", str(site), "--limit", "12"]) == 0
@@ -151,7 +152,8 @@ def test_the_gallery_walks_the_move_graph(chromium, tmp_path, capsys):
 
 
 @pytest.mark.browser
-@pytest.mark.parametrize("dims", [(1, 1, 6), pytest.param((6, 2, 1), marks=pytest.mark.slow),
+@pytest.mark.parametrize("dims", [pytest.param((1, 1, 6), marks=pytest.mark.slow),
+                                  pytest.param((6, 2, 1), marks=pytest.mark.slow),
                                   pytest.param((3, 3, 3), marks=pytest.mark.slow)])
 def test_the_first_view_shows_the_whole_shape(chromium, tmp_path, dims):
     """The first camera is fitted to the bounding box: nothing of a tall tower, a flat slab or
