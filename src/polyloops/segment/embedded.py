@@ -52,7 +52,7 @@ def cycle_edges(vs: tuple[int, ...]) -> set[tuple[int, int]]:
 @dataclass(frozen=True)
 class SurfaceLoop:
     """A closed curve of a plane's section: the plane's index in ``Refined.planes`` and the
-    curve's cycle of vertices; its ``+`` side is the side of greater level (coordinate)."""
+    curve's cycle of vertices; its ``+`` side is the side of greater height (``Refined.heights``)."""
 
     plane: int
     vertices: tuple[int, ...]

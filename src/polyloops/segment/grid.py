@@ -7,12 +7,12 @@ twice (condition 3).  Both are local, and both are mended by one more curve thro
 of an axis that cuts it apart: the axis neither curve has for a region with two sides, and for a
 region meeting one side twice the other axis along which the region is longest.  So each round
 cuts one plane through the middle of each violating region (in the heights the planes cut, see
-:mod:`~polyloops.segment.refine`) and adds the curve of its section that passes there; when a
-round's additions are made when they leave fewer violations; otherwise they are weighed
-against removing one of the curves that bound most violating regions (a sliver, a crossing too
-close to another are mended so), and the step to the fewest violations is made, never back to
-a grid met before.  What comes out is checked
-like any start; the search then removes the loops it does not need.
+:mod:`~polyloops.segment.refine`) and adds the curve of its section that passes there.  A round's
+additions are made when they leave fewer violations; otherwise they are weighed against
+removing one of the curves that bound most violating regions (a sliver, a crossing too close
+to another are mended so), and the step to the fewest violations is made, never back to a grid
+met before.  What comes out is checked like any start; the search then removes the loops it
+does not need.
 
 >>> from polyloops.shapes.meshes import torus
 >>> from polyloops.segment.surface import surface_of
