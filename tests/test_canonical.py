@@ -279,3 +279,33 @@ def test_unchecked_signatures_read_back_the_same_structure(ls, mode):
     states) gives the structure the checked reading gives."""
     sig = signature(ls, mode)
     assert from_signature(sig, checked=False) == from_signature(sig)
+
+
+def _darts_one_by_one(sigs):
+    from polyloops.core.canonical import SignatureError, signature_darts
+
+    try:
+        return [signature_darts(s) for s in sigs]
+    except SignatureError as err:
+        return str(err)
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(st.tuples(st.sampled_from(sorted(EXAMPLES)), st.integers(0, 3), st.integers(0, 10_000),
+                          st.sampled_from("AZaz09-_1lo é")), min_size=1, max_size=6))
+def test_signatures_checked_together_agree_with_one_by_one(edits):
+    """The batched check (one pass over many signatures) equals the check of each alone:
+    the same numbers of darts, or the same error, whatever a signature lost or gained (a
+    character changed, the text cut short, a character that is no digit)."""
+    from polyloops.core.canonical import SignatureError, signatures_darts
+
+    sigs = []
+    for name, how, where, ch in edits:
+        sig = signature(load_example(name))
+        k = where % len(sig)
+        sigs.append([sig, sig[:k] + ch + sig[k + 1:], sig[:k], sig[:k] + ch + sig[k:]][how])
+    try:
+        got = signatures_darts(sigs)
+    except SignatureError as err:
+        got = str(err)
+    assert got == _darts_one_by_one(sigs)

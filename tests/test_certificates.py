@@ -1,15 +1,12 @@
 """A certificate claims only what was checked: `conjecture check` compares the header with the
 catalog's complete range, checks every field it prints, and reports bad records by line."""
 
-import atexit
 import json
 import shutil
-import tempfile
-from pathlib import Path
 
 import pytest
 
-from polyloops.catalog.census import default_catalog, read_catalog
+from polyloops.catalog.census import read_catalog
 from polyloops.catalog.run import build_catalog, write_census
 from polyloops.cli import main
 from polyloops.reach.conjecture import (
@@ -18,27 +15,9 @@ from polyloops.reach.conjecture import (
     check_certificate,
     settle_catalog,
 )
+from shipped import REAL, small_catalog
 
-REAL = default_catalog()
-REAL_CERT = REAL / "reachability-certificate.jsonl"
-
-
-def _small_catalog(top: int = 30) -> Path:
-    """The shipped catalog and certificate cut at ``top`` corners, in a directory of its own:
-    every check of the certificate replays every record, so the tests of the checker's
-    refusals use this smaller copy (the shipped whole is checked by one test here and one in
-    test_reach.py)."""
-    out = Path(tempfile.mkdtemp(prefix="polyloops-small-catalog-"))
-    atexit.register(shutil.rmtree, out, True)
-    write_census(read_catalog(REAL).through(top), out)
-    cert = REAL_CERT.read_text().splitlines()
-    kept = [line for line in cert[1:] if json.loads(line)["corners"] <= top]
-    header = {**json.loads(cert[0]), "max_corners": top, "classes": len(kept)}
-    (out / "reachability-certificate.jsonl").write_text("\n".join([json.dumps(header), *kept]) + "\n")
-    return out
-
-
-SHIPPED = _small_catalog()
+SHIPPED = small_catalog(30)  # the checks of refusals replay this smaller copy
 CERT = SHIPPED / "reachability-certificate.jsonl"
 
 

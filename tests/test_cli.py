@@ -9,6 +9,7 @@ import pytest
 from polyloops.cli import main
 from polyloops.io.examples import EXAMPLES, load_example
 from polyloops.io.formats import dumps, loads
+from shipped import small_catalog
 
 ROOT = __import__("pathlib").Path(__file__).resolve().parent.parent
 
@@ -226,8 +227,8 @@ def test_writing_commands_summarise_what_they_wrote_in_json(tmp_path, capsys):
         (["view", "example:cube", "-o", str(tmp_path / "v.html")], {"page": "viewer"}),
         (["sheet", "example:cube", "example:l-shape", "-o", str(tmp_path / "s.png")], {"pictures": 2}),
         (["gallery", "-o", str(tmp_path / "site"), "--limit", "2"], {"classes": 2}),
-        (["catalog", "export", str(ROOT / "catalogs" / "genus0"), "--csv", "-o", str(tmp_path / "e.csv")],
-         {"rows": sum(1 for _ in (ROOT / "catalogs" / "genus0" / "catalog.jsonl").open())}),
+        (["catalog", "export", str(small_catalog(20)), "--csv", "-o", str(tmp_path / "e.csv")],
+         {"rows": sum(1 for _ in (small_catalog(20) / "catalog.jsonl").open())}),
     ]
     for argv, expected in cases:
         status, out, _ = run(capsys, *argv, "--json")

@@ -26,7 +26,7 @@ PAGES = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md")), ROOT / "cata
 # writes into the shipped catalog's own folder, or runs on a cluster (docs/cluster.md).  Parsed,
 # never run by the tests.
 REPRODUCTIONS = ("--max-corners 30 --generator plantri", "--max-corners 36 --generator loops",
-                 "--max-corners 38 --generator loops", "/shared/genus0-44",
+                 "--max-corners 40 --generator loops", "/shared/genus0-44",
                  "--genus 1 --max-corners 44", "-o catalogs/genus0/", "-o catalogs/genus1/",
                  "tools/ship_catalog.py")
 # Commands that draw, build or replay: seconds to minutes each, run with --run-slow.
@@ -101,6 +101,8 @@ def clone_like(tmp: Path) -> Path:
     examples = ROOT / "src" / "polyloops" / "examples"
     shutil.copy(examples / "overhang.obj", tmp / "shape.obj")
     shutil.copy(examples / "overhang.labels", tmp / "shape.labels")
+    shutil.copy(examples / "sokolov-ramp.obj", tmp / "ramp.obj")
+    shutil.copy(examples / "sokolov-ramp.labels", tmp / "ramp.labels")
     points, triangles = (tuple(map(tuple, a.tolist())) for a in ellipsoid(1.5, 1, 0.7))
     write_triangle_mesh(tmp / "shape.stl", LabelledMesh(points, triangles, (Direction.PX,) * len(triangles)))
     (tmp / "scratch").mkdir()

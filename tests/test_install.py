@@ -68,7 +68,7 @@ def test_plain_install_has_the_census(installed, tmp_path):
     # the genus-0 certificate ships too (its whole check runs in test_certificates, with --run-slow)
     code = "import polyloops as pl; c = pl.read_certificate(); print(c.header['max_corners'], c.genus)"
     done = run_installed(installed, tmp_path, "-c", code)
-    assert done.returncode == 0 and done.stdout.split() == ["38", "0"], done.stdout + done.stderr
+    assert done.returncode == 0 and done.stdout.split() == ["40", "0"], done.stdout + done.stderr
     # the genus-1 catalog ships beside it: identify finds the ring, its certificate checks
     done = run_installed(installed, tmp_path, "-m", "polyloops", "identify", "example:ring-x")
     assert done.returncode == 0 and "T32.1" in done.stdout, done.stderr

@@ -19,6 +19,7 @@ from polyloops.io.examples import load_example
 from polyloops.reach.conjecture import certificate_lines, check_certificate, settle_catalog
 from polyloops.reach.search import MoveKind, check_path, explore, neighbours, path_steps, shortest_path
 from polyloops.verify import check_polycube_loop_structure
+from shipped import small_catalog  # the shipped catalog cut short: the certificate tests settle through 26
 
 ROOT = Path(__file__).resolve().parent.parent
 CATALOG = ROOT / "catalogs" / "genus0"
@@ -254,12 +255,12 @@ def test_shortest_path_is_shortest():
 
 @cache
 def certificate():
-    return list(certificate_lines(settle_catalog(CATALOG, 26, 10)))
+    return list(certificate_lines(settle_catalog(small_catalog(26), 26, 10)))
 
 
 def test_conjecture_settled_through_26_and_checked():
     lines = certificate()
-    check = check_certificate(lines, CATALOG)
+    check = check_certificate(lines, small_catalog(26))
     assert check.header["max_corners"] == check.checked_corners == 26 and check.problems == ()
     records = [json.loads(line) for line in lines[1:]]
     detours = [r for r in records if "detour" in r]
@@ -274,7 +275,7 @@ def test_corrupted_certificates_are_rejected():
     bad = json.loads(json.dumps(records[i]))
     bad["detour"]["moves"] = bad["detour"]["moves"][1:]  # drop the first move
     corrupted = [lines[0], *lines[1:i + 1], json.dumps(bad), *lines[i + 2:]]
-    problems = check_certificate(corrupted, CATALOG).problems
+    problems = check_certificate(corrupted, small_catalog(26)).problems
     assert len(problems) == 1 and problems[0].line == i + 2 and "step" in problems[0].message
     j = next(k for k, r in enumerate(records) if "removable" in r)
     ls = from_signature(records[j]["signature"])
@@ -282,22 +283,22 @@ def test_corrupted_certificates_are_rejected():
                  or not check_polycube_loop_structure(try_remove(ls, lp.id)).valid)
     bad = {**records[j], "removable": wrong}
     corrupted = [lines[0], *lines[1:j + 1], json.dumps(bad), *lines[j + 2:]]
-    problems = check_certificate(corrupted, CATALOG).problems
+    problems = check_certificate(corrupted, small_catalog(26)).problems
     assert [p.line for p in problems] == [j + 2]
-    problems = check_certificate(lines[:-1], CATALOG).problems
+    problems = check_certificate(lines[:-1], small_catalog(26)).problems
     assert [p.name for p in problems if "missing" in p.message] == ["P26.20"]  # the last class
 
 
 def test_cli_conjecture(tmp_path, capsys):
     cert = tmp_path / "c.jsonl"
-    assert main(["conjecture", "genus0", "--catalog", str(CATALOG), "--max-corners", "26", "--json",
+    assert main(["conjecture", "genus0", "--catalog", str(small_catalog(26)), "--max-corners", "26", "--json",
                  "-o", str(cert)]) == 0
     data = json.loads(capsys.readouterr().out)
     assert data["settled"] == data["classes"] == 55 and data["unsettled"] == []
-    assert main(["conjecture", "check", str(cert), "--catalog", str(CATALOG)]) == 0
-    assert main(["conjecture", "genus0", "--catalog", str(CATALOG), "--max-corners", "26", "--slack", "6",
-                 "-o", str(cert)]) == 1
-    assert main(["conjecture", "check", str(cert), "--catalog", str(CATALOG)]) == 1
+    assert main(["conjecture", "check", str(cert), "--catalog", str(small_catalog(26))]) == 0
+    assert main(["conjecture", "genus0", "--catalog", str(small_catalog(26)), "--max-corners", "26",
+                 "--slack", "6", "-o", str(cert)]) == 1
+    assert main(["conjecture", "check", str(cert), "--catalog", str(small_catalog(26))]) == 1
     assert main(["conjecture", "check", str(cert), "--catalog", str(tmp_path)]) == 2
 
 
@@ -325,7 +326,7 @@ def test_dask_gives_the_same_rows(tmp_path):
 
 def test_not_a_certificate_is_bad_input(tmp_path, capsys):
     (tmp_path / "g.jsonl").write_text("garbage\n")
-    assert main(["conjecture", "check", str(tmp_path / "g.jsonl"), "--catalog", str(CATALOG)]) == 2
+    assert main(["conjecture", "check", str(tmp_path / "g.jsonl"), "--catalog", str(small_catalog(26))]) == 2
     assert "not a reachability certificate" in capsys.readouterr().err
 
 
@@ -365,7 +366,7 @@ def test_reach_refuses_what_is_not_a_search(tmp_path, capsys, content):
         con.close()
     else:
         out.rmdir()
-        shutil.copytree(CATALOG, out)
+        shutil.copytree(small_catalog(26), out)
     before = {p.name: p.read_bytes() for p in out.iterdir() if p.is_file()}
     for overwrite in ([], ["--overwrite"]):
         assert main(["reach", "--max-corners", "12", "-o", str(out), *overwrite]) == 2

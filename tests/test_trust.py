@@ -366,3 +366,23 @@ def test_a_spill_written_record_by_record_leaves_nothing_half_written(tmp_path):
     assert [p.name for p in tmp_path.iterdir()] == ["x.bin"]
     spill = read_spill(tmp_path / "x.bin", tag)
     assert spill.records == (b"one", b"two") and spill.meta == {"n": 2}
+
+
+def test_a_shipped_catalog_read_once_is_read_again_when_its_files_change(tmp_path, monkeypatch):
+    """The shipped catalogs are kept once read and checked; a change to their files (an edited
+    count, replaced records) is seen by the next reader, which checks them again."""
+    import polyloops.catalog.census as census_module
+    from polyloops.catalog.census import CatalogMismatchError, read_catalog
+    from shipped import small_catalog
+
+    copy = tmp_path / "genus0"
+    shutil.copytree(small_catalog(20), copy)
+    real = census_module.default_catalog
+    monkeypatch.setattr(census_module, "default_catalog", lambda genus=0: copy if genus == 0 else real(genus))
+    first = read_catalog()
+    assert read_catalog() is first  # kept
+    summary = json.loads((copy / "summary.json").read_text())
+    summary["counts"]["20"]["full"] += 1
+    (copy / "summary.json").write_text(json.dumps(summary))
+    with pytest.raises(CatalogMismatchError):
+        read_catalog()

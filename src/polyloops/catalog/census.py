@@ -154,11 +154,19 @@ def read_entries(directory: Path) -> list[CatalogEntry]:
 
 def _read_entries(directory: Path) -> tuple[list[CatalogEntry], list[int]]:
     """The entries and the number of darts each one's signature names."""
-    from polyloops.core.canonical import SignatureError, signature_darts
+    from polyloops.core.canonical import SignatureError, signature_darts, signatures_darts
 
     path = Path(directory) / "catalog.jsonl"
+    lines = _read_text(path).splitlines()
+    try:  # one parse for all the lines, and one pass for all the signatures' checks
+        rows = json.loads("[" + ",".join(lines) + "]")
+        out = [CatalogEntry.from_json(row) for row in rows]
+        if len(out) == len(lines) and all(NAME.fullmatch(e.name) for e in out):
+            return out, signatures_darts([e.signature for e in out])
+    except (ValueError, KeyError, TypeError, AttributeError, RecursionError, SignatureError):
+        pass  # read again line by line, to name the line at fault
     out, sizes = [], []
-    for i, line in enumerate(_read_text(path).splitlines()):
+    for i, line in enumerate(lines):
         try:
             entry = CatalogEntry.from_json(json.loads(line))
             if not NAME.fullmatch(entry.name):
@@ -277,6 +285,19 @@ def read_catalog(directory: Path | str | None = None, *, genus: int | None = Non
             raise CatalogError(f"no catalog of genus {wanted} ships with polyloops (the shipped ones: "
                                f"genus {', '.join(str(g) for g in SHIPPED_GENERA)})")
     directory = Path(directory)
+    key = _shipped_key(directory)
+    census = _SHIPPED_READ.get(key) if key is not None else None
+    if census is None:
+        census = _read_checked(directory, genus)
+        if key is not None and key == _shipped_key(directory):  # unchanged while it was read
+            _SHIPPED_READ[key] = census
+    if genus is not None and int(census.summary.get("genus", 0)) != genus:
+        raise CatalogError(f"{directory}: a catalog of genus {census.summary.get('genus', 0)}, not {genus}")
+    return census
+
+
+def _read_checked(directory: Path, genus: int | None) -> Census:
+    """:func:`read_catalog` of a directory, read and checked afresh."""
     entries, darts = _read_entries(directory)
     path = directory / "summary.json"
     if not (path.exists() or path.is_symlink()):
@@ -295,6 +316,25 @@ def read_catalog(directory: Path | str | None = None, *, genus: int | None = Non
     if problem:
         raise CatalogMismatchError(f"{directory}: not a catalog its records prove: {problem}")
     return Census(directory, tuple(entries), summary)
+
+
+# The shipped catalogs, once read and checked, kept for the process (naming a structure reads
+# the catalog each time: a sheet's captions, identify in a loop).  A file replaced or changed
+# since has another key, and is read and checked again.
+_SHIPPED_READ: dict[tuple[object, ...], Census] = {}
+
+
+def _shipped_key(directory: Path) -> tuple[object, ...] | None:
+    """What identifies a shipped catalog's files as read (their size, time and inode), or
+    ``None`` for any other directory (never kept: a user's catalog is read afresh)."""
+    try:
+        where = directory.resolve()
+        if where not in {default_catalog(g).resolve() for g in SHIPPED_GENERA}:
+            return None
+        stats = [(where / name).stat() for name in ("catalog.jsonl", "summary.json")]
+    except OSError:
+        return None
+    return (str(where), *((st.st_size, st.st_mtime_ns, st.st_ino) for st in stats))
 
 
 SHIPPED_GENERA = (0, 1)

@@ -26,6 +26,7 @@ from __future__ import annotations
 
 from array import array
 from collections import Counter
+from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cache, cached_property
 
@@ -636,6 +637,11 @@ def signature_darts(sig: str) -> int:
         raise SignatureError(f"a signature has no character {bad!r}")
     if len(sig) < 6 or _check_arrays(sig[:-2]) != sig[-2:]:
         raise SignatureError("the check characters do not match: the signature was changed or cut")
+    return _head_darts(sig)
+
+
+def _head_darts(sig: str) -> int:
+    """The number of darts a checked signature's head states."""
     if sig[1] not in "ol":
         raise SignatureError("a signature's kind is 'o' or 'l'")
     w = _INDEX[sig[2]]
@@ -645,6 +651,57 @@ def signature_darts(sig: str) -> int:
     for ch in sig[3:3 + w]:
         n = n * 64 + _INDEX[ch]
     return n
+
+
+def signatures_darts(sigs: Sequence[str]) -> list[int]:
+    """:func:`signature_darts` of many signatures at once: their check characters are summed
+    in one pass over a few thousand signatures' characters at a time (a catalog of tens of
+    thousands reads several times faster than one by one); a signature that fails is read again
+    alone, for its own error.
+
+    >>> from polyloops.io.examples import load_example
+    >>> signatures_darts([signature(load_example(n)) for n in ("cube", "l-shape")])
+    [24, 56]
+
+    Raises
+    ------
+    SignatureError
+        As :func:`signature_darts`, for the first signature that is not one.
+    """
+    fine: list[bool] = []
+    for k in range(0, len(sigs), _BATCH):
+        fine += _checks_hold(sigs[k:k + _BATCH])
+    # a failure is read alone, which raises its reason
+    return [_head_darts(sig) if ok else signature_darts(sig) for sig, ok in zip(sigs, fine, strict=True)]
+
+
+_BATCH = 4096  # signatures checked together: a few megabytes of arrays
+_KNOWN_BYTE = np.zeros(256, dtype=bool)
+_KNOWN_BYTE[_ALPHABET_BYTES] = True
+
+
+def _checks_hold(sigs: Sequence[str]) -> list[bool]:
+    """Per signature, whether it is ASCII of the alphabet, of this version, at least six
+    characters long and shorter than the check's period, and its check characters match.
+    With ``p`` a character's place in its signature from ``s`` (its first place overall) and
+    ``g = s + p`` its place overall, the check's sum of ``(p + 1) * value`` over the body is
+    ``sum(g * value) - (s - 1) * sum(value)``: two sums per signature (exact in float64)."""
+    joined = "".join(sigs)
+    lengths = np.fromiter(map(len, sigs), dtype=np.int64, count=len(sigs))
+    if not sigs or not joined.isascii() or lengths.min() < 6 or lengths.max() >= _CHECK_MODULUS - 1:
+        return [False] * len(sigs)  # each read alone
+    raw = np.frombuffer(joined.encode("ascii"), dtype=np.uint8)
+    starts = np.concatenate([[0], np.cumsum(lengths)[:-1]])
+    value = _VALUE_OF_BYTE[raw].astype(np.float64)
+    checks = starts + lengths - 2  # the two check characters are no part of the body
+    value_body = value.copy()
+    value_body[checks] = 0.0
+    value_body[checks + 1] = 0.0
+    by_place = np.add.reduceat(value_body * np.arange(len(raw), dtype=np.float64), starts)
+    total = (by_place - (starts - 1) * np.add.reduceat(value_body, starts)).astype(np.int64) % _CHECK_MODULUS
+    stated = _VALUE_OF_BYTE[raw[checks]] * 64 + _VALUE_OF_BYTE[raw[checks + 1]]
+    known = np.logical_and.reduceat(_KNOWN_BYTE[raw], starts)
+    return ((total == stated) & known & (raw[starts] == ord(SIGNATURE_VERSION))).tolist()
 
 
 def _decode(sig: str) -> tuple[list[int], list[int], list[int], bool]:
