@@ -201,3 +201,20 @@ def test_notebook_viewers_share_one_plotly(chromium, tmp_path):
     assert len(others) == 2 and "plotly.js v" in first and not any("plotly.js v" in o for o in others)
     assert errors == []
     page.close()
+
+
+@pytest.mark.browser
+@pytest.mark.slow  # a segmentation run and a page of 50,000 triangles: several seconds
+def test_the_segmentation_page_shows_mesh_and_polycube_and_toggles_loops_on_both(chromium, tmp_path, capsys):
+    out = tmp_path / "egg.html"
+    assert main(["segment", "example:egg", "--budget", "2", "--html", str(out)]) == 0
+    page, errors = viewer_page(chromium, out)
+    assert len(page.query_selector_all(".js-plotly-plot canvas")) >= 1 and ink(page.screenshot()) > 0.1
+    scenes = page.evaluate("[...new Set(document.querySelector('.js-plotly-plot').data.map(t => t.scene))]")
+    assert sorted(scenes) == ["scene", "scene2"]
+    page.locator(".legend .traces", has_text="X-loops").first.locator(".legendtoggle").click()
+    page.wait_for_timeout(700)
+    hidden = page.evaluate("document.querySelector('.js-plotly-plot').data"
+                           ".filter(t => t.legendgroup === 'X-loops').map(t => [t.scene, t.visible])")
+    assert {s for s, _ in hidden} == {"scene", "scene2"} and {v for _, v in hidden} == {"legendonly"}
+    assert not errors, errors

@@ -296,3 +296,155 @@ def test_the_loops_are_drawn_on_the_surface_in_their_axes_colours(tmp_path):
     pixels = mpimg.imread(tmp_path / "l.png")[..., :3].reshape(-1, 3)
     for axis in Axis:  # each axis's loop shows in its colour
         assert (np.abs(pixels - np.array(to_rgb(AXIS_COLOUR[axis]))).max(axis=1) < 0.02).sum() > 50
+
+
+def test_the_segment_picture_shows_labels_loops_and_polycube_and_repeats_itself(tmp_path):
+    """``render_segment``: every axis's loops show in their colour over the labels (the loops
+    are region boundaries of the labelled mesh, each triangle beside one drawn), the polycube
+    panel is there, and the same result gives the same bytes."""
+    import matplotlib.image as mpimg
+    from matplotlib.colors import to_rgb
+
+    from polyloops.render.colours import AXIS_COLOUR
+    from polyloops.render.segment_result import loop_curves, loop_overlay, render_segment
+
+    done = segment_mesh(*ellipsoid(2.0, 1.0, 0.7, level=3), budget=1.0)
+    region, axis_of = loop_overlay(done)
+    tris = np.asarray(done.mesh.triangles)
+    agree = total = 0
+    for axis, vs in loop_curves(done):  # each loop edge parts two regions, its triangles know a loop's axis
+        for u, v in zip(vs, vs[1:] + vs[:1], strict=True):
+            beside = np.flatnonzero((tris == u).any(axis=1) & (tris == v).any(axis=1))
+            assert len(beside) == 2 and region[beside[0]] != region[beside[1]]
+            assert all(axis_of[t] >= 0 for t in beside)
+            agree += sum(axis_of[t] == int(axis) for t in beside)
+            total += 2
+    assert agree > 0.9 * total  # only a triangle with edges on two loops (at a crossing) shows the other
+    render_segment(done, tmp_path / "a.png")
+    render_segment(done, tmp_path / "b.png")
+    assert (tmp_path / "a.png").read_bytes() == (tmp_path / "b.png").read_bytes()
+    pixels = mpimg.imread(tmp_path / "a.png")[..., :3].reshape(-1, 3)
+    for axis in {a for a, _ in loop_curves(done)}:
+        assert (np.abs(pixels - np.array(to_rgb(AXIS_COLOUR[axis]))).max(axis=1) < 0.02).sum() > 50
+
+
+def test_the_segmentation_page_holds_every_triangle_in_its_labels_colour():
+    """The interactive page: the label traces together hold every triangle once, at its own
+    points and in its label's colour; the loops are one trace an axis; the polycube is the
+    second scene exactly when the checker built one."""
+    from polyloops.core.directions import Direction
+    from polyloops.io.examples import labelled_mesh_example
+    from polyloops.render.colours import direction_colour
+    from polyloops.render.segment_result import loop_curves
+    from polyloops.render.segmentation_viewer import segmentation_viewer_spec
+    from polyloops.segmentation import check_segmentation
+
+    done = segment_mesh(*ellipsoid(1.5, 1.0, 0.8, level=2), budget=1.0)
+    spec = segmentation_viewer_spec(done.report, loop_curves(done))
+    points = np.asarray(done.mesh.points)
+    want = sorted((str(label), tuple(sorted(map(tuple, np.round(points[list(t)], 9).tolist()))))
+                  for t, label in zip(done.mesh.triangles, done.mesh.labels, strict=True))
+    got = []
+    for t in spec["data"]:
+        if t["type"] == "mesh3d" and t.get("scene") == "scene":
+            assert set(t["facecolor"]) == {direction_colour(Direction.parse(t["name"]))}  # valid: no tint
+            xyz = np.column_stack([t["x"], t["y"], t["z"]])
+            for tri in zip(t["i"], t["j"], t["k"], strict=True):
+                got.append((t["name"], tuple(sorted(map(tuple, np.round(xyz[list(tri)], 9).tolist())))))
+    assert sorted(got) == want
+    loops = [t for t in spec["data"] if t["name"].endswith("-loops") and t["scene"] == "scene"]
+    assert sorted(t["name"][0] for t in loops) == sorted({a.name for a, _ in loop_curves(done)})
+    assert "scene2" in spec["layout"]
+    ramp = check_segmentation(labelled_mesh_example("sokolov-ramp"))  # invalid: no polycube, a witness
+    spec = segmentation_viewer_spec(ramp)
+    assert "scene2" not in spec["layout"]
+    tinted = sum(len(set(t["facecolor"]) - {direction_colour(Direction.parse(t["name"]))})
+                 for t in spec["data"] if t["type"] == "mesh3d")
+    assert tinted > 0  # the charts whose turning numbers the witness uses
+
+
+def test_segment_and_view_write_pictures_and_pages(tmp_path, capsys):
+    mesh = write_obj(tmp_path / "egg.obj", *ellipsoid(1.5, 1, 0.8, level=2))
+    png, page = tmp_path / "egg.png", tmp_path / "egg.html"
+    labels, out_mesh = tmp_path / "egg.labels", tmp_path / "out.obj"
+    assert main(["segment", mesh, "--budget", "1", "--png", str(png), "--html", str(page), "-o", str(labels),
+                 "--mesh-out", str(out_mesh), "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["png"] == str(png) and data["html"] == str(page)
+    assert png.read_bytes()[:4] == b"\x89PNG" and b"polyloops-segmentation" in page.read_bytes()
+    view = tmp_path / "view.html"
+    assert main(["view", str(out_mesh), "--labels", str(labels), "-o", str(view), "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["valid"] is True and view.stat().st_size > 1_000_000
+    # invalid labels: the page is written, with the witness, and the exit is 1
+    from polyloops.io.examples import labelled_mesh_example
+    from polyloops.io.labelled_mesh import labels_text
+
+    ramp = labelled_mesh_example("sokolov-ramp")
+    ramp_mesh = write_obj(tmp_path / "ramp.obj", np.asarray(ramp.points), np.asarray(ramp.triangles))
+    (tmp_path / "ramp.labels").write_text(labels_text(ramp))
+    assert main(["view", ramp_mesh, "--labels", str(tmp_path / "ramp.labels"), "-o", str(view)]) == 1
+    assert "invalid" in capsys.readouterr().out
+    # bad input: one line, exit 2, nothing written
+    for argv, problem in ((["view", ramp_mesh, "--labels", str(tmp_path / "none"), "-o", str(view)], "none"),
+                          (["segment", mesh, "--html", str(tmp_path / "x.png")], "NAME.html")):
+        assert main(argv) == 2
+        err = capsys.readouterr().err
+        assert problem in err and err.count("\n") == 1
+
+
+def _written_example(tmp_path, name):
+    """A bundled labelled mesh as MESH and LABELS files."""
+    from polyloops.io.examples import labelled_mesh_example
+    from polyloops.io.labelled_mesh import labels_text
+    from polyloops.io.meshes import write_triangle_mesh
+
+    mesh = labelled_mesh_example(name)
+    write_triangle_mesh(tmp_path / f"{name}.obj", mesh)
+    (tmp_path / f"{name}.labels").write_text(labels_text(mesh))
+    return mesh, str(tmp_path / f"{name}.obj"), str(tmp_path / f"{name}.labels")
+
+
+def test_a_valid_guide_is_kept_as_it_is(tmp_path):
+    """A guide the checker finds valid is the result, unchanged: the same labels on the same
+    triangles, nothing changed, its realising polycube; and it can be drawn."""
+    from polyloops.render.segment_result import render_segment
+
+    mesh, _, _ = _written_example(tmp_path, "overhang")
+    done = segment_mesh(mesh.points, mesh.triangles, budget=1.0, guide=mesh.labels)
+    assert done.certified and done.mesh.labels == mesh.labels and done.guide_changed == 0.0
+    assert done.face_map == tuple(range(len(mesh.triangles))) and done.layout is None
+    assert done.polycube is done.report.polycube and done.to_json()["guide_changed"] == 0.0
+    render_segment(done, tmp_path / "kept.png")
+
+
+def test_an_invalid_guide_is_repaired_and_the_area_changed_is_the_area_labelled_otherwise(tmp_path):
+    """Sokolov's ramp (invalid): the result is certified, and ``guide_changed`` is the share of
+    the area whose label is not the guide's, measured again on the output's triangles through
+    their input triangles."""
+    from polyloops.segment.surface import surface_of
+
+    mesh, _, _ = _written_example(tmp_path, "sokolov-ramp")
+    assert check_segmentation(mesh).valid is False
+    done = segment_mesh(mesh.points, mesh.triangles, budget=2.0, guide=mesh.labels)
+    assert done.certified and done.report.valid is True
+    out = surface_of(done.mesh.points, done.mesh.triangles)
+    differs = np.array([label != mesh.labels[p] for label, p in zip(done.mesh.labels, done.face_map,
+                                                                     strict=True)])
+    assert done.guide_changed == pytest.approx(out.areas[differs].sum() / out.areas.sum(), abs=1e-9)
+    assert 0 < done.guide_changed < 1
+
+
+def test_segment_guide_on_the_command_line(tmp_path, capsys):
+    _, mesh, labels = _written_example(tmp_path, "sokolov-ramp")
+    assert main(["segment", mesh, "--guide", labels, "--budget", "1", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["certified"] and 0 < data["guide_changed"] < 1
+    _, mesh, labels = _written_example(tmp_path, "overhang")
+    assert main(["segment", mesh, "--guide", labels]) == 0
+    assert "already valid, so it is kept" in capsys.readouterr().out
+    short = tmp_path / "short.labels"
+    short.write_text("0\n1\n")
+    for bad, words in ((str(short), "short.labels"), (str(tmp_path / "none.labels"), "none.labels")):
+        assert main(["segment", mesh, "--guide", bad, "-o", str(tmp_path / "out.labels")]) == 2
+        err = capsys.readouterr().err
+        assert words in err and err.count("\n") == 1 and not (tmp_path / "out.labels").exists()

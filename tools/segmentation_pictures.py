@@ -28,7 +28,7 @@ if __name__ == "__main__":
                             title=f"the polycube that realises the labels of {name}", size=3.2)
             print(f"wrote segmentation-{name}-polycube.png")
     done = segment_mesh(*MESH_EXAMPLES["pebble"](), budget=600.0, seed=0)  # converges: reproducible
-    assert done.converged
+    assert done.converged and done.layout is not None
     e = done.layout.embedded
     edges = {edge: Axis(lp.axis_in(e.refined)) for lp in e.loops for edge in lp.edges()}
     render_loops_on_surface(e.refined.points, e.refined.triangles, e.region, edges,

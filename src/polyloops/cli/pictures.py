@@ -79,6 +79,8 @@ def cmd_view(args: argparse.Namespace) -> int:
     from polyloops.render.viewer import write_viewer
 
     picture_output(args.output, (".html", ".htm"))
+    if args.labels is not None:
+        return _view_segmentation(args)
     obj = read_structure(args.file)
     if isinstance(obj, LoopStructure) and not obj.oriented:
         raise CliError(f"{args.file}: is a labelled loop structure without sides; orient it first")
@@ -92,6 +94,25 @@ def cmd_view(args: argparse.Namespace) -> int:
         raise write_error(args.output, err) from None
     written(args, None, {"page": "viewer"}, f"wrote {args.output}: open it in a browser (no network needed)")
     return EXIT_OK
+
+
+def _view_segmentation(args: argparse.Namespace) -> int:
+    """``view MESH --labels LABELS``: the labelled mesh beside the polycube that realises it;
+    written whatever the verdict, exit 1 when the labels are invalid."""
+    from polyloops.cli.segmentation import checked_segmentation
+    from polyloops.render.segmentation_viewer import write_segmentation_viewer
+
+    report = checked_segmentation(args.file, args.labels)
+    try:
+        write_segmentation_viewer(report, args.output)
+    except OSError as err:
+        raise write_error(args.output, err) from None
+    verdict = {True: "valid", False: "invalid", None: "undecided"}[report.valid]
+    written(args, None, {"page": "segmentation", "valid": report.valid},
+            f"wrote {args.output}: the labelled mesh ({verdict})"
+            + (", beside its polycube" if report.polycube is not None else "")
+            + "; open it in a browser (no network needed)")
+    return EXIT_INVALID if report.valid is False else EXIT_OK
 
 
 def cmd_gallery(args: argparse.Namespace) -> int:
@@ -214,6 +235,9 @@ def add_commands(command: AddCommand) -> None:
                 "zoom the polycube, show or hide each axis' loops and the corners, hover to name "
                 "faces, zones, loops and corners; exit 1 when it has no polycube")
     p.add_argument("-o", "--output", metavar="OUT", required=True, help="OUT.html")
+    p.add_argument("--labels", metavar="LABELS", help="FILE is a triangle mesh (.obj, .stl or MEDIT .mesh) "
+                   "and LABELS one label 0..5 per triangle: show the labelled segmentation (charts, the "
+                   "witness when invalid) beside the polycube that realises it; exit 1 when invalid")
     p = command("gallery", cmd_gallery, "a catalog as a static site: every class with its picture, name, "
                 "corners, loops per axis, corner categories, chirality and irreducibility, filters by "
                 "these columns, a button that copies the signature, and a viewer page per class "

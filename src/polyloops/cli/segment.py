@@ -37,11 +37,17 @@ def add_command(command: Callable[..., argparse.ArgumentParser]) -> None:
     p.add_argument("--mesh-out", metavar="MESH", help="write the labelled mesh (the input refined along the "
                    "loops; the input triangle of each of its triangles goes to MESH.facemap)")
     p.add_argument("--polycube", metavar="FILE", help="write the polycube of the loops (.json, .obj, ...)")
-    p.add_argument("--png", metavar="FILE", help="draw the labelled mesh (two views, charts outlined)")
+    p.add_argument("--png", metavar="FILE", help="draw the labelled mesh (two views, charts outlined, the "
+                   "loops in their axes' colours) beside the loops' polycube")
+    p.add_argument("--html", metavar="FILE", help="an interactive page (FILE.html): the labelled mesh, its "
+                   "charts and loops, beside the polycube; turn, zoom, show or hide each part")
     p.add_argument("--budget", type=float, default=20.0, metavar="SECONDS",
                    help="seconds for the whole run, most of them searching loop moves (default 20; "
                    "finding a start on a mesh of positive genus can take longer)")
     p.add_argument("--seed", type=int, default=0, help="the seed of the search's move order (default 0)")
+    p.add_argument("--guide", metavar="LABELS", help="a labelling of MESH from any method (one label 0..5 "
+                   "per triangle): return a certified one that keeps as much of it as it can (a valid "
+                   "one unchanged) and report the share of the area labelled otherwise")
     p.add_argument("--start", metavar="START", help="begin from this polycube loop structure of the mesh's "
                    "genus, embedded by plane sections (any symmetry of it): a shipped class name such as "
                    "T32.1, sig:SIGNATURE, example:NAME or a structure or polycube file")
@@ -53,6 +59,8 @@ def cmd_segment(args: argparse.Namespace) -> int:
             check_output(path)
     if args.png:
         picture_output(args.png)
+    if args.html:
+        picture_output(args.html, (".html", ".htm"))
     if args.budget < 0:
         raise CliError(f"--budget {args.budget}: a time budget is not negative")
     from tqdm import tqdm
@@ -85,10 +93,11 @@ def cmd_segment(args: argparse.Namespace) -> int:
         except FormatError as err:  # the readers' errors name the line or the face
             raise CliError(f"{getattr(err, 'where', None) or args.mesh}: {err}") from None
     start = read_start(args.start) if args.start else None
+    guide = read_guide(args.guide, len(triangles)) if args.guide else None
     bar = tqdm(desc="segment", unit="state", disable=None, file=sys.stderr)
     try:
         result = segment_mesh(points, triangles, budget=args.budget, seed=args.seed,
-                              on_step=lambda state: bar.update(1), start=start)
+                              on_step=lambda state: bar.update(1), start=start, guide=guide)
     except SurfaceError as err:
         raise CliError(f"{args.mesh}: {err}") from None
     except StartMismatch as err:
@@ -103,6 +112,19 @@ def cmd_segment(args: argparse.Namespace) -> int:
     finally:
         bar.close()
     return _write(args, result)
+
+
+def read_guide(path: str, triangles: int):
+    """``--guide``: one label per triangle of the mesh, read as ``segmentation`` reads LABELS."""
+    from polyloops.io.files import InputError
+    from polyloops.io.labelled_mesh import LabelledMeshError, read_labels
+
+    try:
+        return read_labels(path, triangles)
+    except InputError as err:
+        raise CliError(str(err)) from None
+    except LabelledMeshError as err:
+        raise CliError(f"{err.where or path}: {err}") from None
 
 
 def read_start(arg: str):
@@ -130,16 +152,25 @@ def _write(args: argparse.Namespace, result) -> int:
     lines = [f"{args.mesh}: certified polycube segmentation: {result.charts} charts, {result.corners} "
              f"corners, {result.loops} loops; fidelity {result.fidelity:.4f} (per-triangle bound "
              f"{result.naive_fidelity:.4f}); {result.seconds:.1f} s",
-             f"  the checker: valid, realised by a polycube of {realised} corners; the layout draws "
-             f"the loops' polycube of {result.polycube.map.num_corners} corners"]
+             f"  the checker: valid, realised by a polycube of {realised} corners; " + (
+                 "the guide was already valid, so it is kept as it is" if result.layout is None else
+                 f"the layout draws the loops' polycube of {result.polycube.map.num_corners} corners")]
+    if result.guide_changed is not None:
+        lines.append(f"  the guide: {100 * result.guide_changed:.2f}% of the area labelled otherwise")
     def labelled_mesh(path: str) -> None:
         write_triangle_mesh(path, result.mesh)
         write_text(path + ".facemap", "".join(f"{p}\n" for p in result.face_map))
 
     def picture(path: str) -> None:
-        from polyloops.render.segmentation import render_segmentation
+        from polyloops.render.segment_result import render_segment
 
-        render_segmentation(result.report, path)
+        render_segment(result, path)
+
+    def page(path: str) -> None:
+        from polyloops.render.segment_result import loop_curves
+        from polyloops.render.segmentation_viewer import write_segmentation_viewer
+
+        write_segmentation_viewer(result.report, path, loop_curves(result))
 
     outputs = [
         (args.output, "output", lambda path: write_text(path, labels_text(result.mesh)),
@@ -147,7 +178,8 @@ def _write(args: argparse.Namespace, result) -> int:
         (args.mesh_out, "mesh_out", labelled_mesh,
          "the labelled mesh, and PATH.facemap: its input triangles"),
         (args.polycube, "polycube", lambda path: write_output(path, result.polycube), "the polycube"),
-        (args.png, "png", picture, "the labelled mesh, drawn"),
+        (args.png, "png", picture, "the labelled mesh and its loops, beside the polycube"),
+        (args.html, "html", page, "an interactive page of the labelled mesh, its loops and polycube"),
     ]
     for path, key, write, what in outputs:
         if not path:

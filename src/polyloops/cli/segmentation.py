@@ -37,6 +37,8 @@ def add_command(command: Callable[..., argparse.ArgumentParser]) -> None:
     p.add_argument("-o", "--output", metavar="POLYCUBE",
                    help="write the polycube that realises the labels (.json, .graph, .obj)")
     p.add_argument("--png", metavar="FILE", help="draw the labelled mesh, with the witness when invalid")
+    p.add_argument("--html", metavar="FILE", help="an interactive page (FILE.html): the labelled mesh, its "
+                   "charts (the witness in red when invalid), beside the realising polycube")
 
 
 def read_labelled_mesh(mesh_arg: str, labels_arg: str | None) -> LabelledMesh:
@@ -87,6 +89,8 @@ def format_report(source: str, report) -> str:
 def cmd_segmentation(args: argparse.Namespace) -> int:
     if args.png:
         picture_output(args.png)
+    if args.html:
+        picture_output(args.html, (".html", ".htm"))
     if args.output:
         check_output(args.output)
     from tqdm import tqdm
@@ -100,22 +104,35 @@ def cmd_segmentation(args: argparse.Namespace) -> int:
         bar.close()
 
 
-def _segmentation(args: argparse.Namespace, step: Callable[[str], None]) -> int:
+def checked_segmentation(mesh_arg: str, labels_arg: str | None, step: Callable[[str], None] = lambda _: None):
+    """The checker's report on the MESH and LABELS arguments; problems name the file."""
     from polyloops.segmentation import check_segmentation
 
-    mesh = read_labelled_mesh(args.mesh, args.labels)
+    mesh = read_labelled_mesh(mesh_arg, labels_arg)
     step("read")
     try:
         report = check_segmentation(mesh)
     except MapError as err:
-        raise CliError(f"{args.mesh}: not a closed oriented surface: {err}") from None
+        raise CliError(f"{mesh_arg}: not a closed oriented surface: {err}") from None
     step("checked")
+    return report
+
+
+def _segmentation(args: argparse.Namespace, step: Callable[[str], None]) -> int:
+    report = checked_segmentation(args.mesh, args.labels, step)
     if args.output:
         if report.polycube is None:
             print(f"polyloops segmentation: {args.output}: not written: no polycube was built "
                   f"({'invalid' if report.valid is False else 'undecided'})", file=sys.stderr)
         else:
             write_output(args.output, report.polycube)
+    if args.html:
+        from polyloops.render.segmentation_viewer import write_segmentation_viewer
+
+        try:
+            write_segmentation_viewer(report, args.html)
+        except OSError as err:
+            raise write_error(args.html, err) from None
     if args.png:
         from polyloops.render.segmentation import render_segmentation
 
@@ -132,5 +149,8 @@ def _segmentation(args: argparse.Namespace, step: Callable[[str], None]) -> int:
     if args.png:
         data["png"] = args.png
         text += f"\ndrew the labelled mesh to {args.png}"
+    if args.html:
+        data["html"] = args.html
+        text += f"\nwrote {args.html}: an interactive page of the labelled mesh"
     print(json.dumps(data, indent=2) if args.json else text)
     return EXIT_INVALID if report.valid is False else EXIT_OK

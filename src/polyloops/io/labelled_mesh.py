@@ -28,8 +28,8 @@ from polyloops.io.formats import FormatError
 from polyloops.surface.construct import labelled_mesh_from_polycube  # noqa: F401  (the doctest's)
 from polyloops.surface.mesh import LabelledMesh, MeshError, Point, Triangle
 
-__all__ = ["LabelledMeshError", "labels_text", "parse_labels", "read_labelled_mesh", "read_triangle_mesh",
-           "triangle_obj_text"]
+__all__ = ["LabelledMeshError", "labels_text", "parse_labels", "read_labelled_mesh", "read_labels",
+           "read_triangle_mesh", "triangle_obj_text"]
 
 MESH_SUFFIXES = (".obj", ".stl", ".mesh")
 
@@ -178,7 +178,7 @@ def read_labelled_mesh(mesh: str | os.PathLike[str], labels: str | os.PathLike[s
     """
     import tempfile
 
-    from polyloops.io.files import check_regular, read_bytes, read_text
+    from polyloops.io.files import check_regular, read_bytes
 
     name = os.fspath(mesh)
     if name == "-":  # standard input: a file name is needed by meshio, so keep it in one
@@ -192,11 +192,26 @@ def read_labelled_mesh(mesh: str | os.PathLike[str], labels: str | os.PathLike[s
     else:
         check_regular(name)  # a regular file of reasonable size (meshio would read a FIFO forever)
         points, triangles = _triangles(name, name)
+    return LabelledMesh(points, triangles, read_labels(labels, len(triangles)))
+
+
+def read_labels(path: str | os.PathLike[str], count: int) -> tuple[Direction, ...]:
+    """A labels file (one integer ``0..5`` per triangle, ``count`` of them), read through
+    :mod:`polyloops.io.files`.
+
+    Raises
+    ------
+    InputError
+        When the file cannot be read (the message names it).
+    LabelledMeshError
+        When it is not a labels file for ``count`` triangles; ``where`` names the file.
+    """
+    from polyloops.io.files import read_text
+
     try:
-        parsed = parse_labels(read_text(labels), len(triangles))
+        return parse_labels(read_text(path), count)
     except LabelledMeshError as err:
-        raise LabelledMeshError(str(err), where=os.fspath(labels)) from None
-    return LabelledMesh(points, triangles, parsed)
+        raise LabelledMeshError(str(err), where=os.fspath(path)) from None
 
 
 def _triangles(name: str, path: str) -> tuple[tuple[Point, ...], tuple[Triangle, ...]]:

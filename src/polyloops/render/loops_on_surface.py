@@ -11,14 +11,13 @@ from __future__ import annotations
 import os
 
 import numpy as np
-from matplotlib.colors import to_rgb
 from matplotlib.patches import Patch
 
 from polyloops.core.directions import Axis
 from polyloops.render.colours import AXIS_COLOUR
 from polyloops.render.figure import new_figure, save_figure
 from polyloops.render.projection import View
-from polyloops.render.segmentation import VIEWS, _neighbours, mesh_view
+from polyloops.render.segmentation import LOOP_RGBA, VIEWS, loop_axes, loop_pixels, mesh_view
 
 __all__ = ["render_loops_on_surface"]
 
@@ -36,24 +35,9 @@ def _draw(ax, points: np.ndarray, tris: np.ndarray, region: np.ndarray, axis_of:
     grey = 0.55 + 0.4 * shade[ids[shown]]
     image[shown, :3] = grey[:, None]
     image[shown, 3] = 1.0
-    a, b = _neighbours(ids)
-    ta, tb = ids.ravel()[a], ids.ravel()[b]
-    both = (ta >= 0) & (tb >= 0)
-    edge = both & (region[np.maximum(ta, 0)] != region[np.maximum(tb, 0)])
-    colours = np.array([(*to_rgb(AXIS_COLOUR[axis]), 1.0) for axis in Axis])
-    line = np.full(shape[0] * shape[1], -1, dtype=np.int64)  # per pixel, the axis of a loop drawn there
-    for side in (a, b):
-        tri = ids.ravel()[side[edge]]
-        axis = axis_of[tri]
-        known = axis >= 0
-        line[side[edge][known]] = axis[known]
-    line = line.reshape(shape)
-    for k in (0, 1):  # lines three pixels wide, on the surface only
-        for shift in (1, -1):
-            moved = np.roll(line, shift, k)
-            line = np.where((line < 0) & (moved >= 0), moved, line)
-    drawn = (line >= 0) & shown
-    image[drawn] = colours[line[drawn]]
+    line = loop_pixels(ids, region, axis_of)
+    drawn = line >= 0
+    image[drawn] = LOOP_RGBA[line[drawn]]
     ax.imshow(image, extent=seen_from.extent, interpolation="nearest")
     ax.set_aspect("equal")
     ax.axis("off")
@@ -65,12 +49,7 @@ def render_loops_on_surface(points: np.ndarray, triangles: np.ndarray, region: n
     """Two opposite views of the surface with its loops: ``region`` per triangle (the loops are
     the boundaries between regions), ``loop_edges`` each loop edge ``(u, v)`` (``u < v``) with
     its loop's axis."""
-    axis_of = np.full(len(triangles), -1, dtype=np.int64)
-    for t, (a, b, c) in enumerate(np.asarray(triangles).tolist()):
-        for u, v in ((a, b), (b, c), (c, a)):
-            axis = loop_edges.get((min(u, v), max(u, v)))
-            if axis is not None:
-                axis_of[t] = int(axis)
+    axis_of = loop_axes(triangles, loop_edges)
     fig = new_figure(9.0, 4.6)
     for ax, view in zip(fig.subplots(1, 2), VIEWS, strict=True):
         _draw(ax, np.asarray(points, dtype=float), np.asarray(triangles), np.asarray(region), axis_of, view)

@@ -1,5 +1,5 @@
 """Pictures of labelled segmentations: triangles coloured by label, chart boundaries in black,
-and, for an invalid one, the witness in red."""
+for an invalid one the witness in red, and loops drawn on the surface where they are known."""
 
 from __future__ import annotations
 
@@ -10,10 +10,11 @@ from itertools import pairwise
 from typing import Any
 
 import numpy as np
+from matplotlib.colors import to_rgb
 from matplotlib.patches import Patch
 
-from polyloops.core.directions import Direction
-from polyloops.render.colours import direction_colour
+from polyloops.core.directions import Axis, Direction
+from polyloops.render.colours import AXIS_COLOUR, direction_colour
 from polyloops.render.figure import new_figure, save_figure
 from polyloops.render.projection import View
 from polyloops.render.raster import triangle_buffer
@@ -40,6 +41,45 @@ def _neighbours(ids: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     flat = np.arange(h * w).reshape(h, w)
     return (np.concatenate([flat[:, :-1].ravel(), flat[:-1, :].ravel()]),
             np.concatenate([flat[:, 1:].ravel(), flat[1:, :].ravel()]))
+
+
+def loop_pixels(ids: np.ndarray, region: np.ndarray, axis_of: np.ndarray, width: int = 1) -> np.ndarray:
+    """Per pixel of a depth buffer's triangle ``ids``, the axis of a loop drawn there (-1 for
+    none): a pixel is on a loop where its neighbour shows a triangle of another ``region`` and
+    it takes ``axis_of`` its triangle (the axis of a loop edge of it, -1 if none); lines are
+    widened by ``width`` pixels each way, on the surface only."""
+    shape = ids.shape
+    a, b = _neighbours(ids)
+    ta, tb = ids.ravel()[a], ids.ravel()[b]
+    edge = (ta >= 0) & (tb >= 0) & (region[np.maximum(ta, 0)] != region[np.maximum(tb, 0)])
+    line = np.full(shape[0] * shape[1], -1, dtype=np.int64)
+    for side in (a, b):
+        tri = ids.ravel()[side[edge]]
+        axis = axis_of[tri]
+        known = axis >= 0
+        line[side[edge][known]] = axis[known]
+    line = line.reshape(shape)
+    for _ in range(width):
+        for k in (0, 1):
+            for shift in (1, -1):
+                moved = np.roll(line, shift, k)
+                line = np.where((line < 0) & (moved >= 0), moved, line)
+    return np.where(ids >= 0, line, -1)
+
+
+def loop_axes(triangles: np.ndarray, loop_edges: dict[tuple[int, int], Axis]) -> np.ndarray:
+    """Per triangle, the axis of a loop edge of it (``loop_edges``: ``(u, v)`` with ``u < v``),
+    -1 when it has none."""
+    axis_of = np.full(len(triangles), -1, dtype=np.int64)
+    for t, (a, b, c) in enumerate(np.asarray(triangles).tolist()):
+        for u, v in ((a, b), (b, c), (c, a)):
+            axis = loop_edges.get((min(u, v), max(u, v)))
+            if axis is not None:
+                axis_of[t] = int(axis)
+    return axis_of
+
+
+LOOP_RGBA = np.array([(*to_rgb(AXIS_COLOUR[axis]), 1.0) for axis in Axis])
 
 
 def hot_parts(report: Any) -> tuple[set[int], set[int]]:
@@ -94,7 +134,8 @@ def mesh_view(points: np.ndarray, tris: np.ndarray, view: View, pixels: int = PI
     return MeshView(ids, pu, pv, normals, float(lo_u), float(hi_v), float(step))
 
 
-def draw_segmentation(ax, report, view: View, pixels: int = PIXELS) -> None:
+def draw_segmentation(ax, report, view: View, pixels: int = PIXELS,
+                      loops: tuple[np.ndarray, np.ndarray] | None = None) -> None:
     """Draw one view from a depth buffer of the mesh's front-facing triangles
     (:func:`~polyloops.render.raster.triangle_buffer`): each pixel shows the nearest triangle
     in its label's colour (charts that break a local rule of their own, or whose turning number
@@ -102,9 +143,10 @@ def draw_segmentation(ax, report, view: View, pixels: int = PIXELS) -> None:
     is a chart boundary where its neighbour shows another chart (red, and thicker, where
     either triangle lies on the witness or a violation), and the witness corners that are
     visible are marked.  Everything is decided per pixel, so nothing hidden shows through,
-    and the cost grows with the triangles plus the pixels, not their product."""
-    from matplotlib.colors import to_rgb
-
+    and the cost grows with the triangles plus the pixels, not their product.  With ``loops``
+    (per triangle its region and the axis of a loop edge of it, as
+    :func:`~polyloops.render.loops_on_surface.loop_pixels` takes them) the loops are drawn
+    over the labels in their axes' colours."""
     seg = report.segmentation
     mesh = seg.mesh
     witness = report.global_.witness
@@ -146,6 +188,11 @@ def draw_segmentation(ax, report, view: View, pixels: int = PIXELS) -> None:
     for axis in (0, 1):  # the witness's lines a little wider than the others
         hot = hot | np.roll(hot, 1, axis)
     image[hot & shown] = (*to_rgb(WITNESS_COLOUR), 1.0)
+    if loops is not None:
+        # outlined in black: a loop runs over charts of its own colour family
+        image[loop_pixels(ids, *loops, width=2) >= 0] = (0.0, 0.0, 0.0, 1.0)
+        line = loop_pixels(ids, *loops)
+        image[line >= 0] = LOOP_RGBA[line[line >= 0]]
     ax.imshow(image, extent=(lo_u, lo_u + shape[1] * step, hi_v - shape[0] * step, hi_v),
               interpolation="nearest")
     if witness is not None and witness.corners:

@@ -42,10 +42,12 @@ def naive_labels(s: Surface) -> tuple[Direction, ...]:
     return tuple(Direction(int(k)) for k in (s.normals @ DIRECTION_VECTORS.T).argmax(axis=1))
 
 
-def fidelity(surface: Surface, labels: Sequence[Direction]) -> float:
-    """The area-weighted mean of ``n . label`` over the triangles."""
+def fidelity(surface: Surface, labels: Sequence[Direction], target: np.ndarray | None = None) -> float:
+    """The area-weighted mean of ``n . label`` over the triangles; with ``target`` (a unit
+    vector per triangle, such as a guide's labels) the mean of ``target . label`` instead."""
     vectors = DIRECTION_VECTORS[np.array([int(d) for d in labels])]
-    return float((surface.areas * (surface.normals * vectors).sum(axis=1)).sum() / surface.areas.sum())
+    wanted = surface.normals if target is None else target
+    return float((surface.areas * (wanted * vectors).sum(axis=1)).sum() / surface.areas.sum())
 
 
 def naive_fidelity(surface: Surface) -> float:

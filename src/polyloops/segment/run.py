@@ -10,10 +10,12 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable, Iterator, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
+from polyloops.core.directions import Direction
+from polyloops.core.duality import dualize
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LoopStructure
 from polyloops.segment.certify import layout_problem
@@ -21,7 +23,7 @@ from polyloops.segment.deform import polycube_heights
 from polyloops.segment.embedded import NotAStructure, SurfaceLoop
 from polyloops.segment.from_polycube import UncertifiedError
 from polyloops.segment.grid import cut_grid, mend
-from polyloops.segment.labellings import fidelity, naive_fidelity
+from polyloops.segment.labellings import DIRECTION_VECTORS, fidelity, naive_fidelity
 from polyloops.segment.layout import Layout, lay_out
 from polyloops.segment.refine import Refined
 from polyloops.segment.search import (
@@ -59,8 +61,9 @@ class SegmentResult:
     seconds: float
     states: int
     converged: bool  # the search ended with no improving move, not by the budget
-    layout: Layout  # the loops, regions, corners, paths and patches the labels come from
+    layout: Layout | None  # the loops, regions, corners, paths and patches (None: a valid guide kept)
     start: str  # how the search began: the cube, a grid, or the given start and its turn
+    guide_changed: float | None = None  # with a guide: the share of the area labelled otherwise
 
     @property
     def certified(self) -> bool:
@@ -84,7 +87,8 @@ class SegmentResult:
                 "loops": self.loops, "polycube_corners": self.polycube.map.num_corners,
                 "fidelity": round(self.fidelity, 6), "naive_fidelity": round(self.naive_fidelity, 6),
                 "backwards": _rounded(backwards_fraction(self.report)), "seconds": round(self.seconds, 2),
-                "states": self.states, "converged": self.converged, "start": self.start}
+                "states": self.states, "converged": self.converged, "start": self.start,
+                **({} if self.guide_changed is None else {"guide_changed": round(self.guide_changed, 6)})}
 
 
 def _rounded(x: float | None) -> float | None:
@@ -107,36 +111,60 @@ def _certify(lay: Layout) -> tuple[LabelledMesh, SegmentationReport] | str:
 
 def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, planes: int = 9,
                     price: float = 0.002, on_step: Callable[[State], None] | None = None,
-                    start: LoopStructure | None = None) -> SegmentResult:
+                    start: LoopStructure | None = None,
+                    guide: Sequence[Direction] | None = None) -> SegmentResult:
     """:func:`segment_mesh` on a checked surface: the search from each start in turn (the
-    given one, or those of :func:`_starts`) until one ends certified."""
+    given one, or those of :func:`_starts`) until one ends certified; a ``guide`` that is
+    already a valid labelling is returned as it is."""
     began = time.monotonic()
+    target = None
+    if guide is not None:
+        if len(guide) != len(surface.triangles):
+            raise ValueError(f"a guide of {len(guide)} labels for {len(surface.triangles)} triangles")
+        kept = _valid_guide(surface, guide, began)
+        if kept is not None:
+            return kept
+        target = DIRECTION_VECTORS[np.array([int(d) for d in guide])]
+    knobs = SearchSettings(budget, seed, planes, price, target)
     if start is not None:
         r, loops, placed = embed_start(surface, start, GRIDS, budget)
         how = f"the given start, turned by {placed.symmetry}" + (
             " (sections of the polycube-like deformation)" if placed.deformed else "")
-        return _search_from(surface, (r, loops, list(placed.curves), how), began, budget, seed, planes, price,
-                            on_step)
+        return _search_from(surface, (r, loops, list(placed.curves), how), began, knobs, on_step)
     failed = []
     for found in _starts(surface, planes, budget, began):
         try:
-            return _search_from(surface, found, began, budget, seed, planes, price, on_step)
+            return _search_from(surface, found, began, knobs, on_step)
         except UncertifiedError as err:
             failed.append(f"from {found[3]}: {err}")
     raise UncertifiedError("; ".join(failed))
 
 
+def _valid_guide(surface: Surface, guide: Sequence[Direction], began: float) -> SegmentResult | None:
+    """The guide itself as the result when the checker finds it valid (nothing changed)."""
+    mesh = LabelledMesh(tuple(map(tuple, surface.points.tolist())),
+                        tuple(map(tuple, surface.triangles.tolist())), tuple(guide))
+    report = check_segmentation(mesh)
+    if report.valid is not True or report.polycube is None:
+        return None
+    loops = len(dualize(report.polycube).loops)
+    return SegmentResult(mesh, tuple(range(len(surface.triangles))), report.polycube, report, surface.genus,
+                         len(surface.triangles), loops, fidelity(surface, guide), naive_fidelity(surface),
+                         time.monotonic() - began, 0, True, None, "the guide, already valid", 0.0)
+
+
 def _search_from(surface: Surface, found: tuple[Refined, list[SurfaceLoop], list[int], str], began: float,
-                 budget: float, seed: int, planes: int, price: float,
-                 on_step: Callable[[State], None] | None) -> SegmentResult:
-    """The search from one start, its last states laid out and certified."""
+                 knobs: SearchSettings, on_step: Callable[[State], None] | None) -> SegmentResult:
+    """The search from one start, its last states laid out and certified; the finalist whose
+    labels score best (fidelity, or agreement with the guide, less the loops' price) is kept."""
+    budget, price = knobs.budget, knobs.price
     r, loops, first, how = found
     # the budget covers the whole run: the cut above, the search, and a reserve for the layout
     # and the checks of the finalists after it (each about 0.5 to 1.5 s on the shared meshes);
     # a start that took longer (a grid mended at positive genus) still leaves the search a
     # quarter of the budget, as a start is seldom the best state and may not lay out
     left = budget - (time.monotonic() - began)
-    settings = SearchSettings(max(SEARCH_SHARE * budget, 0.65 * left), seed, planes, price)
+    settings = replace(knobs, budget=max(SEARCH_SHARE * budget, 0.65 * left))
     searched = greedy_search(r, loops, first, settings, on_step)
     pool = searched.loops  # the candidates and the paths the search drew
     path = searched.states
@@ -160,18 +188,27 @@ def _search_from(surface: Surface, found: tuple[Refined, list[SurfaceLoop], list
         if isinstance(checked, str):
             why = checked
             continue
-        fid = fidelity(lay.embedded.refined.surface, lay.labels)
-        score = fid - price * len(state.loops)
+        refined = lay.embedded.refined
+        fid = fidelity(refined.surface, lay.labels)
+        aim = fid if knobs.guide is None else fidelity(refined.surface, lay.labels,
+                                                       knobs.guide[refined.parent])
+        score = aim - price * len(state.loops)
         if best is None or score > best[0]:
             best = (score, fid, state, lay, checked)
     if best is None:
         raise UncertifiedError(f"no state of the search was certified: {why}")
     _, fid, state, lay, (mesh, report) = best
     refined = lay.embedded.refined
+    changed = None
+    if knobs.guide is not None:  # the share of the area whose label is not the guide's
+        wanted = knobs.guide[refined.parent]
+        given = DIRECTION_VECTORS[np.array([int(d) for d in lay.labels])]
+        areas = refined.surface.areas
+        changed = float(areas[(wanted * given).sum(axis=1) < 0.5].sum() / areas.sum())
     return SegmentResult(mesh, tuple(int(p) for p in refined.parent.tolist()), lay.polycube, report,
                          surface.genus, len(surface.triangles), len(state.loops), fid,
                          naive_fidelity(surface), time.monotonic() - began, len(path), searched.converged,
-                         lay, how)
+                         lay, how, changed)
 
 
 SEARCH_SHARE = 0.25  # of the budget, the least the search is given whatever the start took
@@ -246,13 +283,17 @@ def segment_mesh(points: Sequence[Sequence[float]] | np.ndarray,
                  triangles: Sequence[Sequence[int]] | np.ndarray, budget: float = 20.0, seed: int = 0,
                  planes: int = 9, price: float = 0.002,
                  on_step: Callable[[State], None] | None = None,
-                 start: LoopStructure | None = None) -> SegmentResult:
+                 start: LoopStructure | None = None,
+                 guide: Sequence[Direction] | None = None) -> SegmentResult:
     """A certified polycube segmentation of the closed triangle mesh ``points``, ``triangles``
     (counter-clockwise seen from outside), by the greedy loop search of
     :mod:`~polyloops.segment.search` within ``budget`` seconds (its order fixed by ``seed``):
     from ``start`` when given (a polycube loop structure of the mesh's genus, embedded by
     :mod:`~polyloops.segment.start`), else from the cube at genus 0 and from a grid of section
-    curves at any genus.
+    curves at any genus.  With a ``guide`` (a label per triangle, from any method, valid or
+    not) the search keeps as much of it as it can instead of following the normals: a valid
+    guide is returned unchanged, and otherwise ``guide_changed`` reports the share of the
+    area labelled otherwise.
 
     Raises
     ------
@@ -266,4 +307,4 @@ def segment_mesh(points: Sequence[Sequence[float]] | np.ndarray,
     UncertifiedError
         When no state of the search passed both checks (nothing is returned then).
     """
-    return segment_surface(surface_of(points, triangles), budget, seed, planes, price, on_step, start)
+    return segment_surface(surface_of(points, triangles), budget, seed, planes, price, on_step, start, guide)

@@ -70,12 +70,15 @@ MIN_REGION_SHARE = 0.002  # a move leaving a region smaller than this share of t
 @dataclass(frozen=True)
 class SearchSettings:
     """The search's knobs: the time ``budget`` in seconds, the ``seed`` of its move order, the
-    candidate ``planes`` per axis, the ``price`` of a loop in fidelity."""
+    candidate ``planes`` per axis, the ``price`` of a loop in fidelity, and a ``guide`` (per
+    input triangle the unit vector of a label to keep) that the score follows instead of the
+    normals."""
 
     budget: float = 20.0
     seed: int = 0
     planes: int = 9
     price: float = 0.002
+    guide: np.ndarray | None = field(default=None, compare=False)  # per input triangle, a unit vector
 
 
 @dataclass(frozen=True)
@@ -175,13 +178,14 @@ def crossing_only(loops: list[SurfaceLoop], chosen: list[int]) -> list[int]:
 
 class _Scorer:
     """The fidelity a state's labels would have: each triangle labelled by the normal of the
-    face of the nearest crossing in its region (along the triangles' adjacency)."""
+    face of the nearest crossing in its region (along the triangles' adjacency); with a
+    ``guide`` (per input triangle a unit vector), their agreement with it instead."""
 
-    def __init__(self, r: Refined):
+    def __init__(self, r: Refined, guide: np.ndarray | None = None):
         self.r = r
         surface = r.surface
         self.areas = surface.areas
-        self.normals = surface.normals
+        self.normals = surface.normals if guide is None else guide[r.parent]
         centroid = r.points[r.triangles].mean(axis=1)
         self.pairs, self.edge_keys = r.adjacency
         self.lengths = np.linalg.norm(centroid[self.pairs[:, 0]] - centroid[self.pairs[:, 1]], axis=1) + 1e-12
@@ -241,7 +245,7 @@ def greedy_search(r: Refined, loops: Sequence[Loop], start: list[int], settings:
     deadline = time.monotonic() + settings.budget
     loops = list(loops)  # the paths drawn are added to a copy, returned with the states
     rng = random.Random(settings.seed)
-    scorer = _Scorer(r)
+    scorer = _Scorer(r, settings.guide)
 
     def state(chosen: frozenset[int]) -> State | None:
         e = _valid(r, [loops[i] for i in sorted(chosen)])
