@@ -207,7 +207,7 @@ def test_notebook_viewers_share_one_plotly(chromium, tmp_path):
 @pytest.mark.slow  # a segmentation run and a page of 50,000 triangles: several seconds
 def test_the_segmentation_page_shows_mesh_and_polycube_and_toggles_loops_on_both(chromium, tmp_path, capsys):
     out = tmp_path / "egg.html"
-    assert main(["segment", "example:egg", "--budget", "2", "--html", str(out)]) == 0
+    assert main(["segment", "example:egg", "--budget", "2", "--search-only", "--html", str(out)]) == 0
     page, errors = viewer_page(chromium, out)
     assert len(page.query_selector_all(".js-plotly-plot canvas")) >= 1 and ink(page.screenshot()) > 0.1
     scenes = page.evaluate("[...new Set(document.querySelector('.js-plotly-plot').data.map(t => t.scene))]")

@@ -48,6 +48,9 @@ def add_command(command: Callable[..., argparse.ArgumentParser]) -> None:
     p.add_argument("--guide", metavar="LABELS", help="a labelling of MESH from any method (one label 0..5 "
                    "per triangle): return a certified one that keeps as much of it as it can (a valid "
                    "one unchanged) and report the share of the area labelled otherwise")
+    p.add_argument("--search-only", action="store_true", help="the search's segmentation, with its loops, "
+                   "even where the mesh's own per-triangle or graph-cut labelling is valid and more faithful "
+                   "(by default that one is returned)")
     p.add_argument("--start", metavar="START", help="begin from this polycube loop structure of the mesh's "
                    "genus, embedded by plane sections (any symmetry of it): a shipped class name such as "
                    "T32.1, sig:SIGNATURE, example:NAME or a structure or polycube file")
@@ -97,7 +100,8 @@ def cmd_segment(args: argparse.Namespace) -> int:
     bar = tqdm(desc="segment", unit="state", disable=None, file=sys.stderr)
     try:
         result = segment_mesh(points, triangles, budget=args.budget, seed=args.seed,
-                              on_step=lambda state: bar.update(1), start=start, guide=guide)
+                              on_step=lambda state: bar.update(1), start=start, guide=guide,
+                              direct=not args.search_only)
     except SurfaceError as err:
         raise CliError(f"{args.mesh}: {err}") from None
     except StartMismatch as err:
@@ -153,7 +157,7 @@ def _write(args: argparse.Namespace, result) -> int:
              f"corners, {result.loops} loops; fidelity {result.fidelity:.4f} (per-triangle bound "
              f"{result.naive_fidelity:.4f}); {result.seconds:.1f} s",
              f"  the checker: valid, realised by a polycube of {realised} corners; " + (
-                 "the guide was already valid, so it is kept as it is" if result.layout is None else
+                 f"{result.start}: kept, no loops drawn" if result.layout is None else
                  f"the layout draws the loops' polycube of {result.polycube.map.num_corners} corners")]
     if result.guide_changed is not None:
         lines.append(f"  the guide: {100 * result.guide_changed:.2f}% of the area labelled otherwise")

@@ -23,6 +23,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from itertools import pairwise
 
 import numpy as np
 from scipy.sparse import coo_matrix
@@ -39,6 +40,7 @@ __all__ = ["Layout", "lay_out"]
 
 MAX_ROUNDS = 6  # refinements before a layout is given up (each at least halves the edges in the way)
 CORNER_TRIES = 4  # corner vertices tried in a region before it is refined
+FEATURE_DISCOUNT = 0.2  # a length of path along a change of the per-triangle label costs this much
 DEPTH_WEIGHT = 0.25  # how much being deep inside a region counts beside agreeing with its faces
 
 
@@ -78,8 +80,10 @@ def relocate(r: Refined, loops: Sequence[Loop]) -> list[Loop]:
     return out
 
 
-def lay_out(r: Refined, loops: Sequence[Loop]) -> Layout:
-    """The layout of the structure the ``loops`` make on ``r`` (refined where needed).
+def lay_out(r: Refined, loops: Sequence[Loop], follow_labels: bool = True) -> Layout:
+    """The layout of the structure the ``loops`` make on ``r`` (refined where needed);
+    ``follow_labels``: the sides split and the paths drawn where the per-triangle labels
+    change (see :func:`_split_point`), else at the sides' middles and by length alone.
 
     Raises
     ------
@@ -92,7 +96,7 @@ def lay_out(r: Refined, loops: Sequence[Loop]) -> Layout:
             polycube = e.polycube
         except (ValueError, PolyloopsError) as err:
             raise NotAStructure(f"the structure has no polycube: {err}") from None
-        attempt = _attempt(e)
+        attempt = _attempt(e, follow_labels)
         if isinstance(attempt, set):
             r = split_edges(r, attempt)
             loops = relocate(r, loops)
@@ -131,7 +135,7 @@ def _boundary_cycle(tris: np.ndarray, region: np.ndarray, g: int, mine: np.ndarr
 Paths = tuple[tuple[tuple[int, ...], ...], ...]  # per region, its paths (vertex sequences)
 
 
-def _attempt(e: Embedded) -> tuple[tuple[int, ...], Paths, np.ndarray] | set:
+def _attempt(e: Embedded, follow_labels: bool = True) -> tuple[tuple[int, ...], Paths, np.ndarray] | set:
     """Corners, paths and patches, or the edges to split first."""
     r = e.refined
     tris, pts = r.triangles, r.points
@@ -165,7 +169,8 @@ def _attempt(e: Embedded) -> tuple[tuple[int, ...], Paths, np.ndarray] | set:
             arc = cycle[i:end + 1] if end > i else cycle[i:] + cycle[:end + 1]
             key = frozenset(arc)
             if key not in middle:
-                point = _middle(arc, pts, reaches_inside)
+                point = (_split_point(e, arc, crossing_face, reaches_inside) if follow_labels
+                         else _middle(arc, pts, reaches_inside))
                 if point is None:  # room for a path to leave the side: split the triangles at it
                     to_split |= _all_edges(tris[[t for v in arc for t in r.incident[v]]])
                     continue
@@ -177,7 +182,8 @@ def _attempt(e: Embedded) -> tuple[tuple[int, ...], Paths, np.ndarray] | set:
     corners, paths = [], []
     patch = np.full(len(tris), -1, dtype=np.int64)
     for g in range(count):
-        found = _region_layout(e, triangles_of[g], cycles[g], sides[g], owner, crossing_face)
+        found = _region_layout(e, triangles_of[g], cycles[g], sides[g], owner, crossing_face,
+                               FEATURE_DISCOUNT if follow_labels else 1.0)
         if isinstance(found, set):
             to_split |= found
             continue
@@ -189,6 +195,47 @@ def _attempt(e: Embedded) -> tuple[tuple[int, ...], Paths, np.ndarray] | set:
     if to_split:
         return to_split
     return tuple(corners), tuple(paths), patch
+
+
+def _split_point(e: Embedded, arc: list[int], crossing_face: dict[int, int],
+                 usable: Callable[[int], bool]) -> int | None:
+    """Where the paths of the two regions beside a side meet it: the patch of the crossing at
+    one end of the side runs up to this point, the other's on from it, so the point is chosen
+    where the triangles along the side agree best with that split (the per-triangle labels
+    change there), the one nearest the middle among equals (:func:`_middle`); ``None`` when
+    no inner vertex is usable."""
+    r = e.refined
+    first, last = (e.polycube.face_normal(crossing_face[v]) for v in (arc[0], arc[-1]))
+    if first is None or last is None or first == last:
+        return _middle(arc, r.points, usable)
+    ends = (first, last)
+    surface = r.surface
+    beside = np.array([[r.owner[u, v], r.owner[v, u]] for u, v in pairwise(arc)])
+    weight = surface.areas[beside]  # per edge of the side, its two triangles
+    agree = [(weight * (surface.normals[beside] @ np.array(d.vector, dtype=float))).sum(axis=1) for d in ends]
+    score = split_scores(agree[0], agree[1])
+    inner = [i for i in range(1, len(arc) - 1) if usable(arc[i])]
+    if not inner:
+        return None
+    best = max(score[i] for i in inner)
+    near = [arc[i] for i in inner if score[i] >= best - SPLIT_TOLERANCE * float(weight.sum())]
+    return _middle(arc, r.points, lambda v: v in near and usable(v))
+
+
+def split_scores(first: np.ndarray, last: np.ndarray) -> np.ndarray:
+    """For a side of ``k`` edges, whose ``i``-th edge's triangles agree ``first[i]`` with the
+    patch at its first end and ``last[i]`` with the one at its last end: the agreement of
+    splitting at each of its ``k + 1`` vertices (the edges before the split with the first
+    patch, the rest with the last), by two running sums.
+
+    >>> split_scores(np.array([1.0, 1.0, 0.0]), np.array([0.0, 0.0, 1.0])).tolist()  # best: after two
+    [1.0, 2.0, 3.0, 2.0]
+    """
+    return (np.concatenate([[0.0], np.cumsum(first)])
+            + np.concatenate([np.cumsum(last[::-1])[::-1], [0.0]]))
+
+
+SPLIT_TOLERANCE = 0.02  # splits within this share of the side's triangles' area of the best are equal
 
 
 def _middle(arc: list[int], pts: np.ndarray, usable: Callable[[int], bool]) -> int | None:
@@ -205,7 +252,8 @@ def _middle(arc: list[int], pts: np.ndarray, usable: Callable[[int], bool]) -> i
 
 
 def _region_layout(e: Embedded, mine: np.ndarray, cycle: list[int], sides: list[tuple[int, int]],
-                   owner: dict[tuple[int, int], int], crossing_face: dict[int, int]
+                   owner: dict[tuple[int, int], int], crossing_face: dict[int, int],
+                   discount: float = FEATURE_DISCOUNT
                    ) -> tuple[int, tuple[tuple[int, ...], ...], dict[int, int]] | set:
     r = e.refined
     tris, pts = r.triangles, r.points
@@ -231,7 +279,12 @@ def _region_layout(e: Embedded, mine: np.ndarray, cycle: list[int], sides: list[
     # paths run inside the region: an edge with an end on the boundary only to a side's middle
     bu, bv = boundary[pairs[:, 0]], boundary[pairs[:, 1]]
     usable = ~(bu & bv) & (~bu | ends[pairs[:, 0]]) & (~bv | ends[pairs[:, 1]])
-    edges = list(zip(lu[usable].tolist(), lv[usable].tolist(), lengths[usable].tolist(), strict=True))
+    # an edge where the per-triangle labels change is cheap: the fidelity-best boundary between
+    # two patches runs where the normal is as near one's direction as the other's
+    naive = _naive_label(r)
+    changes = np.array([naive[owner[a, b]] != naive[owner[b, a]] for a, b in pairs.tolist()], dtype=bool)
+    costs = lengths * np.where(changes, discount, 1.0)
+    edges = list(zip(lu[usable].tolist(), lv[usable].tolist(), costs[usable].tolist(), strict=True))
     degree = np.bincount(np.concatenate([lu[usable], lv[usable]]), minlength=len(verts))
     targets = [int(index[m]) for _, m in sides]
     # the corner: an inner vertex with a way out to each side, where the surface's normal best
@@ -273,6 +326,13 @@ def _region_layout(e: Embedded, mine: np.ndarray, cycle: list[int], sides: list[
             return _all_edges(local_tris)
         face_of_sector[s] = crossing_face[c]
     return corner, region_paths, {t: face_of_sector[int(sector[i])] for t, i in local.items()}
+
+
+def _naive_label(r: Refined) -> np.ndarray:
+    """Per triangle of ``r``, the direction nearest its normal (as an index)."""
+    from polyloops.segment.labellings import DIRECTION_VECTORS
+
+    return (r.surface.normals @ DIRECTION_VECTORS.T).argmax(axis=1)
 
 
 def _direction_sum(e: Embedded, sides: list[tuple[int, int]], crossing_face: dict[int, int]) -> np.ndarray:

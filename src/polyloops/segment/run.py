@@ -20,10 +20,16 @@ from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LoopStructure
 from polyloops.segment.certify import layout_problem
 from polyloops.segment.deform import polycube_heights
-from polyloops.segment.embedded import NotAStructure, SurfaceLoop
+from polyloops.segment.embedded import Loop, NotAStructure, SurfaceLoop
 from polyloops.segment.from_polycube import UncertifiedError
 from polyloops.segment.grid import cut_grid, mend
-from polyloops.segment.labellings import DIRECTION_VECTORS, fidelity, naive_fidelity
+from polyloops.segment.labellings import (
+    DIRECTION_VECTORS,
+    fidelity,
+    graphcut_labels,
+    naive_fidelity,
+    naive_labels,
+)
 from polyloops.segment.layout import Layout, lay_out
 from polyloops.segment.refine import Refined
 from polyloops.segment.search import (
@@ -95,6 +101,26 @@ def _rounded(x: float | None) -> float | None:
     return None if x is None else round(x, 6)
 
 
+def _laid_out(r: Refined, loops: Sequence[Loop]
+              ) -> tuple[Layout, tuple[LabelledMesh, SegmentationReport]] | str:
+    """The loops laid out and certified, or why not: the layout that follows the per-triangle
+    labels first, and where that is not certified (a patch folded over a thin part), the one by
+    the sides' middles and lengths alone."""
+    why = ""
+    for follow in (True, False):
+        try:
+            lay = lay_out(r, loops, follow)
+        except NotAStructure as err:
+            why = str(err)
+            continue
+        checked = _certify(lay)
+        if isinstance(checked, str):
+            why = checked
+            continue
+        return lay, checked
+    return why
+
+
 def _certify(lay: Layout) -> tuple[LabelledMesh, SegmentationReport] | str:
     """The labelled mesh and the checker's report when both checks pass, else what failed."""
     problem = layout_problem(lay)
@@ -112,19 +138,24 @@ def _certify(lay: Layout) -> tuple[LabelledMesh, SegmentationReport] | str:
 def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, planes: int = 9,
                     price: float = 0.002, on_step: Callable[[State], None] | None = None,
                     start: LoopStructure | None = None,
-                    guide: Sequence[Direction] | None = None) -> SegmentResult:
+                    guide: Sequence[Direction] | None = None, direct: bool = True) -> SegmentResult:
     """:func:`segment_mesh` on a checked surface: the search from each start in turn (the
     given one, or those of :func:`_starts`) until one ends certified; a ``guide`` that is
-    already a valid labelling is returned as it is."""
+    already a valid labelling is returned as it is; with ``direct`` and without a start or a
+    guide, the naive and graph-cut labellings that the checker finds valid are candidates too
+    (:func:`_direct`)."""
     began = time.monotonic()
     target = None
+    kept_direct = None
     if guide is not None:
         if len(guide) != len(surface.triangles):
             raise ValueError(f"a guide of {len(guide)} labels for {len(surface.triangles)} triangles")
-        kept = _valid_guide(surface, guide, began)
+        kept = _kept_labelling(surface, guide, "the guide, already valid", began)
         if kept is not None:
-            return kept
+            return replace(kept, guide_changed=0.0)
         target = DIRECTION_VECTORS[np.array([int(d) for d in guide])]
+    elif start is None and direct:
+        kept_direct = _direct(surface, began)
     knobs = SearchSettings(budget, seed, planes, price, target)
     if start is not None:
         r, loops, placed = embed_start(surface, start, GRIDS, budget)
@@ -134,23 +165,44 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
     failed = []
     for found in _starts(surface, planes, budget, began):
         try:
-            return _search_from(surface, found, began, knobs, on_step)
+            searched = _search_from(surface, found, began, knobs, on_step)
         except UncertifiedError as err:
             failed.append(f"from {found[3]}: {err}")
+            continue
+        if kept_direct is not None and kept_direct.fidelity > searched.fidelity:
+            return replace(kept_direct, seconds=time.monotonic() - began)
+        return searched
+    if kept_direct is not None:
+        return replace(kept_direct, seconds=time.monotonic() - began)
     raise UncertifiedError("; ".join(failed))
 
 
-def _valid_guide(surface: Surface, guide: Sequence[Direction], began: float) -> SegmentResult | None:
-    """The guide itself as the result when the checker finds it valid (nothing changed)."""
+def _direct(surface: Surface, began: float) -> SegmentResult | None:
+    """The more faithful of the naive and graph-cut labellings of the mesh itself that the
+    checker finds valid (it builds a polycube that realises them), or ``None``: where one is,
+    the search's result is kept only when it is more faithful still."""
+    best = None
+    for labels, how in ((naive_labels(surface), "the per-triangle labelling"),
+                        (graphcut_labels(surface), "the graph-cut labelling")):
+        kept = _kept_labelling(surface, labels, how + ", valid as it is", began)
+        if kept is not None and (best is None or kept.fidelity > best.fidelity):
+            best = kept
+    return best
+
+
+def _kept_labelling(surface: Surface, labels: Sequence[Direction], how: str, began: float
+                    ) -> SegmentResult | None:
+    """A labelling of the mesh itself as the result, when the checker finds it valid and
+    builds a polycube that realises it (no loops were drawn: the layout is ``None``)."""
     mesh = LabelledMesh(tuple(map(tuple, surface.points.tolist())),
-                        tuple(map(tuple, surface.triangles.tolist())), tuple(guide))
+                        tuple(map(tuple, surface.triangles.tolist())), tuple(labels))
     report = check_segmentation(mesh)
     if report.valid is not True or report.polycube is None:
         return None
     loops = len(dualize(report.polycube).loops)
     return SegmentResult(mesh, tuple(range(len(surface.triangles))), report.polycube, report, surface.genus,
-                         len(surface.triangles), loops, fidelity(surface, guide), naive_fidelity(surface),
-                         time.monotonic() - began, 0, True, None, "the guide, already valid", 0.0)
+                         len(surface.triangles), loops, fidelity(surface, labels), naive_fidelity(surface),
+                         time.monotonic() - began, 0, True, None, how)
 
 
 def _search_from(surface: Surface, found: tuple[Refined, list[SurfaceLoop], list[int], str], began: float,
@@ -179,15 +231,11 @@ def _search_from(surface: Surface, found: tuple[Refined, list[SurfaceLoop], list
             break
         if best is not None and time.monotonic() - began > budget:
             break
-        try:
-            lay = lay_out(r, [pool[i] for i in sorted(state.loops)])
-        except NotAStructure as err:
-            why = str(err)
+        laid = _laid_out(r, [pool[i] for i in sorted(state.loops)])
+        if isinstance(laid, str):
+            why = laid
             continue
-        checked = _certify(lay)
-        if isinstance(checked, str):
-            why = checked
-            continue
+        lay, checked = laid
         refined = lay.embedded.refined
         fid = fidelity(refined.surface, lay.labels)
         aim = fid if knobs.guide is None else fidelity(refined.surface, lay.labels,
@@ -284,7 +332,7 @@ def segment_mesh(points: Sequence[Sequence[float]] | np.ndarray,
                  planes: int = 9, price: float = 0.002,
                  on_step: Callable[[State], None] | None = None,
                  start: LoopStructure | None = None,
-                 guide: Sequence[Direction] | None = None) -> SegmentResult:
+                 guide: Sequence[Direction] | None = None, direct: bool = True) -> SegmentResult:
     """A certified polycube segmentation of the closed triangle mesh ``points``, ``triangles``
     (counter-clockwise seen from outside), by the greedy loop search of
     :mod:`~polyloops.segment.search` within ``budget`` seconds (its order fixed by ``seed``):
@@ -293,7 +341,9 @@ def segment_mesh(points: Sequence[Sequence[float]] | np.ndarray,
     curves at any genus.  With a ``guide`` (a label per triangle, from any method, valid or
     not) the search keeps as much of it as it can instead of following the normals: a valid
     guide is returned unchanged, and otherwise ``guide_changed`` reports the share of the
-    area labelled otherwise.
+    area labelled otherwise.  Without a start or a guide, the mesh's own naive and graph-cut
+    labellings are candidates where the checker finds them valid (``direct=False``: the
+    search's segmentation, with its loops, whatever they are): the more faithful is the result.
 
     Raises
     ------
@@ -307,4 +357,5 @@ def segment_mesh(points: Sequence[Sequence[float]] | np.ndarray,
     UncertifiedError
         When no state of the search passed both checks (nothing is returned then).
     """
-    return segment_surface(surface_of(points, triangles), budget, seed, planes, price, on_step, start, guide)
+    return segment_surface(surface_of(points, triangles), budget, seed, planes, price, on_step, start, guide,
+                           direct)
