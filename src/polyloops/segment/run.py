@@ -101,23 +101,26 @@ def _rounded(x: float | None) -> float | None:
     return None if x is None else round(x, 6)
 
 
-def _laid_out(r: Refined, loops: Sequence[Loop]
+def _laid_out(r: Refined, loops: Sequence[Loop], ways: list[bool]
               ) -> tuple[Layout, tuple[LabelledMesh, SegmentationReport]] | str:
     """The loops laid out and certified, or why not: the layout that follows the per-triangle
     labels first, and where that is not certified (a patch folded over a thin part), the one by
-    the sides' middles and lengths alone."""
+    the sides' middles and lengths alone.  ``ways`` lists the layouts still tried in this
+    search; one that failed is dropped from it (on the jug it fails for every state, and each
+    try costs seconds)."""
     why = ""
-    for follow in (True, False):
+    for follow in list(ways):
         try:
             lay = lay_out(r, loops, follow)
         except NotAStructure as err:
             why = str(err)
-            continue
-        checked = _certify(lay)
-        if isinstance(checked, str):
+        else:
+            checked = _certify(lay)
+            if not isinstance(checked, str):
+                return lay, checked
             why = checked
-            continue
-        return lay, checked
+        if follow and len(ways) > 1:
+            ways.remove(True)
     return why
 
 
@@ -225,13 +228,14 @@ def _search_from(surface: Surface, found: tuple[Refined, list[SurfaceLoop], list
     # them passes, the states before them are tried, best first, until one does (past the
     # finalists, only while the budget lasts: the next start may do better).
     why, best = "", None
+    ways = [True, False]  # the layouts tried: following the labels, then by the middles
     deadline = time.monotonic() + max(budget - (time.monotonic() - began), SEARCH_SHARE * budget)
     for k, state in enumerate(reversed(path)):
         if k >= FINALISTS and (best is not None or time.monotonic() > deadline):
             break
         if best is not None and time.monotonic() - began > budget:
             break
-        laid = _laid_out(r, [pool[i] for i in sorted(state.loops)])
+        laid = _laid_out(r, [pool[i] for i in sorted(state.loops)], ways)
         if isinstance(laid, str):
             why = laid
             continue
