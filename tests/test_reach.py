@@ -316,6 +316,7 @@ def test_shipped_certificate_checks():
     assert check.problems == () and check.header["max_corners"] == check.checked_corners == top
 
 
+@pytest.mark.slow  # test_dask_cluster.py runs a catalog on a local cluster in the default run
 def test_dask_gives_the_same_rows(tmp_path):
     pytest.importorskip("distributed")
     a, b = tmp_path / "a", tmp_path / "b"

@@ -425,7 +425,7 @@ def test_an_invalid_guide_is_repaired_and_the_area_changed_is_the_area_labelled_
 
     mesh, _, _ = _written_example(tmp_path, "sokolov-ramp")
     assert check_segmentation(mesh).valid is False
-    done = segment_mesh(mesh.points, mesh.triangles, budget=2.0, guide=mesh.labels)
+    done = segment_mesh(mesh.points, mesh.triangles, budget=1.0, guide=mesh.labels)
     assert done.certified and done.report.valid is True
     out = surface_of(done.mesh.points, done.mesh.triangles)
     differs = np.array([label != mesh.labels[p] for label, p in zip(done.mesh.labels, done.face_map,
@@ -471,7 +471,7 @@ def test_on_a_box_the_patches_follow_its_edges():
     points, triangles = sphere(4)
     points = points / np.abs(points).max(axis=1, keepdims=True) * np.array([1.0, 0.8, 0.6])
     # from the cube as a given start: the box's own labels (valid) are no candidate then
-    done = segment_mesh(points, triangles, budget=3, start=load_example("cube").dualize())
+    done = segment_mesh(points, triangles, budget=1, start=load_example("cube").dualize())
     assert done.certified and done.layout is not None and done.naive_fidelity - done.fidelity < 0.03
 
 
@@ -481,8 +481,8 @@ def test_a_valid_labelling_of_the_mesh_itself_is_kept_when_more_faithful():
     the search's."""
     points, triangles = sphere(3)
     points = points / np.abs(points).max(axis=1, keepdims=True) * np.array([1.0, 0.8, 0.6])
-    done = segment_mesh(points, triangles, budget=2)
-    searched = segment_mesh(points, triangles, budget=2, direct=False)
+    done = segment_mesh(points, triangles, budget=0.5)
+    searched = segment_mesh(points, triangles, budget=0.5, direct=False)
     assert done.certified and done.layout is None and done.start.endswith("valid as it is")
     assert done.fidelity > searched.fidelity and done.report.polycube is done.polycube
     assert searched.layout is not None  # the search's own, with its loops

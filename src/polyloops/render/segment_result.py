@@ -7,7 +7,7 @@ colours) with its loops drawn on it, beside the loops' polycube.
 >>> import tempfile, pathlib
 >>> from polyloops.shapes.meshes import ellipsoid
 >>> from polyloops.segment.run import segment_mesh
->>> done = segment_mesh(*ellipsoid(2.0, 1.0, 0.7, level=3), budget=2.0, direct=False)
+>>> done = segment_mesh(*ellipsoid(2.0, 1.0, 0.7, level=3), budget=1.0, direct=False)
 >>> [axis.name for axis, _ in loop_curves(done)].count("X") >= 1
 True
 >>> with tempfile.TemporaryDirectory() as tmp:
