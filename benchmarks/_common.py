@@ -1,9 +1,12 @@
-"""Helpers shared by the benchmark scripts: timing and Markdown tables."""
+"""Helpers shared by the benchmark scripts: timing, Markdown tables, and the runs over a folder
+of meshes."""
 
 from __future__ import annotations
 
+import argparse
 import time
 from collections.abc import Callable
+from pathlib import Path
 from typing import Any
 
 
@@ -30,3 +33,25 @@ def markdown_table(header: list[str], rows: list[list[Any]]) -> str:
     lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
     lines += ["| " + " | ".join(cell(x) for x in row) + " |" for row in rows]
     return "\n".join(lines)
+
+
+def mesh_benchmark_parser(description: str) -> argparse.ArgumentParser:
+    """The options of the benchmarks over a folder of meshes: FOLDER, --budget, --seed, --only."""
+    parser = argparse.ArgumentParser(description=description)
+    parser.add_argument("folder", type=Path)
+    parser.add_argument("--budget", type=float, default=20.0)
+    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--only", nargs="*", help="mesh names (stems) to run")
+    return parser
+
+
+def print_tables_by_folder(folder: Path, only: list[str] | None, header: list[str],
+                           rows_of: Callable[[Path], list[list[Any]]]) -> None:
+    """One Markdown table per subfolder of ``folder``: the rows of each mesh (``.stl``,
+    ``.obj``, ``.mesh``) in it, or of those named in ``only``, printed as each folder ends."""
+    meshes = sorted(p for p in folder.rglob("*") if p.suffix.lower() in (".stl", ".obj", ".mesh"))
+    for sub in sorted({p.parent for p in meshes}):
+        table = [r for p in meshes if p.parent == sub and (not only or p.stem in only) for r in rows_of(p)]
+        if table:
+            print(f"\n### {sub.name}\n")
+            print(markdown_table(header, table), flush=True)

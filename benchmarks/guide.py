@@ -13,14 +13,13 @@ Usage: python benchmarks/guide.py DIR [--budget SECONDS] [--seed N] [--only NAME
 
 from __future__ import annotations
 
-import argparse
 import sys
 import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from _common import markdown_table
+from _common import mesh_benchmark_parser, print_tables_by_folder
 
 from polyloops.io.labelled_mesh import read_triangle_mesh
 from polyloops.segment.labellings import graphcut_labels, naive_labels
@@ -53,22 +52,10 @@ def rows(path: Path, budget: float, seed: int) -> list[list[object]]:
 
 
 def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("folder", type=Path)
-    parser.add_argument("--budget", type=float, default=20.0)
-    parser.add_argument("--seed", type=int, default=0)
-    parser.add_argument("--only", nargs="*", help="mesh names (stems) to run")
-    args = parser.parse_args()
+    args = mesh_benchmark_parser(__doc__.split("\n\n")[0]).parse_args()
     header = ["mesh", "triangles", "genus", "guide", "guide verdict", "segment --guide", "changed",
               "fidelity", "charts", "s"]
-    meshes = sorted(p for p in args.folder.rglob("*") if p.suffix.lower() in (".stl", ".obj", ".mesh"))
-    for folder in sorted({p.parent for p in meshes}):
-        table = [r for p in meshes if p.parent == folder and (not args.only or p.stem in args.only)
-                 for r in rows(p, args.budget, args.seed)]
-        if table:
-            print(f"\n### {folder.name}\n")
-            print(markdown_table(header, table), flush=True)
-
+    print_tables_by_folder(args.folder, args.only, header, lambda p: rows(p, args.budget, args.seed))
 
 if __name__ == "__main__":
     main()

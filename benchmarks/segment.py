@@ -17,14 +17,13 @@ Usage: python benchmarks/segment.py DIR [--budget SECONDS] [--seed N] [--only NA
 
 from __future__ import annotations
 
-import argparse
 import sys
 import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from _common import markdown_table
+from _common import mesh_benchmark_parser, print_tables_by_folder
 
 from polyloops.cli.segment import read_start
 from polyloops.io.labelled_mesh import read_triangle_mesh
@@ -73,11 +72,7 @@ def row(path: Path, budget: float, seed: int, start_arg: str | None) -> list[obj
 
 
 def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("folder", type=Path)
-    parser.add_argument("--budget", type=float, default=20.0)
-    parser.add_argument("--seed", type=int, default=0)
-    parser.add_argument("--only", nargs="*", help="mesh names (stems) to run")
+    parser = mesh_benchmark_parser(__doc__.split("\n\n")[0])
     parser.add_argument("--start", action="append", default=[], metavar="MESH=START",
                         help="begin segment on mesh MESH (its stem) from START, as segment --start")
     args = parser.parse_args()
@@ -85,14 +80,8 @@ def main() -> None:
     header = ["mesh", "triangles", "genus", "naive fidelity (bound)", "naive", "naive charts", "graph-cut",
               "graph-cut fidelity", "graph-cut charts", "graph-cut s", "segment", "fidelity", "gap", "charts",
               "loops", "backwards", "converged", "segment s", "start"]
-    meshes = sorted(p for p in args.folder.rglob("*") if p.suffix.lower() in (".stl", ".obj", ".mesh"))
-    for folder in sorted({p.parent for p in meshes}):
-        rows = [row(p, args.budget, args.seed, starts.get(p.stem)) for p in meshes
-                if p.parent == folder and (not args.only or p.stem in args.only)]
-        if rows:
-            print(f"\n### {folder.name}\n")
-            print(markdown_table(header, rows), flush=True)
-
+    print_tables_by_folder(args.folder, args.only, header,
+                           lambda p: [row(p, args.budget, args.seed, starts.get(p.stem))])
 
 if __name__ == "__main__":
     main()

@@ -120,15 +120,10 @@ def cmd_segment(args: argparse.Namespace) -> int:
 
 def read_guide(path: str, triangles: int):
     """``--guide``: one label per triangle of the mesh, read as ``segmentation`` reads LABELS."""
-    from polyloops.io.files import InputError
-    from polyloops.io.labelled_mesh import LabelledMeshError, read_labels
+    from polyloops.cli.segmentation import labelled_input
+    from polyloops.io.labelled_mesh import read_labels
 
-    try:
-        return read_labels(path, triangles)
-    except InputError as err:
-        raise CliError(str(err)) from None
-    except LabelledMeshError as err:
-        raise CliError(f"{err.where or path}: {err}") from None
+    return labelled_input(lambda: read_labels(path, triangles), path)
 
 
 def read_start(arg: str):

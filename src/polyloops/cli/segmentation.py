@@ -7,6 +7,7 @@ import json
 import os
 import sys
 from collections.abc import Callable
+from typing import TypeVar
 
 from polyloops.cli.load import (
     EXIT_INVALID,
@@ -23,6 +24,8 @@ from polyloops.io.files import InputError
 from polyloops.io.labelled_mesh import LabelledMeshError
 from polyloops.io.labelled_mesh import read_labelled_mesh as read_mesh_files
 from polyloops.surface.mesh import LabelledMesh
+
+T = TypeVar("T")
 
 
 def add_command(command: Callable[..., argparse.ArgumentParser]) -> None:
@@ -54,12 +57,18 @@ def read_labelled_mesh(mesh_arg: str, labels_arg: str | None) -> LabelledMesh:
             raise CliError(f"{mesh_arg}: {err.args[0]}") from None
     if labels_arg is None:
         raise CliError(f"{mesh_arg}: give the LABELS file too (one integer per triangle)")
+    return labelled_input(lambda: read_mesh_files(mesh_arg, labels_arg), mesh_arg)
+
+
+def labelled_input(read: Callable[[], T], source: str) -> T:
+    """``read()``, its problems as one-line usage errors naming the file at fault (``source``
+    when the reader does not say which)."""
     try:
-        return read_mesh_files(mesh_arg, labels_arg)
+        return read()
     except InputError as err:
         raise CliError(str(err)) from None
     except LabelledMeshError as err:
-        raise CliError(f"{err.where or mesh_arg}: {err}") from None
+        raise CliError(f"{err.where or source}: {err}") from None
 
 
 def format_report(source: str, report) -> str:
