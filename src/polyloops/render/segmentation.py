@@ -48,23 +48,31 @@ def loop_pixels(ids: np.ndarray, region: np.ndarray, axis_of: np.ndarray, width:
     none): a pixel is on a loop where its neighbour shows a triangle of another ``region`` and
     it takes ``axis_of`` its triangle (the axis of a loop edge of it, -1 if none); lines are
     widened by ``width`` pixels each way, on the surface only."""
-    shape = ids.shape
+    return np.where(ids >= 0, _widened(_loop_line(ids, region, axis_of), width), -1)
+
+
+def _loop_line(ids: np.ndarray, region: np.ndarray, axis_of: np.ndarray) -> np.ndarray:
+    """:func:`loop_pixels` one pixel wide, before it is kept to the surface."""
     a, b = _neighbours(ids)
     ta, tb = ids.ravel()[a], ids.ravel()[b]
     edge = (ta >= 0) & (tb >= 0) & (region[np.maximum(ta, 0)] != region[np.maximum(tb, 0)])
-    line = np.full(shape[0] * shape[1], -1, dtype=np.int64)
+    line = np.full(ids.size, -1, dtype=np.int64)
     for side in (a, b):
         tri = ids.ravel()[side[edge]]
         axis = axis_of[tri]
         known = axis >= 0
         line[side[edge][known]] = axis[known]
-    line = line.reshape(shape)
+    return line.reshape(ids.shape)
+
+
+def _widened(line: np.ndarray, width: int) -> np.ndarray:
+    """``line`` grown by ``width`` pixels each way, each pixel taking a neighbour's axis."""
     for _ in range(width):
         for k in (0, 1):
             for shift in (1, -1):
                 moved = np.roll(line, shift, k)
                 line = np.where((line < 0) & (moved >= 0), moved, line)
-    return np.where(ids >= 0, line, -1)
+    return line
 
 
 def loop_axes(triangles: np.ndarray, loop_edges: dict[tuple[int, int], Axis]) -> np.ndarray:
@@ -190,8 +198,9 @@ def draw_segmentation(ax, report, view: View, pixels: int = PIXELS,
     image[hot & shown] = (*to_rgb(WITNESS_COLOUR), 1.0)
     if loops is not None:
         # outlined in black: a loop runs over charts of its own colour family
-        image[loop_pixels(ids, *loops, width=2) >= 0] = (0.0, 0.0, 0.0, 1.0)
-        line = loop_pixels(ids, *loops)
+        line = _widened(_loop_line(ids, *loops), 1)
+        image[(_widened(line, 1) >= 0) & shown] = (0.0, 0.0, 0.0, 1.0)
+        line = np.where(shown, line, -1)
         image[line >= 0] = LOOP_RGBA[line[line >= 0]]
     ax.imshow(image, extent=(lo_u, lo_u + shape[1] * step, hi_v - shape[0] * step, hi_v),
               interpolation="nearest")

@@ -30,7 +30,8 @@ from scipy.sparse.csgraph import breadth_first_order, maximum_flow
 from polyloops.core.directions import Direction
 from polyloops.segment.surface import Surface
 
-__all__ = ["DIRECTION_VECTORS", "energy", "fidelity", "graphcut_labels", "naive_fidelity", "naive_labels"]
+__all__ = ["DIRECTION_VECTORS", "energy", "fidelity", "graphcut_labels", "label_vectors", "naive_fidelity",
+           "naive_label_indices", "naive_labels"]
 
 # the unit vector of each Direction, in its order (+X, -X, +Y, -Y, +Z, -Z)
 DIRECTION_VECTORS = np.array([np.eye(3)[d // 2] * (1 if d % 2 == 0 else -1) for d in range(6)])
@@ -39,13 +40,23 @@ SCALE = 10_000  # capacities are integers: costs in units of 1 / SCALE
 
 def naive_labels(s: Surface) -> tuple[Direction, ...]:
     """Each triangle labelled by the direction closest to its normal."""
-    return tuple(Direction(int(k)) for k in (s.normals @ DIRECTION_VECTORS.T).argmax(axis=1))
+    return tuple(Direction(int(k)) for k in naive_label_indices(s))
+
+
+def naive_label_indices(s: Surface) -> np.ndarray:
+    """:func:`naive_labels` as an array of the directions' indices."""
+    return (s.normals @ DIRECTION_VECTORS.T).argmax(axis=1)
+
+
+def label_vectors(labels: Sequence[Direction]) -> np.ndarray:
+    """Per label, its direction's unit vector (one row each)."""
+    return DIRECTION_VECTORS[np.array([int(d) for d in labels], dtype=np.int64)]
 
 
 def fidelity(surface: Surface, labels: Sequence[Direction], target: np.ndarray | None = None) -> float:
     """The area-weighted mean of ``n . label`` over the triangles; with ``target`` (a unit
     vector per triangle, such as a guide's labels) the mean of ``target . label`` instead."""
-    vectors = DIRECTION_VECTORS[np.array([int(d) for d in labels])]
+    vectors = label_vectors(labels)
     wanted = surface.normals if target is None else target
     return float((surface.areas * (wanted * vectors).sum(axis=1)).sum() / surface.areas.sum())
 

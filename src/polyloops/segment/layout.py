@@ -34,6 +34,7 @@ from polyloops.core.errors import PolyloopsError
 from polyloops.core.polycube import Polycube
 from polyloops.segment.embedded import Embedded, Loop, NotAStructure, PathLoop, SurfaceLoop, read_structure
 from polyloops.segment.flow import disjoint_paths
+from polyloops.segment.labellings import naive_label_indices
 from polyloops.segment.refine import Refined, split_edges
 
 __all__ = ["Layout", "lay_out"]
@@ -181,9 +182,9 @@ def _attempt(e: Embedded, follow_labels: bool = True) -> tuple[tuple[int, ...], 
         return to_split
     corners, paths = [], []
     patch = np.full(len(tris), -1, dtype=np.int64)
+    naive = naive_label_indices(r.surface) if follow_labels else None
     for g in range(count):
-        found = _region_layout(e, triangles_of[g], cycles[g], sides[g], owner, crossing_face,
-                               FEATURE_DISCOUNT if follow_labels else 1.0)
+        found = _region_layout(e, triangles_of[g], cycles[g], sides[g], owner, crossing_face, naive)
         if isinstance(found, set):
             to_split |= found
             continue
@@ -218,8 +219,8 @@ def _split_point(e: Embedded, arc: list[int], crossing_face: dict[int, int],
     if not inner:
         return None
     best = max(score[i] for i in inner)
-    near = [arc[i] for i in inner if score[i] >= best - SPLIT_TOLERANCE * float(weight.sum())]
-    return _middle(arc, r.points, lambda v: v in near and usable(v))
+    near = {arc[i] for i in inner if score[i] >= best - SPLIT_TOLERANCE * float(weight.sum())}
+    return _middle(arc, r.points, near.__contains__)
 
 
 def split_scores(first: np.ndarray, last: np.ndarray) -> np.ndarray:
@@ -253,8 +254,10 @@ def _middle(arc: list[int], pts: np.ndarray, usable: Callable[[int], bool]) -> i
 
 def _region_layout(e: Embedded, mine: np.ndarray, cycle: list[int], sides: list[tuple[int, int]],
                    owner: dict[tuple[int, int], int], crossing_face: dict[int, int],
-                   discount: float = FEATURE_DISCOUNT
+                   naive: np.ndarray | None = None
                    ) -> tuple[int, tuple[tuple[int, ...], ...], dict[int, int]] | set:
+    """The corner, paths and sector faces of one region (or the edges to split first); with
+    ``naive`` (per triangle, its per-triangle label) the paths are drawn along its changes."""
     r = e.refined
     tris, pts = r.triangles, r.points
     local_tris = tris[mine]
@@ -279,11 +282,12 @@ def _region_layout(e: Embedded, mine: np.ndarray, cycle: list[int], sides: list[
     # paths run inside the region: an edge with an end on the boundary only to a side's middle
     bu, bv = boundary[pairs[:, 0]], boundary[pairs[:, 1]]
     usable = ~(bu & bv) & (~bu | ends[pairs[:, 0]]) & (~bv | ends[pairs[:, 1]])
-    # an edge where the per-triangle labels change is cheap: the fidelity-best boundary between
-    # two patches runs where the normal is as near one's direction as the other's
-    naive = _naive_label(r)
-    changes = np.array([naive[owner[a, b]] != naive[owner[b, a]] for a, b in pairs.tolist()], dtype=bool)
-    costs = lengths * np.where(changes, discount, 1.0)
+    costs = lengths
+    if naive is not None:
+        # an edge where the per-triangle labels change is cheap: the fidelity-best boundary
+        # between two patches runs where the normal is as near one's direction as the other's
+        changes = np.array([naive[owner[a, b]] != naive[owner[b, a]] for a, b in pairs.tolist()], dtype=bool)
+        costs = lengths * np.where(changes, FEATURE_DISCOUNT, 1.0)
     edges = list(zip(lu[usable].tolist(), lv[usable].tolist(), costs[usable].tolist(), strict=True))
     degree = np.bincount(np.concatenate([lu[usable], lv[usable]]), minlength=len(verts))
     targets = [int(index[m]) for _, m in sides]
@@ -326,13 +330,6 @@ def _region_layout(e: Embedded, mine: np.ndarray, cycle: list[int], sides: list[
             return _all_edges(local_tris)
         face_of_sector[s] = crossing_face[c]
     return corner, region_paths, {t: face_of_sector[int(sector[i])] for t, i in local.items()}
-
-
-def _naive_label(r: Refined) -> np.ndarray:
-    """Per triangle of ``r``, the direction nearest its normal (as an index)."""
-    from polyloops.segment.labellings import DIRECTION_VECTORS
-
-    return (r.surface.normals @ DIRECTION_VECTORS.T).argmax(axis=1)
 
 
 def _direction_sum(e: Embedded, sides: list[tuple[int, int]], crossing_face: dict[int, int]) -> np.ndarray:

@@ -24,9 +24,9 @@ from polyloops.segment.embedded import Loop, NotAStructure, SurfaceLoop
 from polyloops.segment.from_polycube import UncertifiedError
 from polyloops.segment.grid import cut_grid, mend
 from polyloops.segment.labellings import (
-    DIRECTION_VECTORS,
     fidelity,
     graphcut_labels,
+    label_vectors,
     naive_fidelity,
     naive_labels,
 )
@@ -124,14 +124,18 @@ def _laid_out(r: Refined, loops: Sequence[Loop], ways: list[bool]
     return why
 
 
+def _labelled(points: np.ndarray, triangles: np.ndarray, labels: Sequence[Direction]) -> LabelledMesh:
+    return LabelledMesh(tuple(map(tuple, points.tolist())), tuple(map(tuple, triangles.tolist())),
+                        tuple(labels))
+
+
 def _certify(lay: Layout) -> tuple[LabelledMesh, SegmentationReport] | str:
     """The labelled mesh and the checker's report when both checks pass, else what failed."""
     problem = layout_problem(lay)
     if problem is not None:
         return f"the layout does not draw the polycube: {problem}"
     r = lay.embedded.refined
-    mesh = LabelledMesh(tuple(map(tuple, r.points.tolist())), tuple(map(tuple, r.triangles.tolist())),
-                        lay.labels)
+    mesh = _labelled(r.points, r.triangles, lay.labels)
     report = check_segmentation(mesh)
     if report.valid is not True:
         return f"the checker finds the labels {'invalid' if report.valid is False else 'undecided'}"
@@ -156,9 +160,11 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
         kept = _kept_labelling(surface, guide, "the guide, already valid", began)
         if kept is not None:
             return replace(kept, guide_changed=0.0)
-        target = DIRECTION_VECTORS[np.array([int(d) for d in guide])]
+        target = label_vectors(guide)
     elif start is None and direct:
         kept_direct = _direct(surface, began)
+        if kept_direct is not None and kept_direct.fidelity >= kept_direct.naive_fidelity - 1e-12:
+            return kept_direct  # the per-triangle labelling, valid: no labelling is more faithful
     knobs = SearchSettings(budget, seed, planes, price, target)
     if start is not None:
         r, loops, placed = embed_start(surface, start, GRIDS, budget)
@@ -184,21 +190,19 @@ def _direct(surface: Surface, began: float) -> SegmentResult | None:
     """The more faithful of the naive and graph-cut labellings of the mesh itself that the
     checker finds valid (it builds a polycube that realises them), or ``None``: where one is,
     the search's result is kept only when it is more faithful still."""
-    best = None
-    for labels, how in ((naive_labels(surface), "the per-triangle labelling"),
-                        (graphcut_labels(surface), "the graph-cut labelling")):
-        kept = _kept_labelling(surface, labels, how + ", valid as it is", began)
-        if kept is not None and (best is None or kept.fidelity > best.fidelity):
-            best = kept
-    return best
+    for labelling, how in ((naive_labels, "the per-triangle labelling"),
+                           (graphcut_labels, "the graph-cut labelling")):
+        kept = _kept_labelling(surface, labelling(surface), how + ", valid as it is", began)
+        if kept is not None:
+            return kept  # the per-triangle one first: its fidelity is the bound, none is more
+    return None
 
 
 def _kept_labelling(surface: Surface, labels: Sequence[Direction], how: str, began: float
                     ) -> SegmentResult | None:
     """A labelling of the mesh itself as the result, when the checker finds it valid and
     builds a polycube that realises it (no loops were drawn: the layout is ``None``)."""
-    mesh = LabelledMesh(tuple(map(tuple, surface.points.tolist())),
-                        tuple(map(tuple, surface.triangles.tolist())), tuple(labels))
+    mesh = _labelled(surface.points, surface.triangles, labels)
     report = check_segmentation(mesh)
     if report.valid is not True or report.polycube is None:
         return None
@@ -254,7 +258,7 @@ def _search_from(surface: Surface, found: tuple[Refined, list[SurfaceLoop], list
     changed = None
     if knobs.guide is not None:  # the share of the area whose label is not the guide's
         wanted = knobs.guide[refined.parent]
-        given = DIRECTION_VECTORS[np.array([int(d) for d in lay.labels])]
+        given = label_vectors(lay.labels)
         areas = refined.surface.areas
         changed = float(areas[(wanted * given).sum(axis=1) < 0.5].sum() / areas.sum())
     return SegmentResult(mesh, tuple(int(p) for p in refined.parent.tolist()), lay.polycube, report,
