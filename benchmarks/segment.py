@@ -47,7 +47,7 @@ def share(x: float | None) -> str:
     return "" if x is None else f"{x:.4f}"
 
 
-def row(path: Path, budget: float, seed: int, start_arg: str | None) -> list[object]:
+def row(path: Path, budget: float, seed: int, start_arg: str | None, workers: int = 1) -> list[object]:
     s = surface_of(*read_triangle_mesh(path))
     naive = judged(s, naive_labels(s))
     start = time.perf_counter()
@@ -59,7 +59,7 @@ def row(path: Path, budget: float, seed: int, start_arg: str | None) -> list[obj
     start = time.perf_counter()
     try:
         done = segment_surface(s, budget=budget, seed=seed,
-                               start=read_start(start_arg) if start_arg else None)
+                               start=read_start(start_arg) if start_arg else None, workers=workers)
     except Exception as err:  # a benchmark reports every failure in its row
         took = time.perf_counter() - start
         return [*out, f"none ({type(err).__name__})", "", "", "", "", "", "", f"{took:.1f}",
@@ -75,13 +75,14 @@ def main() -> None:
     parser = mesh_benchmark_parser(__doc__.split("\n\n")[0])
     parser.add_argument("--start", action="append", default=[], metavar="MESH=START",
                         help="begin segment on mesh MESH (its stem) from START, as segment --start")
+    parser.add_argument("--workers", type=int, default=1, help="as segment --workers (default 1)")
     args = parser.parse_args()
     starts = dict(item.split("=", 1) for item in args.start)
     header = ["mesh", "triangles", "genus", "naive fidelity (bound)", "naive", "naive charts", "graph-cut",
               "graph-cut fidelity", "graph-cut charts", "graph-cut s", "segment", "fidelity", "gap", "charts",
               "loops", "backwards", "converged", "segment s", "start"]
     print_tables_by_folder(args.folder, args.only, header,
-                           lambda p: [row(p, args.budget, args.seed, starts.get(p.stem))])
+                           lambda p: [row(p, args.budget, args.seed, starts.get(p.stem), args.workers)])
 
 if __name__ == "__main__":
     main()

@@ -8,6 +8,7 @@ import sys
 from collections.abc import Callable
 from typing import Any
 
+from polyloops.cli.args import MAX_WORKERS, count_arg
 from polyloops.cli.load import (
     EXIT_INVALID,
     EXIT_OK,
@@ -45,6 +46,15 @@ def add_command(command: Callable[..., argparse.ArgumentParser]) -> None:
                    help="seconds for the whole run, most of them searching loop moves (default 20; "
                    "finding a start on a mesh of positive genus can take longer)")
     p.add_argument("--seed", type=int, default=0, help="the seed of the search's move order (default 0)")
+    p.add_argument("--workers", type=count_arg(1, MAX_WORKERS), default=1, metavar="K",
+                   help="local worker processes searching from the starts at once (default 1; 2 uses two "
+                   "cores within the same budget)")
+    p.add_argument("--price", type=float, default=0.002, metavar="P",
+                   help="what a loop costs in the score: fidelity (or agreement with --guide) less P per "
+                   "loop (default 0.002; larger gives fewer loops and charts)")
+    p.add_argument("--score-csv", metavar="FILE", help="write one row per start tried: its fidelity, "
+                   "agreement with the guide, loops, price, score, charts, corners, seconds, whether it "
+                   "converged and was kept, or why it gave nothing")
     p.add_argument("--guide", metavar="LABELS", help="a labelling of MESH from any method (one label 0..5 "
                    "per triangle): return a certified one that keeps as much of it as it can (a valid "
                    "one unchanged) and report the share of the area labelled otherwise")
@@ -57,7 +67,8 @@ def add_command(command: Callable[..., argparse.ArgumentParser]) -> None:
 
 
 def cmd_segment(args: argparse.Namespace) -> int:
-    for path in (args.output, args.mesh_out, args.mesh_out and args.mesh_out + ".facemap", args.polycube):
+    for path in (args.output, args.mesh_out, args.mesh_out and args.mesh_out + ".facemap", args.polycube,
+                 args.score_csv):
         if path:
             check_output(path)
     if args.png:
@@ -66,6 +77,8 @@ def cmd_segment(args: argparse.Namespace) -> int:
         picture_output(args.html, (".html", ".htm"))
     if args.budget < 0:
         raise CliError(f"--budget {args.budget}: a time budget is not negative")
+    if not 0 <= args.price < 1:
+        raise CliError(f"--price {args.price}: a loop's price is at least 0 and less than 1")
     from tqdm import tqdm
 
     from polyloops.io.files import InputError
@@ -97,11 +110,11 @@ def cmd_segment(args: argparse.Namespace) -> int:
             raise CliError(f"{getattr(err, 'where', None) or args.mesh}: {err}") from None
     start = read_start(args.start) if args.start else None
     guide = read_guide(args.guide, len(triangles)) if args.guide else None
-    bar = tqdm(desc="segment", unit="state", disable=None, file=sys.stderr)
+    bar = tqdm(desc="segment", unit="start", disable=None, file=sys.stderr)
     try:
-        result = segment_mesh(points, triangles, budget=args.budget, seed=args.seed,
-                              on_step=lambda state: bar.update(1), start=start, guide=guide,
-                              direct=not args.search_only)
+        result = segment_mesh(points, triangles, budget=args.budget, seed=args.seed, price=args.price,
+                              start=start, guide=guide, direct=not args.search_only, workers=args.workers,
+                              on_candidate=lambda candidate: bar.update(1))
     except SurfaceError as err:
         raise CliError(f"{args.mesh}: {err}") from None
     except StartMismatch as err:
@@ -179,6 +192,8 @@ def _write(args: argparse.Namespace, result) -> int:
         (args.polycube, "polycube", lambda path: write_output(path, result.polycube), "the polycube"),
         (args.png, "png", picture, "the labelled mesh and its loops, beside the polycube"),
         (args.html, "html", page, "an interactive page of the labelled mesh, its loops and polycube"),
+        (args.score_csv, "score_csv", lambda path: write_text(path, result.scores_csv()),
+         f"the score of each of the {len(result.candidates)} starts tried"),
     ]
     for path, key, write, what in outputs:
         if not path:

@@ -8,8 +8,10 @@
 
 from __future__ import annotations
 
+import csv
+import io
 import time
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -18,11 +20,11 @@ from polyloops.core.directions import Direction
 from polyloops.core.duality import dualize
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LoopStructure
+from polyloops.parallel import run_jobs
 from polyloops.segment.certify import layout_problem
 from polyloops.segment.deform import polycube_heights
 from polyloops.segment.embedded import Loop, NotAStructure, SurfaceLoop
 from polyloops.segment.from_polycube import UncertifiedError
-from polyloops.segment.grid import cut_grid, mend
 from polyloops.segment.labellings import (
     fidelity,
     graphcut_labels,
@@ -32,21 +34,42 @@ from polyloops.segment.labellings import (
 )
 from polyloops.segment.layout import Layout, lay_out
 from polyloops.segment.refine import Refined
-from polyloops.segment.search import (
-    SearchSettings,
-    StartError,
-    State,
-    candidate_loops,
-    greedy_search,
-    start_state,
-)
+from polyloops.segment.search import SearchSettings, StartError, State, greedy_search
 from polyloops.segment.start import embed_start
+from polyloops.segment.starts import GRIDS, Heights, Recipe, build_start, grid_starts, recipes
 from polyloops.segment.surface import Surface, surface_of
 from polyloops.segmentation import SegmentationReport, check_segmentation
 from polyloops.segmentation.quality import backwards_fraction
 from polyloops.surface.mesh import LabelledMesh
 
-__all__ = ["SegmentResult", "segment_mesh"]
+__all__ = ["Candidate", "SegmentResult", "segment_mesh"]
+
+
+@dataclass(frozen=True)
+class Candidate:
+    """What one start gave in a run (a row of ``segment --score-csv``): its name, whether its
+    search ended certified (else ``reason``), and the terms of its score: the labels'
+    ``fidelity``, their ``agreement`` with the guide (when there is one), the ``loops`` and
+    their ``price``, ``score`` = (agreement with a guide, else fidelity) - price x loops; the
+    charts and corners of its labelling, its wall ``seconds``, whether its search
+    ``converged``, and whether it was ``kept`` (the run's result)."""
+
+    start: str
+    certified: bool
+    reason: str = ""
+    fidelity: float | None = None
+    agreement: float | None = None
+    loops: int | None = None
+    price: float | None = None
+    score: float | None = None
+    charts: int | None = None
+    corners: int | None = None
+    seconds: float = 0.0
+    converged: bool | None = None
+    kept: bool = False
+
+    FIELDS = ("start", "certified", "reason", "fidelity", "agreement", "loops", "price", "score", "charts",
+              "corners", "seconds", "converged", "kept")
 
 
 @dataclass(frozen=True, eq=False)
@@ -70,6 +93,8 @@ class SegmentResult:
     layout: Layout | None  # the loops, regions, corners, paths and patches (None: a valid guide kept)
     start: str  # how the search began: the cube, a grid, or the given start and its turn
     guide_changed: float | None = None  # with a guide: the share of the area labelled otherwise
+    score: float | None = None  # what the run maximised: fidelity (or agreement) less the loops' price
+    candidates: tuple[Candidate, ...] = ()  # every start tried, the kept one marked
 
     @property
     def certified(self) -> bool:
@@ -95,6 +120,18 @@ class SegmentResult:
                 "backwards": _rounded(backwards_fraction(self.report)), "seconds": round(self.seconds, 2),
                 "states": self.states, "converged": self.converged, "start": self.start,
                 **({} if self.guide_changed is None else {"guide_changed": round(self.guide_changed, 6)})}
+
+
+    def scores_csv(self) -> str:
+        """``segment --score-csv``: a header, then one row per start tried (see
+        :class:`Candidate`; empty fields where a start gave nothing)."""
+        buf = io.StringIO()
+        writer = csv.writer(buf, lineterminator="\n")
+        writer.writerow(Candidate.FIELDS)
+        for c in self.candidates:
+            writer.writerow(["" if v is None else round(v, 6) if isinstance(v, float) else v
+                             for v in (getattr(c, f) for f in Candidate.FIELDS)])
+        return buf.getvalue()
 
 
 def _rounded(x: float | None) -> float | None:
@@ -145,12 +182,14 @@ def _certify(lay: Layout) -> tuple[LabelledMesh, SegmentationReport] | str:
 def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, planes: int = 9,
                     price: float = 0.002, on_step: Callable[[State], None] | None = None,
                     start: LoopStructure | None = None,
-                    guide: Sequence[Direction] | None = None, direct: bool = True) -> SegmentResult:
-    """:func:`segment_mesh` on a checked surface: the search from each start in turn (the
-    given one, or those of :func:`_starts`) until one ends certified; a ``guide`` that is
-    already a valid labelling is returned as it is; with ``direct`` and without a start or a
-    guide, the naive and graph-cut labellings that the checker finds valid are candidates too
-    (:func:`_direct`)."""
+                    guide: Sequence[Direction] | None = None, direct: bool = True, workers: int = 1,
+                    on_candidate: Callable[[Candidate], None] | None = None) -> SegmentResult:
+    """:func:`segment_mesh` on a checked surface: the search from the given start, or from
+    each recipe of :func:`~polyloops.segment.starts.recipes` (``workers`` at a time) while the
+    budget lasts, the best certified result kept, then from the grids until one is certified;
+    a ``guide`` that is already a valid labelling is returned as it is; with ``direct`` and
+    without a start or a guide, the naive and graph-cut labellings that the checker finds
+    valid are candidates too (:func:`_direct`)."""
     began = time.monotonic()
     target = None
     kept_direct = None
@@ -159,31 +198,93 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
             raise ValueError(f"a guide of {len(guide)} labels for {len(surface.triangles)} triangles")
         kept = _kept_labelling(surface, guide, "the guide, already valid", began)
         if kept is not None:
-            return replace(kept, guide_changed=0.0)
+            return _alone(replace(kept, guide_changed=0.0), SearchSettings(budget, seed, planes, price))
         target = label_vectors(guide)
     elif start is None and direct:
         kept_direct = _direct(surface, began)
         if kept_direct is not None and kept_direct.fidelity >= kept_direct.naive_fidelity - 1e-12:
-            return kept_direct  # the per-triangle labelling, valid: no labelling is more faithful
+            # the per-triangle labelling, valid: no labelling is more faithful
+            return _alone(kept_direct, SearchSettings(budget, seed, planes, price))
     knobs = SearchSettings(budget, seed, planes, price, target)
     if start is not None:
         r, loops, placed = embed_start(surface, start, GRIDS, budget)
         how = f"the given start, turned by {placed.symmetry}" + (
             " (sections of the polycube-like deformation)" if placed.deformed else "")
-        return _search_from(surface, (r, loops, list(placed.curves), how), began, knobs, on_step)
-    failed = []
-    for found in _starts(surface, planes, budget, began):
+        given = _search_from(surface, (r, loops, list(placed.curves), how), began, knobs, on_step)
+        return _alone(given, knobs)
+    tried: list[tuple[Candidate, SegmentResult | None]] = []
+
+    def note(candidate: Candidate, result: SegmentResult | None) -> None:
+        tried.append((candidate, result))
+        if on_candidate is not None:
+            on_candidate(candidate)
+
+    deformed = polycube_heights(surface)
+    jobs = [(surface, recipe, began, knobs, deformed, on_step if workers <= 1 else None)
+            for recipe in recipes(surface.genus, planes)]
+    for candidate, result in run_jobs(_recipe_job, jobs, workers=workers):
+        note(candidate, result)
+    if not any(result is not None for _, result in tried):
+        reasons = [f"from {c.start}: {c.reason}" for c, _ in tried]
         try:
-            searched = _search_from(surface, found, began, knobs, on_step)
-        except UncertifiedError as err:
-            failed.append(f"from {found[3]}: {err}")
-            continue
-        if kept_direct is not None and kept_direct.fidelity > searched.fidelity:
-            return replace(kept_direct, seconds=time.monotonic() - began)
-        return searched
+            for found in grid_starts(surface, planes, budget, began, reasons=reasons):
+                t0 = time.monotonic()
+                try:
+                    searched = _search_from(surface, found, began, knobs, on_step)
+                except UncertifiedError as err:
+                    note(Candidate(found[3], False, str(err), seconds=time.monotonic() - t0), None)
+                    continue
+                note(_candidate(searched, knobs, time.monotonic() - t0), searched)
+                break
+        except StartError:
+            if kept_direct is None:
+                raise
+    found_results = [(c, res) for c, res in tried if res is not None]
     if kept_direct is not None:
-        return replace(kept_direct, seconds=time.monotonic() - began)
-    raise UncertifiedError("; ".join(failed))
+        found_results.append((_candidate(kept_direct, knobs, kept_direct.seconds), kept_direct))
+    if not found_results:
+        raise UncertifiedError("; ".join(f"from {c.start}: {c.reason}" for c, _ in tried))
+    # the best score; between the search and a valid labelling of the mesh itself, the more
+    # faithful (that labelling draws no loops, so no price is asked of it)
+    best_c, best = max(found_results, key=lambda cr: (
+        cr[1].fidelity if kept_direct is not None else cr[0].score or 0.0))
+    rows = tuple(replace(c, kept=c is best_c) for c, _ in tried) + (
+        (replace(best_c, kept=True),) if best is kept_direct else ())
+    return replace(best, seconds=time.monotonic() - began, candidates=rows,
+                   converged=best.converged and all(c.converged is not False for c, _ in tried))
+
+
+def _recipe_job(job: tuple[Surface, Recipe, float, SearchSettings, np.ndarray,
+                           Callable[[State], None] | None]) -> tuple[Candidate, SegmentResult | None]:
+    """One recipe built and searched from (in a worker process or here): its row, and its
+    result when certified.  A recipe begun after the budget is spent is skipped."""
+    surface, recipe, began, knobs, deformed, on_step = job
+    t0 = time.monotonic()
+    if t0 - began > knobs.budget:
+        return Candidate(recipe.name, False, "not begun: the time budget was spent"), None
+    try:
+        found = build_start(surface, recipe, t0 + max(knobs.budget / 2, 5.0),
+                            deformed if recipe.heights is Heights.DEFORMATION else None)
+        result = _search_from(surface, found, began, knobs, on_step)
+    except (StartError, UncertifiedError) as err:
+        return Candidate(recipe.name, False, str(err), seconds=time.monotonic() - t0), None
+    return _candidate(result, knobs, time.monotonic() - t0), replace(result, candidates=())
+
+
+def _alone(result: SegmentResult, knobs: SearchSettings) -> SegmentResult:
+    """``result`` as the only start tried."""
+    return replace(result, candidates=(replace(_candidate(result, knobs, result.seconds), kept=True),))
+
+
+def _candidate(result: SegmentResult, knobs: SearchSettings, seconds: float) -> Candidate:
+    """The row of a certified result."""
+    agreement = None
+    if knobs.guide is not None and result.layout is not None:
+        refined = result.layout.embedded.refined
+        agreement = fidelity(refined.surface, result.layout.labels, knobs.guide[refined.parent])
+    score = result.score if result.score is not None else result.fidelity - knobs.price * result.loops
+    return Candidate(result.start, True, "", result.fidelity, agreement, result.loops, knobs.price, score,
+                     result.charts, result.corners, seconds, result.converged)
 
 
 def _direct(surface: Surface, began: float) -> SegmentResult | None:
@@ -253,7 +354,7 @@ def _search_from(surface: Surface, found: tuple[Refined, list[SurfaceLoop], list
             best = (score, fid, state, lay, checked)
     if best is None:
         raise UncertifiedError(f"no state of the search was certified: {why}")
-    _, fid, state, lay, (mesh, report) = best
+    score, fid, state, lay, (mesh, report) = best
     refined = lay.embedded.refined
     changed = None
     if knobs.guide is not None:  # the share of the area whose label is not the guide's
@@ -264,75 +365,11 @@ def _search_from(surface: Surface, found: tuple[Refined, list[SurfaceLoop], list
     return SegmentResult(mesh, tuple(int(p) for p in refined.parent.tolist()), lay.polycube, report,
                          surface.genus, len(surface.triangles), len(state.loops), fid,
                          naive_fidelity(surface), time.monotonic() - began, len(path), searched.converged,
-                         lay, how, changed)
+                         lay, how, changed, score)
 
 
 SEARCH_SHARE = 0.25  # of the budget, the least the search is given whatever the start took
 FINALISTS = 4  # the last states of the search laid out and certified, the best labels kept
-
-
-GRIDS = (9, 13, 19)  # candidate planes per axis for a grid start, coarse to fine
-OVERRUN = 3.0  # times the budget after which no further start is begun (when the first ones fail)
-MENDING = 20.0  # seconds a grid may be mended at least (half the budget when that is more)
-
-
-def _starts(surface: Surface, planes: int, budget: float, began: float
-            ) -> Iterator[tuple[Refined, list[SurfaceLoop], list[int], str]]:
-    """The cut surface, its candidate curves and a start, in turn: the cube at genus 0, then
-    (at any genus, or when the cube's search is not certified) each grid of :data:`GRIDS`
-    mended into a polycube loop structure (:mod:`~polyloops.segment.grid`), each size cut in the
-    surface's coordinates and in a polycube-like deformation of it
-    (:mod:`~polyloops.segment.deform`), the one with fewer violations as cut mended first;
-    nothing more is begun once :data:`OVERRUN` times ``budget`` seconds have gone since
-    ``began`` (a :func:`time.monotonic` time).
-
-    Raises
-    ------
-    StartError
-        When no start was found at all (the message gives each grid's reason).
-    """
-    reasons = []
-    given = 0
-    if surface.genus == 0:
-        r, loops, _ = candidate_loops(surface, planes)
-        try:
-            first = start_state(r, loops)
-        except StartError as err:
-            reasons.append(str(err))
-        else:
-            given += 1
-            yield r, loops, first, "the cube"
-    deformed = None
-    for k in sorted({planes, *GRIDS}):
-        if (given or reasons) and time.monotonic() - began > OVERRUN * budget:
-            if not given:
-                raise StartError(f"no start on this genus-{surface.genus} mesh: " + "; ".join(
-                    [*reasons, "nothing more tried: the time budget is spent"]))
-            return
-        if deformed is None:
-            deformed = polycube_heights(surface)
-        # both grids of this size as cut, the one nearer a polycube loop structure (fewer
-        # violations of Definition 4) mended first
-        grids = []
-        for kind, heights in (("coordinates", None), ("deformation", deformed)):
-            try:
-                grids.append((cut_grid(surface, k, heights), kind))
-            except StartError as err:
-                reasons.append(f"{k} planes an axis in the {kind}: {err}")
-        grids.sort(key=lambda g: g[0].violations)
-        for grid, kind in grids:
-            if given and time.monotonic() - began > OVERRUN * budget:
-                return
-            try:
-                r, loops, chosen = mend(grid, deadline=time.monotonic() + max(budget / 2, MENDING))
-            except StartError as err:
-                reasons.append(f"{k} planes an axis in the {kind}: {err}")
-                continue
-            given += 1
-            yield r, loops, chosen, f"a grid of {k} planes an axis" + (
-                " of the polycube-like deformation" if kind == "deformation" else "")
-    if not given:
-        raise StartError(f"no start on this genus-{surface.genus} mesh: " + "; ".join(reasons))
 
 
 def segment_mesh(points: Sequence[Sequence[float]] | np.ndarray,
@@ -340,18 +377,24 @@ def segment_mesh(points: Sequence[Sequence[float]] | np.ndarray,
                  planes: int = 9, price: float = 0.002,
                  on_step: Callable[[State], None] | None = None,
                  start: LoopStructure | None = None,
-                 guide: Sequence[Direction] | None = None, direct: bool = True) -> SegmentResult:
+                 guide: Sequence[Direction] | None = None, direct: bool = True, workers: int = 1,
+                 on_candidate: Callable[[Candidate], None] | None = None) -> SegmentResult:
     """A certified polycube segmentation of the closed triangle mesh ``points``, ``triangles``
     (counter-clockwise seen from outside), by the greedy loop search of
     :mod:`~polyloops.segment.search` within ``budget`` seconds (its order fixed by ``seed``):
     from ``start`` when given (a polycube loop structure of the mesh's genus, embedded by
-    :mod:`~polyloops.segment.start`), else from the cube at genus 0 and from a grid of section
-    curves at any genus.  With a ``guide`` (a label per triangle, from any method, valid or
-    not) the search keeps as much of it as it can instead of following the normals: a valid
-    guide is returned unchanged, and otherwise ``guide_changed`` reports the share of the
-    area labelled otherwise.  Without a start or a guide, the mesh's own naive and graph-cut
-    labellings are candidates where the checker finds them valid (``direct=False``: the
-    search's segmentation, with its loops, whatever they are): the more faithful is the result.
+    :mod:`~polyloops.segment.start`), else from each start of
+    :func:`~polyloops.segment.starts.recipes` (the levels of the surface and of its
+    polycube-like deformation, and the cube at genus 0), ``workers`` at a time, the best score
+    kept (``candidates`` lists each, and ``on_candidate`` is called with each as it ends), and
+    from grids of section curves when none of them is certified.  ``on_step`` is called with
+    each state a search moves to, in this process only (not with ``workers`` > 1).  With a
+    ``guide`` (a label per triangle, from any method, valid or not) the search keeps as much
+    of it as it can instead of following the normals: a valid guide is returned unchanged,
+    and otherwise ``guide_changed`` reports the share of the area labelled otherwise.
+    Without a start or a guide, the mesh's own naive and graph-cut labellings are candidates
+    where the checker finds them valid (``direct=False``: the search's segmentation, with its
+    loops, whatever they are): the more faithful is the result.
 
     Raises
     ------
@@ -366,4 +409,4 @@ def segment_mesh(points: Sequence[Sequence[float]] | np.ndarray,
         When no state of the search passed both checks (nothing is returned then).
     """
     return segment_surface(surface_of(points, triangles), budget, seed, planes, price, on_step, start, guide,
-                           direct)
+                           direct, workers, on_candidate)
