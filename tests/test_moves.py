@@ -8,6 +8,7 @@ import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
+from cli_run import run
 from polyloops.cli import main
 from polyloops.core.canonical import signature
 from polyloops.core.directions import Axis
@@ -396,12 +397,8 @@ def test_moves_cli_on_a_large_slab(tmp_path, capsys):
     ["--time-limit", "x"], ["--shortest", "0"],
 ])
 def test_moves_options_that_do_not_go_together(argv, capsys):
-    try:
-        code = main(["moves", "example:cube", *argv])
-    except SystemExit as stop:  # argparse's own checks
-        code = stop.code
+    code, _, err = run(capsys, "moves", "example:cube", *argv)
     assert code == 2
-    err = capsys.readouterr().err
     assert len(err.strip().splitlines()) == 1 and "Traceback" not in err
 
 

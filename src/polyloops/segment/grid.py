@@ -37,7 +37,7 @@ from polyloops.segment.surface import Surface
 from polyloops.verify import check_polycube_loop_structure
 from polyloops.verify.report import Condition, Report
 
-__all__ = ["ROUNDS", "CutGrid", "cut_grid", "grid_start", "mend"]
+__all__ = ["ROUNDS", "CutGrid", "cut_grid", "every_crossing", "grid_start", "mend"]
 
 ROUNDS = 24  # rounds of additions or removals before a grid is given up
 REMOVALS = 3  # the most blamed curves whose removal is weighed against the additions each round
@@ -73,11 +73,22 @@ def cut_grid(surface: Surface, planes_per_axis: int, heights: np.ndarray | None 
         When those curves make no loop structure at all.
     """
     r, loops, _ = candidate_loops(surface, planes_per_axis, heights)
+    return every_crossing(r, loops, "the grid")
+
+
+def every_crossing(r: Refined, loops: list[SurfaceLoop], what: str) -> CutGrid:
+    """Every curve of ``loops`` that crosses another, read off ``r`` and checked.
+
+    Raises
+    ------
+    StartError
+        When those curves make no loop structure at all (``what`` names them).
+    """
     chosen = crossing_only(loops, list(range(len(loops))))
     try:
         e = read_structure(r, [loops[i] for i in chosen])
     except NotAStructure as err:
-        raise StartError(f"the grid of {len(chosen)} section curves is no loop structure: {err}") from None
+        raise StartError(f"{what} of {len(chosen)} section curves is no loop structure: {err}") from None
     return CutGrid(r, loops, chosen, e, check_polycube_loop_structure(e.structure))
 
 

@@ -40,9 +40,9 @@ import itertools
 import numpy as np
 
 from polyloops.segment.embedded import NotAStructure, read_structure
-from polyloops.segment.grid import CutGrid
+from polyloops.segment.grid import CutGrid, every_crossing
 from polyloops.segment.refine import Plane, Refined, cut
-from polyloops.segment.search import StartError, crossing_only, section_loops, start_state
+from polyloops.segment.search import crossing_only, section_loops, start_state
 from polyloops.segment.surface import Surface
 from polyloops.verify import check_polycube_loop_structure
 
@@ -127,12 +127,7 @@ def level_grid(surface: Surface, heights: np.ndarray | None = None, gap: float =
     r = cut(Refined.of(surface, heights), level_planes(surface, hv, gap))
     loops = section_loops(r)
     if surface.genus > 0:
-        chosen = crossing_only(loops, list(range(len(loops))))
-        try:
-            e = read_structure(r, [loops[i] for i in chosen])
-        except NotAStructure as err:
-            raise StartError(f"the {len(chosen)} level curves make no loop structure: {err}") from None
-        return CutGrid(r, loops, chosen, e, check_polycube_loop_structure(e.structure))
+        return every_crossing(r, loops, "the levels")
     chosen = start_state(r, loops)
     e = read_structure(r, [loops[i] for i in chosen])
     # longest first; a curve refused may fit once another is in (two curves that only make
