@@ -114,3 +114,23 @@ def test_segment_refuses_bad_scores_and_workers(args, problem, capsys):
     status, _, err = run(capsys, "segment", "example:egg", *args)
     assert status == 2
     assert problem in err and "Traceback" not in err and len(err.strip().splitlines()) == 1
+
+
+def test_without_a_cube_near_the_centre_every_level_curve_is_taken_at_once(monkeypatch):
+    """Where the curves nearest the centre make no cube, the level start takes every curve that
+    crosses another at once: on a polycube's surface, the same structure."""
+    import polyloops.segment.levels as lv
+    from polyloops.io.examples import load_example
+    from polyloops.segment.search import StartError
+
+    s = _surface(load_example("l-shape"))
+    usual = level_grid(s)
+
+    def no_cube(r, loops):
+        raise StartError("no three section curves make a cube (a stand-in)")
+
+    monkeypatch.setattr(lv, "start_state", no_cube)
+    fallback = level_grid(s)
+    assert fallback.violations == 0 and len(fallback.chosen) == len(usual.chosen)
+    assert canonical_form(fallback.embedded.structure, "labelled") == canonical_form(
+        usual.embedded.structure, "labelled")

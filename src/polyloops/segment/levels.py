@@ -42,7 +42,7 @@ import numpy as np
 from polyloops.segment.embedded import NotAStructure, read_structure
 from polyloops.segment.grid import CutGrid, every_crossing
 from polyloops.segment.refine import Plane, Refined, cut
-from polyloops.segment.search import crossing_only, section_loops, start_state
+from polyloops.segment.search import StartError, crossing_only, section_loops, start_state
 from polyloops.segment.surface import Surface
 from polyloops.verify import check_polycube_loop_structure
 
@@ -114,21 +114,27 @@ def level_planes(surface: Surface, heights: np.ndarray, gap: float = GAPS[0]) ->
 
 def level_grid(surface: Surface, heights: np.ndarray | None = None, gap: float = GAPS[0]) -> CutGrid:
     """The level start as cut, before mending (see the module docstring): in ``heights``, the
-    points by default.  At positive genus there is no cube to begin with: every curve that
-    crosses another is taken at once, and must make a loop structure.
+    points by default.  At positive genus there is no cube to begin with, nor at genus 0 when
+    the curves nearest the centre make none: every curve that crosses another is taken at
+    once, and must make a loop structure.
 
     Raises
     ------
     StartError
-        When the curves nearest the centre make no cube (genus 0), or the curves no loop
-        structure (positive genus).
+        When neither way gives a loop structure.
     """
     hv = surface.points if heights is None else heights
     r = cut(Refined.of(surface, heights), level_planes(surface, hv, gap))
     loops = section_loops(r)
     if surface.genus > 0:
         return every_crossing(r, loops, "the levels")
-    chosen = start_state(r, loops)
+    try:
+        chosen = start_state(r, loops)
+    except StartError as err:  # no cube near the centre (an aeroplane's wings): every curve at once
+        try:
+            return every_crossing(r, loops, "the levels")
+        except StartError as again:
+            raise StartError(f"{err}; {again}") from None
     e = read_structure(r, [loops[i] for i in chosen])
     # longest first; a curve refused may fit once another is in (two curves that only make
     # discs together), so passes repeat until one adds nothing
