@@ -119,6 +119,7 @@ class SegmentResult:
                 "fidelity": round(self.fidelity, 6), "naive_fidelity": round(self.naive_fidelity, 6),
                 "backwards": _rounded(backwards_fraction(self.report)), "seconds": round(self.seconds, 2),
                 "states": self.states, "converged": self.converged, "start": self.start,
+                "score": _rounded(self.score),
                 **({} if self.guide_changed is None else {"guide_changed": round(self.guide_changed, 6)})}
 
 
@@ -250,7 +251,7 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
         cr[1].fidelity if kept_direct is not None else cr[0].score or 0.0))
     rows = tuple(replace(c, kept=c is best_c) for c, _ in tried) + (
         (replace(best_c, kept=True),) if best is kept_direct else ())
-    return replace(best, seconds=time.monotonic() - began, candidates=rows,
+    return replace(best, seconds=time.monotonic() - began, candidates=rows, score=best_c.score,
                    converged=best.converged and all(c.converged is not False for c, _ in tried))
 
 
@@ -273,7 +274,8 @@ def _recipe_job(job: tuple[Surface, Recipe, float, SearchSettings, np.ndarray,
 
 def _alone(result: SegmentResult, knobs: SearchSettings) -> SegmentResult:
     """``result`` as the only start tried."""
-    return replace(result, candidates=(replace(_candidate(result, knobs, result.seconds), kept=True),))
+    row = replace(_candidate(result, knobs, result.seconds), kept=True)
+    return replace(result, candidates=(row,), score=row.score)
 
 
 def _candidate(result: SegmentResult, knobs: SearchSettings, seconds: float) -> Candidate:
