@@ -13,6 +13,7 @@ from hypothesis import given, settings
 from cli_run import run
 from polyloops.cli import main
 from polyloops.core.canonical import canonical_form
+from polyloops.segment.labellings import naive_label_indices
 from polyloops.segment.levels import level_grid, level_planes, levels
 from polyloops.segment.run import Candidate, segment_mesh
 from polyloops.segment.starts import recipes
@@ -46,7 +47,8 @@ def test_on_a_polycube_the_level_start_is_its_loop_structure_up_to_flat_bands(q)
 @given(polycubes(max_size=6))
 def test_the_levels_of_a_polycube_are_its_face_planes(q):
     """A polycube's levels along an axis are exactly the coordinates of its faces normal to it,
-    and each plane lies halfway between two consecutive ones."""
+    and each plane lies halfway between two consecutive ones; grouping charts instead of
+    triangles changes nothing there."""
     s = _surface(q)
     found = levels(s, s.points)
     for a in range(3):
@@ -56,6 +58,12 @@ def test_the_levels_of_a_polycube_are_its_face_planes(q):
     planes = sorted((p.axis, p.value) for p in level_planes(s, s.points))
     assert planes == sorted((a, (lower[0] + upper[0]) / 2) for a in range(3)
                             for lower, upper in zip(found[a], found[a][1:], strict=False))
+    # a polycube's charts are flat, each at its face's level: the charts of its own labels
+    # (and of the naive labelling, the same there) give the same levels and planes
+    labels = naive_label_indices(s)
+    assert [[(lo, hi) for lo, hi, _ in lv] for lv in levels(s, s.points, labels=labels)] == [
+        [(lo, hi) for lo, hi, _ in lv] for lv in found]
+    assert sorted((p.axis, p.value) for p in level_planes(s, s.points, labels=labels)) == planes
 
 
 def test_a_run_keeps_the_best_scoring_start_the_same_with_one_worker_or_two():
@@ -134,3 +142,4 @@ def test_without_a_cube_near_the_centre_every_level_curve_is_taken_at_once(monke
     assert fallback.violations == 0 and len(fallback.chosen) == len(usual.chosen)
     assert canonical_form(fallback.embedded.structure, "labelled") == canonical_form(
         usual.embedded.structure, "labelled")
+

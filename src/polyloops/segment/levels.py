@@ -38,6 +38,8 @@ from __future__ import annotations
 import itertools
 
 import numpy as np
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import connected_components
 
 from polyloops.segment.embedded import NotAStructure, read_structure
 from polyloops.segment.grid import CutGrid, every_crossing
@@ -54,20 +56,20 @@ LEAST = 0.002  # of the area: a lighter level is noise (a bump's tip, a sliver)
 MOST_LEVELS = 13  # levels an axis at most (each gap is a plane, so a loop or more)
 
 
-def levels(surface: Surface, heights: np.ndarray, gap: float = GAPS[0]
+def levels(surface: Surface, heights: np.ndarray, gap: float = GAPS[0], labels: np.ndarray | None = None
            ) -> list[list[tuple[float, float, float]]]:
     """Per axis, its levels in order: ``(low, high, area)`` of the triangles (normals in the
     ``heights``, areas on the surface) whose normal is nearest that axis and whose centroids
-    lie in one level (see the module docstring)."""
-    tri = heights[surface.triangles]
-    nearest = np.argmax(np.abs(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])), axis=1)
-    centroids = tri.mean(axis=1)
+    lie in one level (see the module docstring).  With ``labels`` (per triangle a direction's
+    index, :class:`~polyloops.core.directions.Direction`), the charts of those labels instead
+    of triangles: each chart (triangles of one label joined across edges) at the area-weighted
+    mean of its centroids, so that a protrusion's face whose span overlaps the body's is a
+    level of its own."""
     areas = surface.areas
     out = []
-    for a in range(3):
-        facing = nearest == a
-        order = np.argsort(centroids[facing, a], kind="stable")
-        values, weights = centroids[facing, a][order], areas[facing][order]
+    for a, (values, weights) in enumerate(_facing(surface, heights, labels)):
+        order = np.argsort(values, kind="stable")
+        values, weights = values[order], weights[order]
         found: list[list[float]] = []
         wide = gap * float(np.ptp(heights[:, a]))
         for v, w in zip(values.tolist(), weights.tolist(), strict=True):
@@ -87,6 +89,31 @@ def levels(surface: Surface, heights: np.ndarray, gap: float = GAPS[0]
     return out
 
 
+def _facing(surface: Surface, heights: np.ndarray, labels: np.ndarray | None
+            ) -> list[tuple[np.ndarray, np.ndarray]]:
+    """Per axis, the values along it and the areas that make its levels: the triangles whose
+    normal in the ``heights`` is nearest it, or with ``labels`` the charts labelled on it."""
+    tri = heights[surface.triangles]
+    centroids = tri.mean(axis=1)
+    areas = surface.areas
+    if labels is None:
+        nearest = np.argmax(np.abs(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])), axis=1)
+        return [(centroids[nearest == a, a], areas[nearest == a]) for a in range(3)]
+    pairs, _ = surface.adjacency
+    same = labels[pairs[:, 0]] == labels[pairs[:, 1]]
+    m = len(surface.triangles)
+    _, chart = connected_components(coo_matrix((np.ones(int(same.sum())), (pairs[same, 0], pairs[same, 1])),
+                                               shape=(m, m)), directed=False)
+    weight = np.bincount(chart, weights=areas)
+    axis = np.zeros(len(weight), dtype=np.int64)
+    axis[chart] = labels // 2
+    out = []
+    for a in range(3):
+        mean = np.bincount(chart, weights=areas * centroids[:, a]) / np.maximum(weight, 1e-300)
+        out.append((mean[axis == a], weight[axis == a]))
+    return out
+
+
 def _nearer(kept: list[list[float]], k: int) -> int:
     """The neighbour of level ``k`` across the narrower gap."""
     if k == 0:
@@ -96,13 +123,14 @@ def _nearer(kept: list[list[float]], k: int) -> int:
     return k - 1 if kept[k][0] - kept[k - 1][1] <= kept[k + 1][0] - kept[k][1] else k + 1
 
 
-def level_planes(surface: Surface, heights: np.ndarray, gap: float = GAPS[0]) -> list[Plane]:
+def level_planes(surface: Surface, heights: np.ndarray, gap: float = GAPS[0],
+                 labels: np.ndarray | None = None) -> list[Plane]:
     """The planes through the middles of the gaps between consecutive levels of each axis,
     the one nearest the area centroid of each axis first (the cube is sought among them)."""
     hv = heights[surface.triangles].mean(axis=1)
     centroid = (hv * surface.areas[:, None]).sum(axis=0) / surface.areas.sum()
     planes = [Plane(a, (lower[1] + upper[0]) / 2)
-              for a, found in enumerate(levels(surface, heights, gap))
+              for a, found in enumerate(levels(surface, heights, gap, labels))
               for lower, upper in itertools.pairwise(found)]
     central = []
     for a in range(3):
@@ -112,9 +140,11 @@ def level_planes(surface: Surface, heights: np.ndarray, gap: float = GAPS[0]) ->
     return central + [p for p in planes if p not in central]
 
 
-def level_grid(surface: Surface, heights: np.ndarray | None = None, gap: float = GAPS[0]) -> CutGrid:
+def level_grid(surface: Surface, heights: np.ndarray | None = None, gap: float = GAPS[0],
+               labels: np.ndarray | None = None) -> CutGrid:
     """The level start as cut, before mending (see the module docstring): in ``heights``, the
-    points by default.  At positive genus there is no cube to begin with, nor at genus 0 when
+    points by default, of the charts of ``labels`` when given (:func:`levels`).  At positive
+    genus there is no cube to begin with, nor at genus 0 when
     the curves nearest the centre make none: every curve that crosses another is taken at
     once, and must make a loop structure.
 
@@ -124,7 +154,7 @@ def level_grid(surface: Surface, heights: np.ndarray | None = None, gap: float =
         When neither way gives a loop structure.
     """
     hv = surface.points if heights is None else heights
-    r = cut(Refined.of(surface, heights), level_planes(surface, hv, gap))
+    r = cut(Refined.of(surface, heights), level_planes(surface, hv, gap, labels))
     loops = section_loops(r)
     if surface.genus > 0:
         return every_crossing(r, loops, "the levels")

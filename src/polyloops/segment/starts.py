@@ -5,8 +5,10 @@ A *start* is a cut surface, its candidate curves and the curves chosen, making a
 structure.  The first starts are *recipes*, each built and searched on its own (in parallel with
 ``workers``), the best certified result kept:
 
-- the level starts (:mod:`~polyloops.segment.levels`), in the polycube-like deformation and in
-  the surface's own coordinates, with each gap of :data:`~polyloops.segment.levels.GAPS`;
+- the level starts (:mod:`~polyloops.segment.levels`): of the charts of the naive and of the
+  graph-cut labelling in the polycube-like deformation, then of the triangles in the
+  deformation and in the surface's own coordinates, with each gap of
+  :data:`~polyloops.segment.levels.GAPS`;
 - at genus 0, the cube of the central plane sections (:func:`~polyloops.segment.search.start_state`).
 
 When none of them gives a certified segmentation, the grids follow, one at a time
@@ -14,7 +16,7 @@ When none of them gives a certified segmentation, the grids follow, one at a tim
 polycube loop structure (:mod:`~polyloops.segment.grid`).
 
 >>> [r.name for r in recipes(0)][-2:]
-['the levels of the coordinates (gap 0.02)', 'the cube']
+['the levels in the coordinates (gap 0.02)', 'the cube']
 """
 
 from __future__ import annotations
@@ -29,13 +31,14 @@ import numpy as np
 from polyloops.segment.deform import polycube_heights
 from polyloops.segment.embedded import SurfaceLoop
 from polyloops.segment.grid import cut_grid, mend
+from polyloops.segment.labellings import graphcut_labels, naive_label_indices
 from polyloops.segment.levels import GAPS, level_grid
 from polyloops.segment.refine import Refined
 from polyloops.segment.search import StartError, candidate_loops, start_state
 from polyloops.segment.surface import Surface
 
-__all__ = ["GRIDS", "MENDING", "OVERRUN", "Heights", "Recipe", "Start", "build_start", "grid_starts",
-           "recipes"]
+__all__ = ["GRIDS", "MENDING", "OVERRUN", "Charts", "Heights", "Recipe", "Start", "build_start",
+           "grid_starts", "recipes"]
 
 GRIDS = (9, 13, 19)  # candidate planes per axis for a grid start, coarse to fine
 OVERRUN = 3.0  # times the budget after which no further start is begun (when the first ones fail)
@@ -51,15 +54,25 @@ class Heights(Enum):
     DEFORMATION = "deformation"
 
 
+class Charts(Enum):
+    """What a level start groups into levels: the triangles, or the charts of a labelling of
+    the surface (:func:`~polyloops.segment.levels.levels`)."""
+
+    TRIANGLES = "triangles"
+    NAIVE = "naive"
+    GRAPH_CUT = "graph-cut"
+
+
 @dataclass(frozen=True)
 class Recipe:
-    """One start to build: ``kind`` ``"levels"`` (with its ``gap``) or ``"cube"`` (with
-    ``planes`` candidate planes an axis), cutting the ``heights``."""
+    """One start to build: ``kind`` ``"levels"`` (of ``charts``, with its ``gap``) or
+    ``"cube"`` (with ``planes`` candidate planes an axis), cutting the ``heights``."""
 
     kind: str
     heights: Heights
     gap: float = 0.0
     planes: int = 9
+    charts: Charts = Charts.TRIANGLES
 
     @property
     def name(self) -> str:
@@ -67,12 +80,15 @@ class Recipe:
         if self.kind == "cube":
             return "the cube"
         where = "polycube-like deformation" if self.heights is Heights.DEFORMATION else "coordinates"
-        return f"the levels of the {where} (gap {self.gap:g})"
+        of = "" if self.charts is Charts.TRIANGLES else f" of the {self.charts.value} charts"
+        return f"the levels{of} in the {where} (gap {self.gap:g})"
 
 
 def recipes(genus: int, planes: int = 9) -> list[Recipe]:
-    """The recipes tried first on a surface of ``genus``, in order (see the module docstring)."""
-    out = [Recipe("levels", h, gap) for h in (Heights.DEFORMATION, Heights.COORDINATES) for gap in GAPS]
+    """The recipes tried first on a surface of ``genus``, in order (see the module docstring):
+    the most often best first, as a short budget may not begin the last."""
+    out = [Recipe("levels", Heights.DEFORMATION, GAPS[0], charts=c) for c in (Charts.NAIVE, Charts.GRAPH_CUT)]
+    out += [Recipe("levels", h, gap) for h in (Heights.DEFORMATION, Heights.COORDINATES) for gap in GAPS]
     if genus == 0:
         out.append(Recipe("cube", Heights.COORDINATES, planes=planes))
     return out
@@ -95,7 +111,12 @@ def build_start(surface: Surface, recipe: Recipe, deadline: float = float("inf")
     heights = None
     if recipe.heights is Heights.DEFORMATION:
         heights = polycube_heights(surface) if deformed is None else deformed
-    r, loops, chosen = mend(level_grid(surface, heights, recipe.gap), deadline=deadline)
+    labels = None
+    if recipe.charts is Charts.NAIVE:
+        labels = naive_label_indices(surface)
+    elif recipe.charts is Charts.GRAPH_CUT:
+        labels = np.array([int(d) for d in graphcut_labels(surface)], dtype=np.int64)
+    r, loops, chosen = mend(level_grid(surface, heights, recipe.gap, labels), deadline=deadline)
     return r, loops, chosen, recipe.name
 
 
