@@ -78,7 +78,7 @@ def test_a_run_keeps_the_best_scoring_start_the_same_with_one_worker_or_two():
     assert certified and [c.kept for c in one.candidates].count(True) == 1
     kept = next(c for c in one.candidates if c.kept)
     assert kept.score == max(c.score for c in certified) and kept.start == one.start
-    assert kept.score == pytest.approx(one.fidelity - 0.002 * one.loops) == pytest.approx(one.score)
+    assert kept.score == pytest.approx(one.fidelity - 0.001 * one.loops) == pytest.approx(one.score)
     for c in certified:
         assert c.score == pytest.approx(c.fidelity - c.price * c.loops) and c.loops >= 3
     assert one.converged and two.converged
@@ -108,7 +108,7 @@ def test_segment_writes_the_score_of_every_start(tmp_path, capsys):
     assert float(kept[0]["fidelity"]) == pytest.approx(data["fidelity"], abs=1e-6)
     for r in rows:
         if r["certified"] == "True":
-            wanted = float(r["fidelity"]) - 0.002 * int(r["loops"])
+            wanted = float(r["fidelity"]) - 0.001 * int(r["loops"])
             assert float(r["score"]) == pytest.approx(wanted, abs=2e-6)
         else:
             assert r["reason"]

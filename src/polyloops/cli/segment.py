@@ -22,6 +22,7 @@ from polyloops.cli.load import (
     write_output,
     write_text,
 )
+from polyloops.segment import PRICE
 
 
 def add_command(command: Callable[..., argparse.ArgumentParser]) -> None:
@@ -50,9 +51,9 @@ def add_command(command: Callable[..., argparse.ArgumentParser]) -> None:
     p.add_argument("--workers", type=count_arg(1, MAX_WORKERS), default=1, metavar="K",
                    help="local worker processes searching from the starts at once (default 1; 2 uses two "
                    "cores within the same budget)")
-    p.add_argument("--price", type=float, default=0.002, metavar="P",
+    p.add_argument("--price", type=float, default=PRICE, metavar="P",
                    help="what a loop costs in the score: fidelity (or agreement with --guide) less P per "
-                   "loop (default 0.002; larger gives fewer loops and charts)")
+                   f"loop (default {PRICE:g}; larger gives fewer loops and charts)")
     p.add_argument("--score-csv", metavar="FILE", help="write one row per start tried: its fidelity, "
                    "agreement with the guide, loops, price, score, charts, corners, seconds, whether it "
                    "converged and was kept, or why it gave nothing")

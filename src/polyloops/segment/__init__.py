@@ -5,3 +5,7 @@ report of :func:`polyloops.segmentation.check_segmentation` on it; it never hand
 the checker has not passed.  :mod:`~polyloops.segment.from_polycube` labels a polycube's own
 quads by their normals; the constructor by loop moves of the paper's Section 5 (``polyloops
 segment``) lives here too."""
+
+# of fidelity, a loop's price in segment's score (the default of --price); kept here, where the
+# command line reads it without importing the search
+PRICE = 0.001

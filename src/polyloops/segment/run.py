@@ -21,9 +21,10 @@ from polyloops.core.duality import dualize
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LoopStructure
 from polyloops.parallel import run_jobs
+from polyloops.segment import PRICE
 from polyloops.segment.certify import layout_problem
 from polyloops.segment.deform import polycube_heights
-from polyloops.segment.embedded import Loop, NotAStructure, SurfaceLoop
+from polyloops.segment.embedded import Loop, NotAStructure
 from polyloops.segment.from_polycube import UncertifiedError
 from polyloops.segment.labellings import (
     fidelity,
@@ -36,7 +37,7 @@ from polyloops.segment.layout import Layout, lay_out
 from polyloops.segment.refine import Refined
 from polyloops.segment.search import SearchSettings, StartError, State, greedy_search
 from polyloops.segment.start import embed_start
-from polyloops.segment.starts import GRIDS, Heights, Recipe, build_start, grid_starts, recipes
+from polyloops.segment.starts import GRIDS, OVERRUN, Heights, Recipe, Start, build_start, grid_starts, recipes
 from polyloops.segment.surface import Surface, surface_of
 from polyloops.segmentation import SegmentationReport, check_segmentation
 from polyloops.segmentation.quality import backwards_fraction
@@ -51,8 +52,10 @@ class Candidate:
     search ended certified (else ``reason``), and the terms of its score: the labels'
     ``fidelity``, their ``agreement`` with the guide (when there is one), the ``loops`` and
     their ``price``, ``score`` = (agreement with a guide, else fidelity) - price x loops; the
-    charts and corners of its labelling, its wall ``seconds``, whether its search
-    ``converged``, and whether it was ``kept`` (the run's result)."""
+    ``estimate`` of that score that ranked the start (its scouting search's, from labels read
+    off the loops without a layout); the charts and corners of its labelling, its wall
+    ``seconds``, whether its searches ``converged``, and whether it was ``kept`` (the run's
+    result)."""
 
     start: str
     certified: bool
@@ -62,14 +65,15 @@ class Candidate:
     loops: int | None = None
     price: float | None = None
     score: float | None = None
+    estimate: float | None = None
     charts: int | None = None
     corners: int | None = None
     seconds: float = 0.0
     converged: bool | None = None
     kept: bool = False
 
-    FIELDS = ("start", "certified", "reason", "fidelity", "agreement", "loops", "price", "score", "charts",
-              "corners", "seconds", "converged", "kept")
+    FIELDS = ("start", "certified", "reason", "fidelity", "agreement", "loops", "price", "score", "estimate",
+              "charts", "corners", "seconds", "converged", "kept")
 
 
 @dataclass(frozen=True, eq=False)
@@ -181,7 +185,7 @@ def _certify(lay: Layout) -> tuple[LabelledMesh, SegmentationReport] | str:
 
 
 def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, planes: int = 9,
-                    price: float = 0.002, on_step: Callable[[State], None] | None = None,
+                    price: float = PRICE, on_step: Callable[[State], None] | None = None,
                     start: LoopStructure | None = None,
                     guide: Sequence[Direction] | None = None, direct: bool = True, workers: int = 1,
                     on_candidate: Callable[[Candidate], None] | None = None) -> SegmentResult:
@@ -221,10 +225,34 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
             on_candidate(candidate)
 
     deformed = polycube_heights(surface)
-    jobs = [(surface, recipe, began, knobs, deformed, on_step if workers <= 1 else None)
-            for recipe in recipes(surface.genus, planes)]
-    for candidate, result in run_jobs(_recipe_job, jobs, workers=workers):
-        note(candidate, result)
+    own = recipes(surface.genus, planes)
+    # scouting: each start built and searched for a share of the budget, judged by the
+    # search's estimate alone (no layout); then the best-ranked are searched on and laid out
+    share = max(SCOUTING * budget * max(workers, 1) / len(own), 1.0)
+    jobs = [(surface, recipe, began, knobs, deformed, share, on_step if workers <= 1 else None)
+            for recipe in own]
+    scouted = []
+    for candidate, found in run_jobs(_scout_job, jobs, workers=workers):
+        if found is None:
+            note(candidate, None)
+        else:
+            scouted.append((candidate, found))
+    scouted.sort(key=lambda cf: -(cf[0].estimate or 0.0))
+    batch = max(workers, LAID_OUT)
+    for first in range(0, len(scouted), batch):
+        # the next ones while the budget lasts, or until one is certified (at most OVERRUN
+        # times the budget)
+        spent = time.monotonic() - began
+        certified = any(res is not None for _, res in tried)
+        if first and (spent > OVERRUN * budget or (spent > budget and certified)):
+            for candidate, _ in scouted[first:]:
+                why = f"not laid out: its estimate ranks {first + 1} or lower"
+                note(replace(candidate, reason=why), None)
+            break
+        laid = [(surface, found, candidate, began, knobs, on_step if workers <= 1 else None)
+                for candidate, found in scouted[first:first + batch]]
+        for candidate, result in run_jobs(_lay_out_job, laid, workers=workers):
+            note(candidate, result)
     if not any(result is not None for _, result in tried):
         reasons = [f"from {c.start}: {c.reason}" for c, _ in tried]
         try:
@@ -240,6 +268,8 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
         except StartError:
             if kept_direct is None:
                 raise
+    order = {r.name: k for k, r in enumerate(own)}
+    tried.sort(key=lambda cr: order.get(cr[0].start, len(order)))  # recipes in order, then grids
     found_results = [(c, res) for c, res in tried if res is not None]
     if kept_direct is not None:
         found_results.append((_candidate(kept_direct, knobs, kept_direct.seconds), kept_direct))
@@ -255,21 +285,41 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
                    converged=best.converged and all(c.converged is not False for c, _ in tried))
 
 
-def _recipe_job(job: tuple[Surface, Recipe, float, SearchSettings, np.ndarray,
-                           Callable[[State], None] | None]) -> tuple[Candidate, SegmentResult | None]:
-    """One recipe built and searched from (in a worker process or here): its row, and its
-    result when certified.  A recipe begun after the budget is spent is skipped."""
-    surface, recipe, began, knobs, deformed, on_step = job
+def _scout_job(job: tuple[Surface, Recipe, float, SearchSettings, np.ndarray, float,
+                          Callable[[State], None] | None]) -> tuple[Candidate, Start | None]:
+    """One recipe built and searched for ``share`` seconds (in a worker process or here): its
+    row (with the estimate of its best state), and the start of its best state (the cut
+    surface, the candidates and paths drawn, the chosen loops) or ``None`` when it gave none.
+    A recipe begun after the budget is spent is skipped."""
+    surface, recipe, began, knobs, deformed, share, on_step = job
     t0 = time.monotonic()
     if t0 - began > knobs.budget:
         return Candidate(recipe.name, False, "not begun: the time budget was spent"), None
     try:
-        found = build_start(surface, recipe, t0 + max(knobs.budget / 2, 5.0),
-                            deformed if recipe.heights is Heights.DEFORMATION else None)
-        result = _search_from(surface, found, began, knobs, on_step)
-    except (StartError, UncertifiedError) as err:
+        r, loops, chosen, how = build_start(surface, recipe, t0 + max(knobs.budget / 4, 3.0),
+                                            deformed if recipe.heights is Heights.DEFORMATION else None)
+    except StartError as err:
         return Candidate(recipe.name, False, str(err), seconds=time.monotonic() - t0), None
-    return _candidate(result, knobs, time.monotonic() - t0), replace(result, candidates=())
+    path = greedy_search(r, loops, chosen, replace(knobs, budget=share), on_step)
+    best = path.states[-1]
+    row = Candidate(how, False, "", estimate=best.score, loops=len(best.loops), price=knobs.price,
+                    seconds=time.monotonic() - t0, converged=path.converged)
+    return row, (r, list(path.loops), sorted(best.loops), how)
+
+
+def _lay_out_job(job: tuple[Surface, Start, Candidate, float, SearchSettings, Callable[[State], None] | None]
+                 ) -> tuple[Candidate, SegmentResult | None]:
+    """A scouted start searched on from its best state and laid out: its row, and its result
+    when certified."""
+    surface, found, scouted, began, knobs, on_step = job
+    t0 = time.monotonic()
+    try:
+        result = _search_from(surface, found, began, knobs, on_step)
+    except UncertifiedError as err:
+        return replace(scouted, reason=str(err), seconds=scouted.seconds + time.monotonic() - t0), None
+    row = replace(_candidate(result, knobs, scouted.seconds + time.monotonic() - t0),
+                  estimate=scouted.estimate, converged=bool(scouted.converged and result.converged))
+    return row, replace(result, candidates=())
 
 
 def _alone(result: SegmentResult, knobs: SearchSettings) -> SegmentResult:
@@ -285,8 +335,9 @@ def _candidate(result: SegmentResult, knobs: SearchSettings, seconds: float) -> 
         refined = result.layout.embedded.refined
         agreement = fidelity(refined.surface, result.layout.labels, knobs.guide[refined.parent])
     score = result.score if result.score is not None else result.fidelity - knobs.price * result.loops
-    return Candidate(result.start, True, "", result.fidelity, agreement, result.loops, knobs.price, score,
-                     result.charts, result.corners, seconds, result.converged)
+    return Candidate(result.start, True, "", fidelity=result.fidelity, agreement=agreement,
+                     loops=result.loops, price=knobs.price, score=score, charts=result.charts,
+                     corners=result.corners, seconds=seconds, converged=result.converged)
 
 
 def _direct(surface: Surface, began: float) -> SegmentResult | None:
@@ -315,8 +366,8 @@ def _kept_labelling(surface: Surface, labels: Sequence[Direction], how: str, beg
                          time.monotonic() - began, 0, True, None, how)
 
 
-def _search_from(surface: Surface, found: tuple[Refined, list[SurfaceLoop], list[int], str], began: float,
-                 knobs: SearchSettings, on_step: Callable[[State], None] | None) -> SegmentResult:
+def _search_from(surface: Surface, found: Start, began: float, knobs: SearchSettings,
+                 on_step: Callable[[State], None] | None) -> SegmentResult:
     """The search from one start, its last states laid out and certified; the finalist whose
     labels score best (fidelity, or agreement with the guide, less the loops' price) is kept."""
     budget, price = knobs.budget, knobs.price
@@ -371,12 +422,14 @@ def _search_from(surface: Surface, found: tuple[Refined, list[SurfaceLoop], list
 
 
 SEARCH_SHARE = 0.25  # of the budget, the least the search is given whatever the start took
+SCOUTING = 0.4  # of the budget (times the workers), shared by the starts' scouting searches
+LAID_OUT = 2  # the best-ranked scouted starts searched on and laid out (at least; one per worker)
 FINALISTS = 4  # the last states of the search laid out and certified, the best labels kept
 
 
 def segment_mesh(points: Sequence[Sequence[float]] | np.ndarray,
                  triangles: Sequence[Sequence[int]] | np.ndarray, budget: float = 20.0, seed: int = 0,
-                 planes: int = 9, price: float = 0.002,
+                 planes: int = 9, price: float = PRICE,
                  on_step: Callable[[State], None] | None = None,
                  start: LoopStructure | None = None,
                  guide: Sequence[Direction] | None = None, direct: bool = True, workers: int = 1,

@@ -41,6 +41,7 @@ from scipy.sparse.csgraph import dijkstra
 from polyloops.core.directions import Axis
 from polyloops.core.errors import PolyloopsError
 from polyloops.core.moves import removals, valid_additions
+from polyloops.segment import PRICE
 from polyloops.segment.embedded import Embedded, Loop, NotAStructure, SurfaceLoop, read_structure
 from polyloops.segment.labellings import DIRECTION_VECTORS
 from polyloops.segment.paths import addition_path
@@ -77,7 +78,7 @@ class SearchSettings:
     budget: float = 20.0
     seed: int = 0
     planes: int = 9
-    price: float = 0.002
+    price: float = PRICE
     guide: np.ndarray | None = field(default=None, compare=False)  # per input triangle, a unit vector
 
 

@@ -22,14 +22,14 @@ polycube loop structure (:mod:`~polyloops.segment.grid`).
 from __future__ import annotations
 
 import time
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from enum import Enum
 
 import numpy as np
 
 from polyloops.segment.deform import polycube_heights
-from polyloops.segment.embedded import SurfaceLoop
+from polyloops.segment.embedded import Loop
 from polyloops.segment.grid import cut_grid, mend
 from polyloops.segment.labellings import graphcut_labels, naive_label_indices
 from polyloops.segment.levels import GAPS, level_grid
@@ -44,7 +44,7 @@ GRIDS = (9, 13, 19)  # candidate planes per axis for a grid start, coarse to fin
 OVERRUN = 3.0  # times the budget after which no further start is begun (when the first ones fail)
 MENDING = 20.0  # seconds a grid may be mended at least (half the budget when that is more)
 
-Start = tuple[Refined, list[SurfaceLoop], list[int], str]  # the cut surface, its curves, the chosen, how
+Start = tuple[Refined, Sequence[Loop], list[int], str]  # the cut surface, its curves, the chosen, how
 
 
 class Heights(Enum):
