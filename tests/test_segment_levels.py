@@ -82,8 +82,9 @@ def test_a_run_keeps_the_best_scoring_start_the_same_with_one_worker_or_two():
     for c in certified:
         assert c.score == pytest.approx(c.fidelity - c.price * c.loops) and c.loops >= 3
     assert one.converged and two.converged
-    strip = [(c.start, c.certified, c.fidelity, c.loops, c.score, c.charts, c.kept) for c in one.candidates]
-    assert strip == [(c.start, c.certified, c.fidelity, c.loops, c.score, c.charts, c.kept)
+    strip = [(c.start, c.certified, c.fidelity, c.loops, c.score, c.estimate, c.charts, c.kept)
+             for c in one.candidates]
+    assert strip == [(c.start, c.certified, c.fidelity, c.loops, c.score, c.estimate, c.charts, c.kept)
                      for c in two.candidates]
     assert one.mesh.labels == two.mesh.labels
 

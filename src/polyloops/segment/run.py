@@ -232,11 +232,11 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
     jobs = [(surface, recipe, began, knobs, deformed, share, on_step if workers <= 1 else None)
             for recipe in own]
     scouted = []
-    for candidate, found in run_jobs(_scout_job, jobs, workers=workers):
-        if found is None:
+    for candidate, scout in run_jobs(_scout_job, jobs, workers=workers):
+        if scout is None:
             note(candidate, None)
         else:
-            scouted.append((candidate, found))
+            scouted.append((candidate, scout))
     scouted.sort(key=lambda cf: -(cf[0].estimate or 0.0))
     batch = max(workers, LAID_OUT)
     for first in range(0, len(scouted), batch):
@@ -249,8 +249,8 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
                 why = f"not laid out: its estimate ranks {first + 1} or lower"
                 note(replace(candidate, reason=why), None)
             break
-        laid = [(surface, found, candidate, began, knobs, on_step if workers <= 1 else None)
-                for candidate, found in scouted[first:first + batch]]
+        laid = [(surface, scout, candidate, began, knobs, on_step if workers <= 1 else None)
+                for candidate, scout in scouted[first:first + batch]]
         for candidate, result in run_jobs(_lay_out_job, laid, workers=workers):
             note(candidate, result)
     if not any(result is not None for _, result in tried):
@@ -285,11 +285,16 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
                    converged=best.converged and all(c.converged is not False for c, _ in tried))
 
 
+Scouted = tuple[Start, tuple[frozenset[int], ...]]  # a start at its best state, and its search's last states
+
+
 def _scout_job(job: tuple[Surface, Recipe, float, SearchSettings, np.ndarray, float,
-                          Callable[[State], None] | None]) -> tuple[Candidate, Start | None]:
+                          Callable[[State], None] | None]
+               ) -> tuple[Candidate, Scouted | None]:
     """One recipe built and searched for ``share`` seconds (in a worker process or here): its
     row (with the estimate of its best state), and the start of its best state (the cut
-    surface, the candidates and paths drawn, the chosen loops) or ``None`` when it gave none.
+    surface, the candidates and paths drawn, the chosen loops) with its search's last states
+    (their loops, the last first), or ``None`` when it gave none.
     A recipe begun after the budget is spent is skipped."""
     surface, recipe, began, knobs, deformed, share, on_step = job
     t0 = time.monotonic()
@@ -304,17 +309,18 @@ def _scout_job(job: tuple[Surface, Recipe, float, SearchSettings, np.ndarray, fl
     best = path.states[-1]
     row = Candidate(how, False, "", estimate=best.score, loops=len(best.loops), price=knobs.price,
                     seconds=time.monotonic() - t0, converged=path.converged)
-    return row, (r, list(path.loops), sorted(best.loops), how)
+    return row, ((r, list(path.loops), sorted(best.loops), how),
+                 tuple(state.loops for state in reversed(path.states[-FINALISTS:])))
 
 
-def _lay_out_job(job: tuple[Surface, Start, Candidate, float, SearchSettings, Callable[[State], None] | None]
-                 ) -> tuple[Candidate, SegmentResult | None]:
-    """A scouted start searched on from its best state and laid out: its row, and its result
-    when certified."""
-    surface, found, scouted, began, knobs, on_step = job
+def _lay_out_job(job: tuple[Surface, Scouted, Candidate, float, SearchSettings,
+                           Callable[[State], None] | None]) -> tuple[Candidate, SegmentResult | None]:
+    """A scouted start searched on from its best state and laid out (the scouting search's
+    last states among the finalists): its row, and its result when certified."""
+    surface, (found, earlier), scouted, began, knobs, on_step = job
     t0 = time.monotonic()
     try:
-        result = _search_from(surface, found, began, knobs, on_step)
+        result = _search_from(surface, found, began, knobs, on_step, earlier)
     except UncertifiedError as err:
         return replace(scouted, reason=str(err), seconds=scouted.seconds + time.monotonic() - t0), None
     row = replace(_candidate(result, knobs, scouted.seconds + time.monotonic() - t0),
@@ -367,9 +373,12 @@ def _kept_labelling(surface: Surface, labels: Sequence[Direction], how: str, beg
 
 
 def _search_from(surface: Surface, found: Start, began: float, knobs: SearchSettings,
-                 on_step: Callable[[State], None] | None) -> SegmentResult:
+                 on_step: Callable[[State], None] | None,
+                 earlier: Sequence[frozenset[int]] = ()) -> SegmentResult:
     """The search from one start, its last states laid out and certified; the finalist whose
-    labels score best (fidelity, or agreement with the guide, less the loops' price) is kept."""
+    labels score best (fidelity, or agreement with the guide, less the loops' price) is kept.
+    ``earlier``: the states of a search before this one (their loops, the last first), the
+    finalists after this search's own."""
     budget, price = knobs.budget, knobs.price
     r, loops, first, how = found
     # the budget covers the whole run: the cut above, the search, and a reserve for the layout
@@ -388,12 +397,13 @@ def _search_from(surface: Surface, found: Start, began: float, knobs: SearchSett
     why, best = "", None
     ways = [True, False]  # the layouts tried: following the labels, then by the middles
     deadline = time.monotonic() + max(budget - (time.monotonic() - began), SEARCH_SHARE * budget)
-    for k, state in enumerate(reversed(path)):
+    finalists = [state.loops for state in reversed(path)] + [e for e in earlier if e != path[0].loops]
+    for k, loops_of in enumerate(finalists):
         if k >= FINALISTS and (best is not None or time.monotonic() > deadline):
             break
         if best is not None and time.monotonic() - began > budget:
             break
-        laid = _laid_out(r, [pool[i] for i in sorted(state.loops)], ways)
+        laid = _laid_out(r, [pool[i] for i in sorted(loops_of)], ways)
         if isinstance(laid, str):
             why = laid
             continue
@@ -402,12 +412,12 @@ def _search_from(surface: Surface, found: Start, began: float, knobs: SearchSett
         fid = fidelity(refined.surface, lay.labels)
         aim = fid if knobs.guide is None else fidelity(refined.surface, lay.labels,
                                                        knobs.guide[refined.parent])
-        score = aim - price * len(state.loops)
+        score = aim - price * len(loops_of)
         if best is None or score > best[0]:
-            best = (score, fid, state, lay, checked)
+            best = (score, fid, loops_of, lay, checked)
     if best is None:
         raise UncertifiedError(f"no state of the search was certified: {why}")
-    score, fid, state, lay, (mesh, report) = best
+    score, fid, kept, lay, (mesh, report) = best
     refined = lay.embedded.refined
     changed = None
     if knobs.guide is not None:  # the share of the area whose label is not the guide's
@@ -416,7 +426,7 @@ def _search_from(surface: Surface, found: Start, began: float, knobs: SearchSett
         areas = refined.surface.areas
         changed = float(areas[(wanted * given).sum(axis=1) < 0.5].sum() / areas.sum())
     return SegmentResult(mesh, tuple(int(p) for p in refined.parent.tolist()), lay.polycube, report,
-                         surface.genus, len(surface.triangles), len(state.loops), fid,
+                         surface.genus, len(surface.triangles), len(kept), fid,
                          naive_fidelity(surface), time.monotonic() - began, len(path), searched.converged,
                          lay, how, changed, score)
 

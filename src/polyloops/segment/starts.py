@@ -2,8 +2,10 @@
 is built.
 
 A *start* is a cut surface, its candidate curves and the curves chosen, making a polycube loop
-structure.  The first starts are *recipes*, each built and searched on its own (in parallel with
-``workers``), the best certified result kept:
+structure.  The first starts are *recipes*, each built and scouted (searched for a share of
+the budget and ranked by the search's estimate), the best-ranked then searched on and laid out
+(:func:`~polyloops.segment.run.segment_mesh`, in parallel with ``workers``), the best
+certified result kept:
 
 - the level starts (:mod:`~polyloops.segment.levels`): of the charts of the naive and of the
   graph-cut labelling in the polycube-like deformation, then of the triangles in the
