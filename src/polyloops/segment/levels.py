@@ -36,6 +36,7 @@ surface that is a polycube, the start is its own dual loop structure.
 from __future__ import annotations
 
 import itertools
+import time
 
 import numpy as np
 from scipy.sparse import coo_matrix
@@ -141,12 +142,13 @@ def level_planes(surface: Surface, heights: np.ndarray, gap: float = GAPS[0],
 
 
 def level_grid(surface: Surface, heights: np.ndarray | None = None, gap: float = GAPS[0],
-               labels: np.ndarray | None = None) -> CutGrid:
+               labels: np.ndarray | None = None, deadline: float = float("inf")) -> CutGrid:
     """The level start as cut, before mending (see the module docstring): in ``heights``, the
     points by default, of the charts of ``labels`` when given (:func:`levels`).  At positive
     genus there is no cube to begin with, nor at genus 0 when
     the curves nearest the centre make none: every curve that crosses another is taken at
-    once, and must make a loop structure.
+    once, and must make a loop structure.  No curve is added after ``deadline`` (a
+    :func:`time.monotonic` time): the curves kept by then are the start.
 
     Raises
     ------
@@ -172,6 +174,8 @@ def level_grid(surface: Surface, heights: np.ndarray | None = None, gap: float =
     while True:
         before = len(chosen)
         for i in list(waiting):
+            if time.monotonic() > deadline:
+                break
             more = crossing_only(loops, [*chosen, i])
             if len(more) <= len(chosen):
                 continue  # it crosses nothing
@@ -181,5 +185,5 @@ def level_grid(surface: Surface, heights: np.ndarray | None = None, gap: float =
                 continue
             chosen = more
             waiting.remove(i)
-        if len(chosen) == before:
+        if len(chosen) == before or time.monotonic() > deadline:
             return CutGrid(r, loops, chosen, e, check_polycube_loop_structure(e.structure))

@@ -118,7 +118,7 @@ def build_start(surface: Surface, recipe: Recipe, deadline: float = float("inf")
         labels = naive_label_indices(surface)
     elif recipe.charts is Charts.GRAPH_CUT:
         labels = np.array([int(d) for d in graphcut_labels(surface)], dtype=np.int64)
-    r, loops, chosen = mend(level_grid(surface, heights, recipe.gap, labels), deadline=deadline)
+    r, loops, chosen = mend(level_grid(surface, heights, recipe.gap, labels, deadline), deadline=deadline)
     return r, loops, chosen, recipe.name
 
 
