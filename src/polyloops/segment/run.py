@@ -190,8 +190,10 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
                     guide: Sequence[Direction] | None = None, direct: bool = True, workers: int = 1,
                     on_candidate: Callable[[Candidate], None] | None = None) -> SegmentResult:
     """:func:`segment_mesh` on a checked surface: the search from the given start, or from
-    each recipe of :func:`~polyloops.segment.starts.recipes` (``workers`` at a time) while the
-    budget lasts, the best certified result kept, then from the grids until one is certified;
+    each recipe of :func:`~polyloops.segment.starts.recipes` (``workers`` at a time): each
+    scouted (searched for a share of the budget, ranked by the search's estimate), the
+    best-ranked searched on and laid out while the budget lasts, the best certified result
+    kept; then from the grids until one is certified;
     a ``guide`` that is already a valid labelling is returned as it is; with ``direct`` and
     without a start or a guide, the naive and graph-cut labellings that the checker finds
     valid are candidates too (:func:`_direct`)."""
@@ -278,7 +280,8 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
     # the best score; between the search and a valid labelling of the mesh itself, the more
     # faithful (that labelling draws no loops, so no price is asked of it)
     best_c, best = max(found_results, key=lambda cr: (
-        cr[1].fidelity if kept_direct is not None else cr[0].score or 0.0))
+        cr[1].fidelity if kept_direct is not None else
+        cr[0].score if cr[0].score is not None else -float("inf")))
     rows = tuple(replace(c, kept=c is best_c) for c, _ in tried) + (
         (replace(best_c, kept=True),) if best is kept_direct else ())
     return replace(best, seconds=time.monotonic() - began, candidates=rows, score=best_c.score,
@@ -450,9 +453,10 @@ def segment_mesh(points: Sequence[Sequence[float]] | np.ndarray,
     from ``start`` when given (a polycube loop structure of the mesh's genus, embedded by
     :mod:`~polyloops.segment.start`), else from each start of
     :func:`~polyloops.segment.starts.recipes` (the levels of the surface and of its
-    polycube-like deformation, and the cube at genus 0), ``workers`` at a time, the best score
-    kept (``candidates`` lists each, and ``on_candidate`` is called with each as it ends), and
-    from grids of section curves when none of them is certified.  ``on_step`` is called with
+    polycube-like deformation, and the cube at genus 0), ``workers`` at a time, scouted and
+    the best-ranked laid out, the best score kept (``candidates`` lists each, and
+    ``on_candidate`` is called with each as it ends), and from grids of section curves when
+    none of them is certified.  ``on_step`` is called with
     each state a search moves to, in this process only (not with ``workers`` > 1).  With a
     ``guide`` (a label per triangle, from any method, valid or not) the search keeps as much
     of it as it can instead of following the normals: a valid guide is returned unchanged,
