@@ -128,8 +128,7 @@ def level_planes(surface: Surface, heights: np.ndarray, gap: float = GAPS[0],
                  labels: np.ndarray | None = None) -> list[Plane]:
     """The planes through the middles of the gaps between consecutive levels of each axis,
     the one nearest the area centroid of each axis first (the cube is sought among them)."""
-    hv = heights[surface.triangles].mean(axis=1)
-    centroid = (hv * surface.areas[:, None]).sum(axis=0) / surface.areas.sum()
+    centroid = surface.area_centroid(heights)
     planes = [Plane(a, (lower[1] + upper[0]) / 2)
               for a, found in enumerate(levels(surface, heights, gap, labels))
               for lower, upper in itertools.pairwise(found)]

@@ -37,7 +37,7 @@ from polyloops.segment.layout import Layout, lay_out
 from polyloops.segment.refine import Refined
 from polyloops.segment.search import SearchSettings, StartError, State, greedy_search
 from polyloops.segment.start import embed_start
-from polyloops.segment.starts import GRIDS, OVERRUN, Heights, Recipe, Start, build_start, grid_starts, recipes
+from polyloops.segment.starts import GRIDS, OVERRUN, Recipe, Start, build_start, grid_starts, recipes
 from polyloops.segment.surface import Surface, surface_of
 from polyloops.segmentation import SegmentationReport, check_segmentation
 from polyloops.segmentation.quality import backwards_fraction
@@ -198,21 +198,19 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
     without a start or a guide, the naive and graph-cut labellings that the checker finds
     valid are candidates too (:func:`_direct`)."""
     began = time.monotonic()
-    target = None
+    if guide is not None and len(guide) != len(surface.triangles):
+        raise ValueError(f"a guide of {len(guide)} labels for {len(surface.triangles)} triangles")
+    knobs = SearchSettings(budget, seed, planes, price, None if guide is None else label_vectors(guide))
     kept_direct = None
     if guide is not None:
-        if len(guide) != len(surface.triangles):
-            raise ValueError(f"a guide of {len(guide)} labels for {len(surface.triangles)} triangles")
         kept = _kept_labelling(surface, guide, "the guide, already valid", began)
         if kept is not None:
-            return _alone(replace(kept, guide_changed=0.0), SearchSettings(budget, seed, planes, price))
-        target = label_vectors(guide)
+            return _alone(replace(kept, guide_changed=0.0), knobs)
     elif start is None and direct:
         kept_direct = _direct(surface, began)
         if kept_direct is not None and kept_direct.fidelity >= kept_direct.naive_fidelity - 1e-12:
             # the per-triangle labelling, valid: no labelling is more faithful
-            return _alone(kept_direct, SearchSettings(budget, seed, planes, price))
-    knobs = SearchSettings(budget, seed, planes, price, target)
+            return _alone(kept_direct, knobs)
     if start is not None:
         r, loops, placed = embed_start(surface, start, GRIDS, budget)
         how = f"the given start, turned by {placed.symmetry}" + (
@@ -258,7 +256,7 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
     if not any(result is not None for _, result in tried):
         reasons = [f"from {c.start}: {c.reason}" for c, _ in tried]
         try:
-            for found in grid_starts(surface, planes, budget, began, reasons=reasons):
+            for found in grid_starts(surface, planes, budget, began, reasons=reasons, deformed=deformed):
                 t0 = time.monotonic()
                 try:
                     searched = _search_from(surface, found, began, knobs, on_step)
@@ -304,8 +302,7 @@ def _scout_job(job: tuple[Surface, Recipe, float, SearchSettings, np.ndarray, fl
     if t0 - began > knobs.budget:
         return Candidate(recipe.name, False, "not begun: the time budget was spent"), None
     try:
-        r, loops, chosen, how = build_start(surface, recipe, t0 + max(knobs.budget / 4, 3.0),
-                                            deformed if recipe.heights is Heights.DEFORMATION else None)
+        r, loops, chosen, how = build_start(surface, recipe, t0 + max(knobs.budget / 4, 3.0), deformed)
     except StartError as err:
         return Candidate(recipe.name, False, str(err), seconds=time.monotonic() - t0), None
     path = greedy_search(r, loops, chosen, replace(knobs, budget=share), on_step)

@@ -98,9 +98,8 @@ def candidate_loops(surface: Surface, planes_per_axis: int, heights: np.ndarray 
     ``planes_per_axis`` evenly spread, all in the ``heights``: the points by default, see
     :mod:`~polyloops.segment.refine`), their section curves, and the indices of the three
     central planes' first curves."""
-    areas = surface.areas
     hv = surface.points if heights is None else heights
-    centroid = (hv[surface.triangles].mean(axis=1) * areas[:, None]).sum(axis=0) / areas.sum()
+    centroid = surface.area_centroid(heights)
     lo, hi = hv.min(axis=0), hv.max(axis=0)
     planes = [Plane(a, float(centroid[a])) for a in range(3)]
     for a in range(3):

@@ -123,13 +123,14 @@ def build_start(surface: Surface, recipe: Recipe, deadline: float = float("inf")
 
 
 def grid_starts(surface: Surface, planes: int, budget: float, began: float, given: int = 0,
-                reasons: list[str] | None = None) -> Iterator[Start]:
+                reasons: list[str] | None = None, deformed: np.ndarray | None = None) -> Iterator[Start]:
     """The grid starts in turn: each grid of :data:`GRIDS` mended into a polycube loop
     structure (:mod:`~polyloops.segment.grid`), each size cut in the surface's coordinates and
     in a polycube-like deformation of it (:mod:`~polyloops.segment.deform`), the one with fewer
     violations as cut mended first; nothing more is begun once :data:`OVERRUN` times ``budget``
     seconds have gone since ``began`` (a :func:`time.monotonic` time) and some start was given
-    (``given`` of them before these; ``reasons`` gathers why the others failed).
+    (``given`` of them before these; ``reasons`` gathers why the others failed; ``deformed``:
+    the polycube-like heights, computed when needed and not given).
 
     Raises
     ------
@@ -137,7 +138,6 @@ def grid_starts(surface: Surface, planes: int, budget: float, began: float, give
         When no start was found at all (the message gives each reason).
     """
     reasons = [] if reasons is None else reasons
-    deformed = None
     for k in sorted({planes, *GRIDS}):
         if (given or reasons) and time.monotonic() - began > OVERRUN * budget:
             if not given:

@@ -76,6 +76,12 @@ class Surface:
         """The total area."""
         return float(self.areas.sum())
 
+    def area_centroid(self, heights: np.ndarray | None = None) -> np.ndarray:
+        """The area-weighted mean of the triangles' centroids, placed by ``heights`` (per
+        vertex; the points by default)."""
+        hv = self.points if heights is None else heights
+        return (hv[self.triangles].mean(axis=1) * self.areas[:, None]).sum(axis=0) / self.areas.sum()
+
     @property
     def genus(self) -> int:
         """The genus, from Euler's formula (the surface is closed and connected)."""
