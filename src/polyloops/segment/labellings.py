@@ -24,14 +24,14 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 import numpy as np
-from scipy.sparse import csr_matrix
-from scipy.sparse.csgraph import breadth_first_order, maximum_flow
+from scipy.sparse import coo_matrix, csr_matrix
+from scipy.sparse.csgraph import breadth_first_order, connected_components, maximum_flow
 
 from polyloops.core.directions import Direction
 from polyloops.segment.surface import Surface
 
-__all__ = ["DIRECTION_VECTORS", "energy", "fidelity", "graphcut_labels", "label_vectors", "naive_fidelity",
-           "naive_label_indices", "naive_labels"]
+__all__ = ["DIRECTION_VECTORS", "chart_indices", "energy", "fidelity", "graphcut_labels", "label_vectors",
+           "naive_fidelity", "naive_label_indices", "naive_labels"]
 
 # the unit vector of each Direction, in its order (+X, -X, +Y, -Y, +Z, -Z)
 DIRECTION_VECTORS = np.array([np.eye(3)[d // 2] * (1 if d % 2 == 0 else -1) for d in range(6)])
@@ -46,6 +46,16 @@ def naive_labels(s: Surface) -> tuple[Direction, ...]:
 def naive_label_indices(s: Surface) -> np.ndarray:
     """:func:`naive_labels` as an array of the directions' indices."""
     return (s.normals @ DIRECTION_VECTORS.T).argmax(axis=1)
+
+
+def chart_indices(s: Surface, labels: np.ndarray) -> np.ndarray:
+    """Per triangle, its chart (a maximal edge-connected set of triangles with one label, given
+    per triangle as a direction index), numbered from 0."""
+    pairs, _ = s.adjacency
+    same = labels[pairs[:, 0]] == labels[pairs[:, 1]]
+    m = len(s.triangles)
+    graph = coo_matrix((np.ones(int(same.sum())), (pairs[same, 0], pairs[same, 1])), shape=(m, m))
+    return connected_components(graph, directed=False)[1]
 
 
 def label_vectors(labels: Sequence[Direction]) -> np.ndarray:

@@ -39,11 +39,10 @@ import itertools
 import time
 
 import numpy as np
-from scipy.sparse import coo_matrix
-from scipy.sparse.csgraph import connected_components
 
 from polyloops.segment.embedded import NotAStructure, read_structure
 from polyloops.segment.grid import CutGrid, every_crossing
+from polyloops.segment.labellings import chart_indices
 from polyloops.segment.refine import Plane, Refined, cut
 from polyloops.segment.search import StartError, crossing_only, section_loops, start_state
 from polyloops.segment.surface import Surface
@@ -100,11 +99,7 @@ def _facing(surface: Surface, heights: np.ndarray, labels: np.ndarray | None
     if labels is None:
         nearest = np.argmax(np.abs(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])), axis=1)
         return [(centroids[nearest == a, a], areas[nearest == a]) for a in range(3)]
-    pairs, _ = surface.adjacency
-    same = labels[pairs[:, 0]] == labels[pairs[:, 1]]
-    m = len(surface.triangles)
-    _, chart = connected_components(coo_matrix((np.ones(int(same.sum())), (pairs[same, 0], pairs[same, 1])),
-                                               shape=(m, m)), directed=False)
+    chart = chart_indices(surface, labels)
     weight = np.bincount(chart, weights=areas)
     axis = np.zeros(len(weight), dtype=np.int64)
     axis[chart] = labels // 2

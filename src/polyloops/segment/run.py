@@ -34,6 +34,7 @@ from polyloops.segment.labellings import (
     naive_labels,
 )
 from polyloops.segment.layout import Layout, lay_out
+from polyloops.segment.polish import polish_labels, polish_layout
 from polyloops.segment.refine import Refined
 from polyloops.segment.search import SearchSettings, StartError, State, greedy_search
 from polyloops.segment.start import embed_start
@@ -143,24 +144,29 @@ def _rounded(x: float | None) -> float | None:
     return None if x is None else round(x, 6)
 
 
-def _laid_out(r: Refined, loops: Sequence[Loop], ways: list[bool]
+def _laid_out(r: Refined, loops: Sequence[Loop], ways: list[bool], guide: np.ndarray | None = None
               ) -> tuple[Layout, tuple[LabelledMesh, SegmentationReport]] | str:
-    """The loops laid out and certified, or why not: the layout that follows the per-triangle
-    labels first, and where that is not certified (a patch folded over a thin part), the one by
-    the sides' middles and lengths alone.  ``ways`` lists the layouts still tried in this
-    search; one that failed is dropped from it (on the jug it fails for every state, and each
-    try costs seconds)."""
+    """The loops laid out, polished (:mod:`~polyloops.segment.polish`: towards the normals, or
+    the ``guide``, a unit vector per input triangle) and certified, or why not: the layout
+    that follows the per-triangle labels first, and where that is not certified (a patch folded
+    over a thin part), the one by the sides' middles and lengths alone.  ``ways`` lists the
+    layouts still tried in this search; one that failed is dropped from it (on the jug it fails
+    for every state, and each try costs seconds).  A polished layout draws the same polycube
+    and is certified anew; were it not, the layout as drawn would be kept."""
     why = ""
     for follow in list(ways):
         try:
-            lay = lay_out(r, loops, follow)
+            drawn = lay_out(r, loops, follow)
         except NotAStructure as err:
             why = str(err)
         else:
-            checked = _certify(lay)
-            if not isinstance(checked, str):
-                return lay, checked
-            why = checked
+            target = None if guide is None else guide[drawn.embedded.refined.parent]
+            polished = polish_layout(drawn, target)
+            for lay in (polished, drawn) if polished is not drawn else (drawn,):
+                checked = _certify(lay)
+                if not isinstance(checked, str):
+                    return lay, checked
+                why = checked
         if follow and len(ways) > 1:
             ways.remove(True)
     return why
@@ -348,13 +354,21 @@ def _candidate(result: SegmentResult, knobs: SearchSettings, seconds: float) -> 
 
 def _direct(surface: Surface, began: float) -> SegmentResult | None:
     """The more faithful of the naive and graph-cut labellings of the mesh itself that the
-    checker finds valid (it builds a polycube that realises them), or ``None``: where one is,
-    the search's result is kept only when it is more faithful still."""
+    checker finds valid (it builds a polycube that realises them), polished (the same charts,
+    boundaries and corners, each triangle moved to a chart beside it where it agrees better
+    with it: :func:`~polyloops.segment.polish.polish_labels`), or ``None``: where one is, the
+    search's result is kept only when it is more faithful still."""
     for labelling, how in ((naive_labels, "the per-triangle labelling"),
                            (graphcut_labels, "the graph-cut labelling")):
-        kept = _kept_labelling(surface, labelling(surface), how + ", valid as it is", began)
-        if kept is not None:
-            return kept  # the per-triangle one first: its fidelity is the bound, none is more
+        labels = labelling(surface)
+        as_it_is = _kept_labelling(surface, labels, how + ", valid as it is", began)
+        if as_it_is is None:
+            continue
+        polished, moved = polish_labels(surface, labels)
+        if moved:
+            how = f"{how}, valid, polished ({moved} triangles moved)"
+            return _kept_labelling(surface, polished, how, began) or as_it_is
+        return as_it_is
     return None
 
 
@@ -403,7 +417,7 @@ def _search_from(surface: Surface, found: Start, began: float, knobs: SearchSett
             break
         if best is not None and time.monotonic() - began > budget:
             break
-        laid = _laid_out(r, [pool[i] for i in sorted(loops_of)], ways)
+        laid = _laid_out(r, [pool[i] for i in sorted(loops_of)], ways, knobs.guide)
         if isinstance(laid, str):
             why = laid
             continue
