@@ -36,12 +36,14 @@ def markdown_table(header: list[str], rows: list[list[Any]]) -> str:
 
 
 def mesh_benchmark_parser(description: str) -> argparse.ArgumentParser:
-    """The options of the benchmarks over a folder of meshes: FOLDER, --budget, --seed, --only."""
+    """The options of the benchmarks over a folder of meshes: FOLDER, --budget, --seed, --only,
+    --workers."""
     parser = argparse.ArgumentParser(description=description)
     parser.add_argument("folder", type=Path)
     parser.add_argument("--budget", type=float, default=20.0)
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--only", nargs="*", help="mesh names (stems) to run")
+    parser.add_argument("--workers", type=int, default=1, help="as segment --workers (default 1)")
     return parser
 
 

@@ -8,7 +8,7 @@ whether its output is certified, the share of the area it labels otherwise than 
 ("changed"; 0 when a valid guide is kept), its fidelity, charts, and wall time.  One Markdown
 table per subfolder.
 
-Usage: python benchmarks/guide.py DIR [--budget SECONDS] [--seed N] [--only NAME ...]
+Usage: python benchmarks/guide.py DIR [--budget SECONDS] [--seed N] [--only NAME ...] [--workers K]
 """
 
 from __future__ import annotations
@@ -31,7 +31,7 @@ from polyloops.surface.mesh import LabelledMesh
 VERDICT = {True: "valid", False: "INVALID", None: "undecided"}
 
 
-def rows(path: Path, budget: float, seed: int) -> list[list[object]]:
+def rows(path: Path, budget: float, seed: int, workers: int = 1) -> list[list[object]]:
     s = surface_of(*read_triangle_mesh(path))
     out: list[list[object]] = []
     points, triangles = tuple(map(tuple, s.points.tolist())), tuple(map(tuple, s.triangles.tolist()))
@@ -40,7 +40,7 @@ def rows(path: Path, budget: float, seed: int) -> list[list[object]]:
         verdict = VERDICT[check_segmentation(mesh).valid]
         start = time.perf_counter()
         try:
-            done = segment_surface(s, budget=budget, seed=seed, guide=labels)
+            done = segment_surface(s, budget=budget, seed=seed, guide=labels, workers=workers)
         except Exception as err:  # a benchmark reports every failure in its row
             out.append([path.stem, len(s.triangles), s.genus, name, verdict, f"none ({type(err).__name__})",
                         "", "", "", f"{time.perf_counter() - start:.1f}"])
@@ -55,7 +55,8 @@ def main() -> None:
     args = mesh_benchmark_parser(__doc__.split("\n\n")[0]).parse_args()
     header = ["mesh", "triangles", "genus", "guide", "guide verdict", "segment --guide", "changed",
               "fidelity", "charts", "s"]
-    print_tables_by_folder(args.folder, args.only, header, lambda p: rows(p, args.budget, args.seed))
+    print_tables_by_folder(args.folder, args.only, header,
+                           lambda p: rows(p, args.budget, args.seed, args.workers))
 
 if __name__ == "__main__":
     main()

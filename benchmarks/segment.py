@@ -75,7 +75,6 @@ def main() -> None:
     parser = mesh_benchmark_parser(__doc__.split("\n\n")[0])
     parser.add_argument("--start", action="append", default=[], metavar="MESH=START",
                         help="begin segment on mesh MESH (its stem) from START, as segment --start")
-    parser.add_argument("--workers", type=int, default=1, help="as segment --workers (default 1)")
     args = parser.parse_args()
     starts = dict(item.split("=", 1) for item in args.start)
     header = ["mesh", "triangles", "genus", "naive fidelity (bound)", "naive", "naive charts", "graph-cut",

@@ -154,3 +154,23 @@ def test_without_a_cube_near_the_centre_every_level_curve_is_taken_at_once(monke
     assert canonical_form(fallback.embedded.structure, "labelled") == canonical_form(
         usual.embedded.structure, "labelled")
 
+
+
+def test_the_two_sides_of_a_thin_plate_are_two_levels():
+    """A 3 x 3 plate 0.005 thick under a unit column (a polycube with its Z layers moved to 0,
+    0.005 and 1): its bottom and top face opposite ways and are two levels, though 0.5% of the
+    height apart (under the 1% gap), so a plane cuts the plate's rim; two faces facing one way
+    that close (the plate's top and the column's, layers at 0.995 and 1) stay one level."""
+    from polyloops.shapes.voxels import polycube_from_voxels
+
+    q = polycube_from_voxels([(i, j, 0) for i in range(3) for j in range(3)] + [(1, 1, 1)])
+    m = labelled_mesh_from_polycube(q)
+    points = np.array(m.points, dtype=float)
+    points[:, 2] = np.array([0.0, 0.005, 1.0])[points[:, 2].astype(int)]
+    s = surface_of(points, np.array(m.triangles))
+    assert [(lo, hi) for lo, hi, _ in levels(s, s.points)[2]] == [(0.0, 0.0), (0.005, 0.005), (1.0, 1.0)]
+    assert sorted(p.value for p in level_planes(s, s.points) if p.axis == 2) == [0.0025, 0.5025]
+    # the same top faces, 0.5% apart: one level (a gentle step, not two sides of a plate)
+    points[:, 2] = np.array([0.0, 0.995, 1.0])[np.array(m.points)[:, 2].astype(int)]
+    s = surface_of(points, np.array(m.triangles))
+    assert [(lo, hi) for lo, hi, _ in levels(s, s.points)[2]] == [(0.0, 0.0), (0.995, 1.0)]

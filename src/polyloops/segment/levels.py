@@ -9,9 +9,11 @@ a polycube (a CAD part in its own coordinates, or any surface in its polycube-li
 levels.  So the level start
 
 1. groups, per axis, the triangles whose normal is nearest that axis by their centroid's
-   coordinate along it (a gap wider than ``gap`` of the extent begins a new level; a level
-   with less than :data:`LEAST` of the area is noise; past :data:`MOST_LEVELS` an axis, the
-   lightest level joins its nearer neighbour),
+   coordinate along it (a gap wider than ``gap`` of the extent begins a new level, and so
+   does a gap a tenth as wide between area facing opposite ways: the two sides of a thin
+   plate, or of a thin slot, are two levels with a plane between; a level with less than
+   :data:`LEAST` of the area is noise; past :data:`MOST_LEVELS` an axis, the lightest level
+   joins its nearer neighbour),
 2. cuts a plane through the middle of each gap between consecutive levels,
 3. builds a loop structure of their sections: the cube of the curves nearest the centre (as the
    cube start does), then every other curve, longest first, kept when the curves still make a
@@ -52,6 +54,7 @@ __all__ = ["GAPS", "LEAST", "MOST_LEVELS", "level_grid", "level_planes", "levels
 
 GAPS = (0.01, 0.02)  # of an axis's extent: a wider gap between facing triangles begins a new level
 # (each is tried: the finer splits a gentle step off, the coarser keeps a curved wall in one level)
+OPPOSITE = 0.1  # of the gap: a wider gap between area facing opposite ways begins a new level
 LEAST = 0.002  # of the area: a lighter level is noise (a bump's tip, a sliver)
 MOST_LEVELS = 13  # levels an axis at most (each gap is a plane, so a loop or more)
 
@@ -67,17 +70,19 @@ def levels(surface: Surface, heights: np.ndarray, gap: float = GAPS[0], labels: 
     level of its own."""
     areas = surface.areas
     out = []
-    for a, (values, weights) in enumerate(_facing(surface, heights, labels)):
+    for a, (values, weights, signs) in enumerate(_facing(surface, heights, labels)):
         order = np.argsort(values, kind="stable")
-        values, weights = values[order], weights[order]
+        values, weights, signs = values[order], weights[order], signs[order]
         found: list[list[float]] = []
         wide = gap * float(np.ptp(heights[:, a]))
-        for v, w in zip(values.tolist(), weights.tolist(), strict=True):
-            if found and v - found[-1][1] <= wide:
+        last = 0
+        for v, w, sign in zip(values.tolist(), weights.tolist(), signs.tolist(), strict=True):
+            if found and v - found[-1][1] <= (wide if sign == last else OPPOSITE * wide):
                 found[-1][1] = v
                 found[-1][2] += w
             else:
                 found.append([v, v, w])
+            last = sign
         kept = [f for f in found if f[2] >= LEAST * float(areas.sum())]
         while len(kept) > MOST_LEVELS:
             k = min(range(len(kept)), key=lambda i: kept[i][2])
@@ -90,23 +95,27 @@ def levels(surface: Surface, heights: np.ndarray, gap: float = GAPS[0], labels: 
 
 
 def _facing(surface: Surface, heights: np.ndarray, labels: np.ndarray | None
-            ) -> list[tuple[np.ndarray, np.ndarray]]:
-    """Per axis, the values along it and the areas that make its levels: the triangles whose
-    normal in the ``heights`` is nearest it, or with ``labels`` the charts labelled on it."""
+            ) -> list[tuple[np.ndarray, np.ndarray, np.ndarray]]:
+    """Per axis, the values along it, the areas and the signs (which way they face) that make
+    its levels: the triangles whose normal in the ``heights`` is nearest it, or with
+    ``labels`` the charts labelled on it."""
     tri = heights[surface.triangles]
     centroids = tri.mean(axis=1)
     areas = surface.areas
     if labels is None:
-        nearest = np.argmax(np.abs(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])), axis=1)
-        return [(centroids[nearest == a, a], areas[nearest == a]) for a in range(3)]
+        cross = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+        nearest = np.argmax(np.abs(cross), axis=1)
+        sign = np.sign(cross[np.arange(len(cross)), nearest]).astype(np.int64)
+        return [(centroids[nearest == a, a], areas[nearest == a], sign[nearest == a]) for a in range(3)]
     chart = chart_indices(surface, labels)
     weight = np.bincount(chart, weights=areas)
-    axis = np.zeros(len(weight), dtype=np.int64)
-    axis[chart] = labels // 2
+    direction = np.zeros(len(weight), dtype=np.int64)
+    direction[chart] = labels
+    axis, sign = direction // 2, 1 - 2 * (direction % 2)
     out = []
     for a in range(3):
         mean = np.bincount(chart, weights=areas * centroids[:, a]) / np.maximum(weight, 1e-300)
-        out.append((mean[axis == a], weight[axis == a]))
+        out.append((mean[axis == a], weight[axis == a], sign[axis == a]))
     return out
 
 
