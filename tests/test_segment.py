@@ -24,8 +24,9 @@ from polyloops.segment.run import segment_mesh
 from polyloops.segment.search import SearchSettings, candidate_loops, greedy_search, start_state
 from polyloops.segment.surface import SurfaceError, surface_of
 from polyloops.segmentation import check_segmentation
-from polyloops.shapes.builders import box
-from polyloops.shapes.meshes import ellipsoid, octahedron, sphere, torus
+from polyloops.shapes.builders import box, dented_slab
+from polyloops.shapes.meshes import _subdivide, ellipsoid, octahedron, sphere, torus
+from polyloops.surface.construct import labelled_mesh_from_polycube
 from polyloops.verify import check_polycube_loop_structure
 from strategies import polycubes
 
@@ -153,8 +154,16 @@ def test_each_move_read_off_the_surface_is_the_kernels_move():
     assert checked >= 5
 
 
+def _wobbly_dented_slab():
+    """A dented slab's surface (a polycube whose cube start is poor), subdivided twice and
+    wobbled, so that no plane section runs along its edges."""
+    m = labelled_mesh_from_polycube(dented_slab())
+    points, triangles = _subdivide(*_subdivide(np.array(m.points, dtype=float), np.array(m.triangles)))
+    return points + 0.03 * np.sin(5 * points[:, [1, 2, 0]]), triangles
+
+
 def test_the_search_improves_and_the_same_seed_gives_the_same_result():
-    r, loops, _ = candidate_loops(surface_of(*ellipsoid(2, 1, 0.7, level=2)), 3)
+    r, loops, _ = candidate_loops(surface_of(*_wobbly_dented_slab()), 3)
     first = start_state(r, loops)
     runs = [greedy_search(r, loops, first, SearchSettings(budget=60, seed=3)) for _ in range(2)]
     assert runs[0].converged and runs[1].converged
@@ -476,15 +485,23 @@ def test_on_a_box_the_patches_follow_its_edges():
 
 
 def test_a_valid_labelling_of_the_mesh_itself_is_kept_when_more_faithful():
-    """On a box-shaped mesh the graph-cut labelling is valid (the checker builds its polycube)
-    and more faithful than the search's labels, so it is the result; ``direct=False`` gives
-    the search's."""
+    """On a box-shaped mesh the graph-cut labelling is valid (the checker builds its polycube):
+    polished, it is a candidate with no loops drawn; the result is the more faithful of it and
+    the search's labels, and ``direct=False`` gives the search's."""
+    from polyloops.segment.labellings import fidelity, graphcut_labels
+    from polyloops.segment.run import _direct
+
     points, triangles = sphere(3)
     points = points / np.abs(points).max(axis=1, keepdims=True) * np.array([1.0, 0.8, 0.4])
+    s = surface_of(points, triangles)
+    own = _direct(s, 0.0)
+    assert own is not None and own.layout is None and own.start.startswith("the graph-cut labelling, valid")
+    assert own.fidelity >= fidelity(s, graphcut_labels(s)) - 1e-12 and own.report.polycube is own.polycube
     done = segment_mesh(points, triangles, budget=0.5)
     searched = segment_mesh(points, triangles, budget=0.5, direct=False)
-    assert done.certified and done.layout is None and done.start.startswith("the graph-cut labelling, valid")
-    assert done.fidelity > searched.fidelity and done.report.polycube is done.polycube
+    # (each search is stopped by its budget, so the two runs' searches need not agree)
+    assert done.certified and done.fidelity >= own.fidelity
+    assert done.layout is not None or (done.fidelity == own.fidelity and done.start == own.start)
     assert searched.layout is not None  # the search's own, with its loops
 
 

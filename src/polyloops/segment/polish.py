@@ -41,11 +41,15 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from polyloops.core.directions import Direction
+from polyloops.segment.embedded import Embedded
 from polyloops.segment.labellings import DIRECTION_VECTORS, chart_indices
 from polyloops.segment.layout import Layout
+from polyloops.segment.refine import Refined
+from polyloops.segment.search import nearest_faces
 from polyloops.segment.surface import Surface
 
-__all__ = ["Fans", "Polished", "move_keeps", "polish", "polish_labels", "polish_layout", "worth"]
+__all__ = ["Fans", "Polished", "move_keeps", "polish", "polish_labels", "polish_layout", "polished_fidelity",
+           "worth"]
 
 
 class Fans:
@@ -216,6 +220,18 @@ def polish_layout(lay: Layout, target: np.ndarray | None = None) -> Layout:
         return lay
     labels = tuple(Direction(int(d)) for d in direction[done.patch])
     return replace(lay, patch=done.patch, labels=labels, corners=done.corners)
+
+
+def polished_fidelity(r: Refined, e: Embedded, target: np.ndarray | None = None) -> float:
+    """A quick foretaste of a structure's certified fidelity (or agreement with ``target``, per
+    refined triangle): its rough patches (each triangle the face of the nearest crossing in its
+    region, :func:`~polyloops.segment.search.nearest_faces`) polished, with no layout."""
+    normals = [e.polycube.face_normal(f) for f in range(len(e.polycube.faces))]
+    direction = np.array([int(d) if d is not None else 0 for d in normals], dtype=np.int64)
+    value = worth(r.surface, target)
+    done = polish(r.triangles, value, nearest_faces(r, e), direction)
+    chosen = value[np.arange(len(done.patch)), direction[done.patch]]
+    return float(chosen.sum() / r.surface.areas.sum())
 
 
 def polish_labels(surface: Surface, labels: Sequence[Direction], target: np.ndarray | None = None

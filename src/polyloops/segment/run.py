@@ -34,7 +34,7 @@ from polyloops.segment.labellings import (
     naive_labels,
 )
 from polyloops.segment.layout import Layout, lay_out
-from polyloops.segment.polish import polish_labels, polish_layout
+from polyloops.segment.polish import polish_labels, polish_layout, polished_fidelity
 from polyloops.segment.refine import Refined
 from polyloops.segment.search import SearchSettings, StartError, State, greedy_search
 from polyloops.segment.start import embed_start
@@ -313,7 +313,11 @@ def _scout_job(job: tuple[Surface, Recipe, float, SearchSettings, np.ndarray, fl
         return Candidate(recipe.name, False, str(err), seconds=time.monotonic() - t0), None
     path = greedy_search(r, loops, chosen, replace(knobs, budget=share), on_step)
     best = path.states[-1]
-    row = Candidate(how, False, "", estimate=best.score, loops=len(best.loops), price=knobs.price,
+    # ranked by its rough layout polished (the search's own score is optimistic where regions
+    # are large: a cube's octant may take any of its three labels anywhere)
+    target = None if knobs.guide is None else knobs.guide[r.parent]
+    estimate = polished_fidelity(r, best.embedded, target) - knobs.price * len(best.loops)
+    row = Candidate(how, False, "", estimate=estimate, loops=len(best.loops), price=knobs.price,
                     seconds=time.monotonic() - t0, converged=path.converged)
     return row, ((r, list(path.loops), sorted(best.loops), how),
                  tuple(state.loops for state in reversed(path.states[-FINALISTS:])))

@@ -17,9 +17,9 @@ paths (:mod:`~polyloops.segment.paths`), valid by construction.  A *state* is a 
    remove a loop the kernel's removal test allows, or replace one by a curve of its axis) is
    tried in an order the seed fixes; a state counts when its structure passes ``verify`` and
    primalizes and no region is a sliver (under :data:`MIN_REGION_SHARE` of the area); its
-   score is the fidelity of the labels it would give (each triangle labelled by the face of the
-   nearest crossing in its region), less a price per loop; the best move is made while it
-   improves the score.
+   score is the fidelity its labels could reach (each triangle labelled by the best direction
+   among its region's faces, see :class:`_Scorer`), less a price per loop; the best move is
+   made while it improves the score.
 3. **Layout and certificate** (:mod:`~polyloops.segment.run`): the last states are laid out
    (:mod:`~polyloops.segment.layout`) and checked twice (:mod:`~polyloops.segment.certify`),
    and the certified one whose labels score best is kept; when none passes, the states before
@@ -177,39 +177,51 @@ def crossing_only(loops: list[SurfaceLoop], chosen: list[int]) -> list[int]:
 
 
 class _Scorer:
-    """The fidelity a state's labels would have: each triangle labelled by the normal of the
-    face of the nearest crossing in its region (along the triangles' adjacency); with a
-    ``guide`` (per input triangle a unit vector), their agreement with it instead."""
+    """The fidelity a state's labels could reach: each triangle labelled by the direction,
+    among those of its region's faces (the polycube corner's), nearest its normal; with a
+    ``guide`` (per input triangle a unit vector), their agreement with it instead.  A layout
+    gives each region's faces sectors of it, and polishing (:mod:`~polyloops.segment.polish`)
+    moves each triangle towards that best direction where the patches allow, so this tracks
+    the certified labels' fidelity (within about 0.01 on the benchmark's smooth meshes) far
+    better than labelling each triangle by its nearest crossing did."""
 
     def __init__(self, r: Refined, guide: np.ndarray | None = None):
-        self.r = r
         surface = r.surface
         self.areas = surface.areas
-        self.normals = surface.normals if guide is None else guide[r.parent]
-        centroid = r.points[r.triangles].mean(axis=1)
-        self.pairs, self.edge_keys = r.adjacency
-        self.lengths = np.linalg.norm(centroid[self.pairs[:, 0]] - centroid[self.pairs[:, 1]], axis=1) + 1e-12
-        self.incident = r.incident
+        wanted = surface.normals if guide is None else guide[r.parent]
+        self.worth = wanted @ DIRECTION_VECTORS.T  # per triangle and direction
 
     def fidelity(self, e: Embedded) -> float:
         polycube = e.polycube
-        on_loops = np.array(sorted(x for lp in e.loops for x in lp.edges()), dtype=np.int64)
-        cut_keys = self.r.edge_key(on_loops[:, 0], on_loops[:, 1])
-        keep = ~np.isin(self.edge_keys, cut_keys)
-        a, b, w = self.pairs[keep, 0], self.pairs[keep, 1], self.lengths[keep]
-        m = len(self.r.triangles)
-        graph = coo_matrix((np.concatenate([w, w]), (np.concatenate([a, b]), np.concatenate([b, a]))),
-                           shape=(m, m)).tocsr()
-        sources, face_of_source = [], {}
-        for f, v in enumerate(e.crossings):
-            for t in self.incident[v]:
-                sources.append(t)
-                face_of_source[t] = f
-        _, _, nearest = dijkstra(graph, indices=sources, min_only=True, return_predecessors=True)
-        normal = np.array([int(polycube.face_normal(f) or 0) for f in range(len(e.crossings))])
-        labels = normal[[face_of_source.get(int(s), 0) for s in nearest.tolist()]]
-        agreement = (self.normals * DIRECTION_VECTORS[labels]).sum(axis=1)
-        return float((self.areas * agreement).sum() / self.areas.sum())
+        allowed = np.full((int(e.region.max()) + 1, 6), -np.inf)
+        for f, face in enumerate(polycube.faces):
+            d = polycube.face_normal(f)
+            if d is None:
+                raise ValueError(f"face {f} of the polycube is not axis-parallel")
+            allowed[list(face), int(d)] = 0.0
+        best = (self.worth + allowed[e.region]).max(axis=1)
+        return float((self.areas * best).sum() / self.areas.sum())
+
+
+def nearest_faces(r: Refined, e: Embedded) -> np.ndarray:
+    """Per triangle, the face of the crossing nearest it in its region (along the triangles'
+    adjacency, from the triangles round each crossing): the patches of a rough layout."""
+    centroid = r.points[r.triangles].mean(axis=1)
+    pairs, edge_keys = r.adjacency
+    on_loops = np.array(sorted(x for lp in e.loops for x in lp.edges()), dtype=np.int64)
+    keep = ~np.isin(edge_keys, r.edge_key(on_loops[:, 0], on_loops[:, 1]))
+    a, b = pairs[keep, 0], pairs[keep, 1]
+    w = np.linalg.norm(centroid[a] - centroid[b], axis=1) + 1e-12
+    m = len(r.triangles)
+    graph = coo_matrix((np.concatenate([w, w]), (np.concatenate([a, b]), np.concatenate([b, a]))),
+                       shape=(m, m)).tocsr()
+    sources, face_of_source = [], {}
+    for f, v in enumerate(e.crossings):
+        for t in r.incident[v]:
+            sources.append(t)
+            face_of_source[t] = f
+    _, _, nearest = dijkstra(graph, indices=sources, min_only=True, return_predecessors=True)
+    return np.array([face_of_source.get(int(t), 0) for t in nearest.tolist()], dtype=np.int64)
 
 
 PATH_MOVES = 2  # valid additions per axis drawn as paths at each step of the search
