@@ -173,3 +173,25 @@ def test_polished_labels_keep_the_checkers_verdict():
     assert fidelity(s, polished) >= fidelity(s, labels) - 1e-12
     assert moved > 0
     assert polish_labels(s, naive_labels(s))[1] == 0
+
+
+@settings(max_examples=15, deadline=None)
+@given(polycubes(max_size=5))
+def test_on_a_polycube_its_own_structure_could_reach_fidelity_one(q):
+    """On a polycube's own surface and its own loops (the level start), the search's score
+    (each triangle the best direction among its region's faces) is 1: every triangle lies in a
+    face of its region's corner.  The scouting's estimate (the rough layout, each triangle the
+    face of its nearest crossing, polished) lies between the rough layout's fidelity and 1:
+    polishing keeps the rough patches' complex, which need not be the polycube's."""
+    from polyloops.segment.levels import level_grid
+    from polyloops.segment.polish import polished_fidelity
+    from polyloops.segment.search import _Scorer, nearest_faces
+
+    m = labelled_mesh_from_polycube(q)
+    s = surface_of(np.array(m.points, dtype=float), np.array(m.triangles))
+    g = level_grid(s)
+    r = g.embedded.refined
+    assert _Scorer(r).fidelity(g.embedded) == pytest.approx(1.0)
+    q2 = g.embedded.polycube
+    rough = [q2.face_normal(int(f)) for f in nearest_faces(r, g.embedded)]
+    assert fidelity(r.surface, rough) - 1e-9 <= polished_fidelity(r, g.embedded) <= 1 + 1e-9
