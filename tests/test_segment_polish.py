@@ -79,7 +79,7 @@ def _fine_polycube_mesh(q, times: int):
     return points, tris, labels, face
 
 
-@settings(max_examples=20, deadline=None)
+@settings(max_examples=12, deadline=None)
 @given(polycubes(max_size=4), st.integers(0, 2**32 - 1))
 def test_every_move_keeps_the_complex_computed_from_scratch(q, seed):
     """On a polycube's subdivided surface, its faces as patches (as in a layout), random worths:
@@ -175,7 +175,7 @@ def test_polished_labels_keep_the_checkers_verdict():
     assert polish_labels(s, naive_labels(s))[1] == 0
 
 
-@settings(max_examples=15, deadline=None)
+@settings(max_examples=10, deadline=None)
 @given(polycubes(max_size=5))
 def test_on_a_polycube_its_own_structure_could_reach_fidelity_one(q):
     """On a polycube's own surface and its own loops (the level start), the search's score
