@@ -38,16 +38,7 @@ from polyloops.segment.polish import polish_labels, polish_layout, polished_fide
 from polyloops.segment.refine import Refined
 from polyloops.segment.search import SearchSettings, StartError, State, greedy_search
 from polyloops.segment.start import embed_start
-from polyloops.segment.starts import (
-    GRIDS,
-    OVERRUN,
-    Charts,
-    Recipe,
-    Start,
-    build_start,
-    grid_starts,
-    recipes,
-)
+from polyloops.segment.starts import GRIDS, OVERRUN, Recipe, Start, build_start, grid_starts, recipes
 from polyloops.segment.surface import Surface, surface_of
 from polyloops.segmentation import SegmentationReport, check_segmentation
 from polyloops.segmentation.quality import backwards_fraction
@@ -240,10 +231,7 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
             on_candidate(candidate)
 
     deformed = polycube_heights(surface)
-    # a valid labelling of the mesh itself seeds a start too: the levels of its charts
-    seeding = None if kept_direct is None else (
-        Charts.GRAPH_CUT if kept_direct.start.startswith("the graph-cut") else Charts.NAIVE)
-    own = recipes(surface.genus, planes, seeding)
+    own = recipes(surface.genus, planes)
     # scouting: each start built and searched for a share of the budget, judged by the
     # search's estimate alone (no layout); then the best-ranked are searched on and laid out
     share = max(SCOUTING * budget * max(workers, 1) / len(own), 1.0)

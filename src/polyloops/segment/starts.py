@@ -86,15 +86,10 @@ class Recipe:
         return f"the levels{of} in the {where} (gap {self.gap:g})"
 
 
-def recipes(genus: int, planes: int = 9, seed: Charts | None = None) -> list[Recipe]:
+def recipes(genus: int, planes: int = 9) -> list[Recipe]:
     """The recipes tried first on a surface of ``genus``, in order (see the module docstring):
-    the most often best first, as a short budget may not begin the last.  With ``seed`` (the
-    labelling, naive or graph-cut, that the checker found valid on the mesh), the levels of its
-    charts in the coordinates come first: on a surface near a polycube they are the planes
-    between its faces, so the start is that labelling's own loop structure, searched on."""
-    out = [] if seed is None else [Recipe("levels", Heights.COORDINATES, GAPS[0], charts=seed)]
-    out += [Recipe("levels", Heights.DEFORMATION, GAPS[0], charts=c)
-            for c in (Charts.NAIVE, Charts.GRAPH_CUT)]
+    the most often best first, as a short budget may not begin the last."""
+    out = [Recipe("levels", Heights.DEFORMATION, GAPS[0], charts=c) for c in (Charts.NAIVE, Charts.GRAPH_CUT)]
     out += [Recipe("levels", h, gap) for h in (Heights.DEFORMATION, Heights.COORDINATES) for gap in GAPS]
     if genus == 0:
         out.append(Recipe("cube", Heights.COORDINATES, planes=planes))
