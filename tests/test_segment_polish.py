@@ -13,7 +13,7 @@ from polyloops.core.directions import Direction
 from polyloops.io.examples import load_example
 from polyloops.segment.labellings import fidelity, graphcut_labels, naive_labels
 from polyloops.segment.layout import lay_out
-from polyloops.segment.polish import Fans, move_keeps, polish, polish_labels, polish_layout
+from polyloops.segment.polish import Fans, edge_costs, move_keeps, polish, polish_labels, polish_layout, worth
 from polyloops.segment.run import _certify, segment_mesh
 from polyloops.segment.surface import surface_of
 from polyloops.segmentation import check_segmentation
@@ -142,10 +142,20 @@ def test_every_move_allowed_keeps_the_complex_and_the_refused_would_break_it():
     assert breaking > 0
 
 
-def test_a_polished_layout_is_certified_and_more_faithful():
+def _energy(surface, labels, patch) -> float:
+    """What polishing lowers: the worth given up (area times 1 - n . label) and the cost of the
+    patch edges."""
+    worths = worth(surface)
+    lost = float((surface.areas - worths[np.arange(len(patch)), [int(d) for d in labels]]).sum())
+    fans = Fans(surface.triangles)
+    costs = edge_costs(surface)
+    return lost + float((costs * (np.asarray(patch)[fans.across] != np.asarray(patch)[:, None])).sum()) / 2
+
+
+def test_a_polished_layout_is_certified_and_lowers_the_energy():
     """A search's structure on an ellipsoid, laid out again and polished: the same polycube,
-    certified by both checks, more faithful, its corners where three patches or more meet; the
-    run kept the polished labels."""
+    certified by both checks, a lower energy (and without the edges' cost, a higher fidelity),
+    its corners where three patches or more meet; the run kept the polished labels."""
     result = segment_mesh(*ellipsoid(2.0, 1.0, 0.7, level=3), budget=1, direct=False)
     assert result.layout is not None
     drawn = lay_out(result.layout.embedded.refined, result.layout.embedded.loops)
@@ -153,26 +163,28 @@ def test_a_polished_layout_is_certified_and_more_faithful():
     assert again.polycube is drawn.polycube
     assert not isinstance(_certify(again), str)
     surface = drawn.embedded.refined.surface
-    assert fidelity(surface, again.labels) > fidelity(surface, drawn.labels)
+    assert _energy(surface, again.labels, again.patch) < _energy(surface, drawn.labels, drawn.patch)
     assert fidelity(surface, again.labels) == pytest.approx(result.fidelity)
+    faithful = polish_layout(drawn, compactness=0.0)
+    assert fidelity(surface, faithful.labels) > fidelity(surface, drawn.labels)
     fans = Fans(drawn.embedded.refined.triangles)
     for v in again.corners:
         assert len({int(again.patch[t]) for t in fans.fan(v)}) >= 3
 
 
 def test_polished_labels_keep_the_checkers_verdict():
-    """A graph-cut labelling, polished: the checker's verdict and its chart count stay, and the
-    fidelity does not fall; a per-triangle labelling has nothing to move."""
+    """A graph-cut labelling, polished without the edges' cost: the checker's verdict, its
+    charts and corners stay, and the fidelity rises; a per-triangle labelling has nothing to
+    move."""
     points, tris = ellipsoid(1.5, 1, 0.7, level=3)
     s = surface_of(points, tris)
     labels = graphcut_labels(s, 0.3)
-    polished, moved = polish_labels(s, labels)
+    polished, moved = polish_labels(s, labels, compactness=0.0)
     a, b = (check_segmentation(_mesh(points, tris, [int(d) for d in ls])) for ls in (labels, polished))
     assert a.valid == b.valid and len(a.segmentation.charts) == len(b.segmentation.charts)
     assert len(a.segmentation.corners) == len(b.segmentation.corners)
-    assert fidelity(s, polished) >= fidelity(s, labels) - 1e-12
-    assert moved > 0
-    assert polish_labels(s, naive_labels(s))[1] == 0
+    assert fidelity(s, polished) > fidelity(s, labels) and moved > 0
+    assert polish_labels(s, naive_labels(s), compactness=0.0)[1] == 0
 
 
 @settings(max_examples=10, deadline=None)

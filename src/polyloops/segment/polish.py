@@ -48,8 +48,8 @@ from polyloops.segment.refine import Refined
 from polyloops.segment.search import nearest_faces
 from polyloops.segment.surface import Surface
 
-__all__ = ["Fans", "Polished", "move_keeps", "polish", "polish_labels", "polish_layout", "polished_fidelity",
-           "worth"]
+__all__ = ["COMPACTNESS", "Fans", "Polished", "edge_costs", "move_keeps", "polish", "polish_labels",
+           "polish_layout", "polished_fidelity", "worth"]
 
 
 class Fans:
@@ -140,12 +140,16 @@ class Polished:
 
 
 def polish(triangles: np.ndarray, value: np.ndarray, patch: np.ndarray, direction: np.ndarray,
-           corners: Sequence[int] = (), max_moves: int | None = None) -> Polished:
+           corners: Sequence[int] = (), max_moves: int | None = None,
+           edge_cost: np.ndarray | None = None) -> Polished:
     """Move triangles between patches, best gain first, while the complex stays the same.
 
     ``value[t, d]``: what triangle ``t`` is worth labelled with direction ``d`` (0..5, say its
     area times ``n . d``); ``patch[t]``: its patch; ``direction[p]``: patch ``p``'s label;
-    ``corners``: vertices to follow where the corners move (a layout's corner per region).
+    ``corners``: vertices to follow where the corners move (a layout's corner per region);
+    ``edge_cost[t, k]``: what it costs that ``t``'s edge ``k`` (from its vertex ``k`` to the
+    next) lies between two patches (none by default), so that a move's gain is its worth less
+    the cost of the patch edges it adds.
     """
     start = np.asarray(patch, dtype=np.int64)
     fans = Fans(np.asarray(triangles))
@@ -155,6 +159,8 @@ def polish(triangles: np.ndarray, value: np.ndarray, patch: np.ndarray, directio
     value = np.asarray(value, dtype=float)
     label: list[int] = np.asarray(direction, dtype=np.int64).tolist()
     rows: dict[int, list[float]] = {}
+    costs = None if edge_cost is None else np.asarray(edge_cost, dtype=float)
+    cost_rows: dict[int, list[float]] = {}
 
     def best(t: int) -> tuple[float, int]:
         mine = now_in[t]
@@ -162,8 +168,18 @@ def polish(triangles: np.ndarray, value: np.ndarray, patch: np.ndarray, directio
         if row is None:
             row = rows[t] = value[t].tolist()
         here = row[label[mine]]
-        options = {now_in[u] for u in fans.neighbours(t)} - {mine}
-        return max(((row[label[g]] - here, g) for g in sorted(options)), default=(0.0, -1))
+        beside = [now_in[u] for u in fans.neighbours(t)]
+        options = set(beside) - {mine}
+        if costs is None:
+            return max(((row[label[g]] - here, g) for g in sorted(options)), default=(0.0, -1))
+        edges = cost_rows.get(t)
+        if edges is None:
+            edges = cost_rows[t] = costs[t].tolist()
+        # the edges beside g stop lying between patches, those beside t's own patch start to
+        shorter = [sum(c for c, b in zip(edges, beside, strict=True) if b == g) - sum(
+            c for c, b in zip(edges, beside, strict=True) if b == mine) for g in sorted(options)]
+        return max(((row[label[g]] - here + d, g) for g, d in zip(sorted(options), shorter, strict=True)),
+                   default=(0.0, -1))
 
     heap: list[tuple[float, int, int]] = []
 
@@ -175,6 +191,8 @@ def polish(triangles: np.ndarray, value: np.ndarray, patch: np.ndarray, directio
     labels = np.asarray(direction)
     beside = labels[start[fans.across]]  # per triangle, the labels of the patches beside it
     gains = np.take_along_axis(value, beside, axis=1) - value[np.arange(len(start)), labels[start]][:, None]
+    if costs is not None:  # a move may pay by shortening the patch edges: every triangle on one
+        gains = np.where(start[fans.across] != start[:, None], 1.0, 0.0)
     for t in np.nonzero((gains > 1e-15).any(axis=1))[0].tolist():
         push(t)
     moves, total = 0, 0.0
@@ -199,6 +217,20 @@ def polish(triangles: np.ndarray, value: np.ndarray, patch: np.ndarray, directio
     return Polished(np.array(now_in, dtype=np.int64), tuple(moved_corners), moves, total)
 
 
+COMPACTNESS = 0.25  # what a length of patch edge costs, in mean triangle areas per mean edge length
+# (the graph-cut labelling's weight is 1): enough that a lone triangle does not reach into the
+# next patch for a slightly better normal, so the edges stay clean on noisy meshes
+
+
+def edge_costs(surface: Surface, compactness: float = COMPACTNESS) -> np.ndarray:
+    """Per triangle and edge (from its vertex ``k`` to the next), what it costs that the edge
+    lies between two patches: its length times ``compactness`` mean triangle areas per mean
+    edge length."""
+    tris, pts = surface.triangles, surface.points
+    lengths = np.linalg.norm(pts[np.roll(tris, -1, axis=1)] - pts[tris], axis=2)
+    return compactness * float(surface.areas.mean()) / float(lengths.mean()) * lengths
+
+
 def worth(surface: Surface, target: np.ndarray | None = None) -> np.ndarray:
     """Per triangle and direction (0..5), its area times ``n . d`` (or ``target . d``, a unit
     vector per triangle such as a guide's labels): what :func:`polish` maximises."""
@@ -206,7 +238,7 @@ def worth(surface: Surface, target: np.ndarray | None = None) -> np.ndarray:
     return surface.areas[:, None] * (wanted @ DIRECTION_VECTORS.T)
 
 
-def polish_layout(lay: Layout, target: np.ndarray | None = None) -> Layout:
+def polish_layout(lay: Layout, target: np.ndarray | None = None, compactness: float = COMPACTNESS) -> Layout:
     """``lay`` with its patches polished (see the module docstring), its corners followed:
     the same polycube, drawn on the same refined surface, the labels nearer the normals (or
     the ``target``, per refined triangle)."""
@@ -215,32 +247,36 @@ def polish_layout(lay: Layout, target: np.ndarray | None = None) -> Layout:
     direction = np.array([int(d) for d in normals if d is not None], dtype=np.int64)
     if len(direction) != len(normals):
         return lay  # a face without an axis: the layout is not certified anyway
-    done = polish(r.triangles, worth(r.surface, target), lay.patch, direction, lay.corners)
+    done = polish(r.triangles, worth(r.surface, target), lay.patch, direction, lay.corners,
+                  edge_cost=edge_costs(r.surface, compactness))
     if done.moves == 0:
         return lay
     labels = tuple(Direction(int(d)) for d in direction[done.patch])
     return replace(lay, patch=done.patch, labels=labels, corners=done.corners)
 
 
-def polished_fidelity(r: Refined, e: Embedded, target: np.ndarray | None = None) -> float:
+def polished_fidelity(r: Refined, e: Embedded, target: np.ndarray | None = None,
+                      compactness: float = COMPACTNESS) -> float:
     """A quick foretaste of a structure's certified fidelity (or agreement with ``target``, per
     refined triangle): its rough patches (each triangle the face of the nearest crossing in its
     region, :func:`~polyloops.segment.search.nearest_faces`) polished, with no layout."""
     normals = [e.polycube.face_normal(f) for f in range(len(e.polycube.faces))]
     direction = np.array([int(d) if d is not None else 0 for d in normals], dtype=np.int64)
     value = worth(r.surface, target)
-    done = polish(r.triangles, value, nearest_faces(r, e), direction)
+    done = polish(r.triangles, value, nearest_faces(r, e), direction,
+                  edge_cost=edge_costs(r.surface, compactness))
     chosen = value[np.arange(len(done.patch)), direction[done.patch]]
     return float(chosen.sum() / r.surface.areas.sum())
 
 
-def polish_labels(surface: Surface, labels: Sequence[Direction], target: np.ndarray | None = None
-                  ) -> tuple[tuple[Direction, ...], int]:
+def polish_labels(surface: Surface, labels: Sequence[Direction], target: np.ndarray | None = None,
+                  compactness: float = COMPACTNESS) -> tuple[tuple[Direction, ...], int]:
     """A labelling with the same charts, boundaries and corners as ``labels`` (so valid exactly
     when it is), polished; and the number of triangles moved."""
     index = np.array([int(d) for d in labels], dtype=np.int64)
     chart = chart_indices(surface, index)
     direction = np.zeros(int(chart.max()) + 1, dtype=np.int64)
     direction[chart] = index
-    done = polish(surface.triangles, worth(surface, target), chart, direction)
+    done = polish(surface.triangles, worth(surface, target), chart, direction,
+                  edge_cost=edge_costs(surface, compactness))
     return tuple(Direction(int(d)) for d in direction[done.patch]), done.moves

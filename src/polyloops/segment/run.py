@@ -358,18 +358,21 @@ def _candidate(result: SegmentResult, knobs: SearchSettings, seconds: float) -> 
 
 def _direct(surface: Surface, began: float) -> SegmentResult | None:
     """The more faithful of the naive and graph-cut labellings of the mesh itself that the
-    checker finds valid (it builds a polycube that realises them), polished (the same charts,
-    boundaries and corners, each triangle moved to a chart beside it where it agrees better
-    with it: :func:`~polyloops.segment.polish.polish_labels`), or ``None``: where one is, the
-    search's result is kept only when it is more faithful still."""
+    checker finds valid (it builds a polycube that realises them), the graph-cut one polished
+    where that makes it more faithful (the same charts, boundaries and corners, triangles moved
+    to a chart beside them: :func:`~polyloops.segment.polish.polish_labels`), or ``None``:
+    where one is, the search's result is kept only when it is more faithful still.  The
+    per-triangle labelling, valid, is the most faithful there is: it is kept as it is."""
     for labelling, how in ((naive_labels, "the per-triangle labelling"),
                            (graphcut_labels, "the graph-cut labelling")):
         labels = labelling(surface)
         as_it_is = _kept_labelling(surface, labels, how + ", valid as it is", began)
-        if as_it_is is None:
+        if as_it_is is None or labelling is naive_labels:
+            if as_it_is is not None:
+                return as_it_is
             continue
         polished, moved = polish_labels(surface, labels)
-        if moved:
+        if moved and fidelity(surface, polished) > as_it_is.fidelity:
             how = f"{how}, valid, polished ({moved} triangles moved)"
             return _kept_labelling(surface, polished, how, began) or as_it_is
         return as_it_is
