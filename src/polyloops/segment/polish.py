@@ -16,8 +16,9 @@ complex as it is, which is decided round ``t``'s three vertices alone (:func:`mo
 A patch gives up or takes a triangle only where its edge stays a simple curve through the same
 corners in the same order, so each patch stays a disc with the same neighbours, and the labels'
 checker sees the same charts, boundaries and corners.  The moves are made best gain first (the
-area times the gain in ``n . label``, or in agreement with a guide) until none is left; each
-raises the fidelity, so it ends.  ``tests/test_segment_polish.py`` checks, move by move on
+area times the gain in ``n . label``, or in agreement with a guide, less the cost of the patch
+edges the move adds, :func:`edge_costs`) until none is left; each lowers that energy, so it
+ends.  ``tests/test_segment_polish.py`` checks, move by move on
 generated layouts, that the complex computed from scratch is the same after every move allowed.
 
 >>> import numpy as np
