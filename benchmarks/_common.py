@@ -35,11 +35,18 @@ def markdown_table(header: list[str], rows: list[list[Any]]) -> str:
     return "\n".join(lines)
 
 
+def _folder(text: str) -> Path:
+    """A folder that exists (argparse reports any other as a usage error, exit 2)."""
+    if not Path(text).is_dir():
+        raise argparse.ArgumentTypeError(f"{text}: no such folder")
+    return Path(text)
+
+
 def mesh_benchmark_parser(description: str) -> argparse.ArgumentParser:
     """The options of the benchmarks over a folder of meshes: FOLDER, --budget, --seed, --only,
     --workers."""
     parser = argparse.ArgumentParser(description=description)
-    parser.add_argument("folder", type=Path)
+    parser.add_argument("folder", type=_folder)
     parser.add_argument("--budget", type=float, default=20.0)
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--only", nargs="*", help="mesh names (stems) to run")

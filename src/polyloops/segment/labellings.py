@@ -28,10 +28,11 @@ from scipy.sparse import coo_matrix, csr_matrix
 from scipy.sparse.csgraph import breadth_first_order, connected_components, maximum_flow
 
 from polyloops.core.directions import Direction
+from polyloops.core.polycube import Polycube
 from polyloops.segment.surface import Surface
 
-__all__ = ["DIRECTION_VECTORS", "chart_indices", "energy", "fidelity", "graphcut_labels", "label_vectors",
-           "naive_fidelity", "naive_label_indices", "naive_labels"]
+__all__ = ["DIRECTION_VECTORS", "chart_indices", "energy", "face_directions", "fidelity", "graphcut_labels",
+           "label_vectors", "naive_fidelity", "naive_label_indices", "naive_labels"]
 
 # the unit vector of each Direction, in its order (+X, -X, +Y, -Y, +Z, -Z)
 DIRECTION_VECTORS = np.array([np.eye(3)[d // 2] * (1 if d % 2 == 0 else -1) for d in range(6)])
@@ -56,6 +57,23 @@ def chart_indices(s: Surface, labels: np.ndarray) -> np.ndarray:
     m = len(s.triangles)
     graph = coo_matrix((np.ones(int(same.sum())), (pairs[same, 0], pairs[same, 1])), shape=(m, m))
     return connected_components(graph, directed=False)[1]
+
+
+def face_directions(q: Polycube) -> np.ndarray:
+    """Per face of ``q``, its outward normal as a direction's index.
+
+    Raises
+    ------
+    ValueError
+        When a face is not axis-parallel.
+    """
+    out = np.zeros(len(q.faces), dtype=np.int64)
+    for f in range(len(q.faces)):
+        d = q.face_normal(f)
+        if d is None:
+            raise ValueError(f"face {f} of the polycube is not axis-parallel")
+        out[f] = int(d)
+    return out
 
 
 def label_vectors(labels: Sequence[Direction]) -> np.ndarray:

@@ -43,7 +43,7 @@ import numpy as np
 
 from polyloops.core.directions import Direction
 from polyloops.segment.embedded import Embedded
-from polyloops.segment.labellings import DIRECTION_VECTORS, chart_indices
+from polyloops.segment.labellings import DIRECTION_VECTORS, chart_indices, face_directions
 from polyloops.segment.layout import Layout
 from polyloops.segment.refine import Refined
 from polyloops.segment.search import nearest_faces
@@ -160,27 +160,25 @@ def polish(triangles: np.ndarray, value: np.ndarray, patch: np.ndarray, directio
     value = np.asarray(value, dtype=float)
     label: list[int] = np.asarray(direction, dtype=np.int64).tolist()
     rows: dict[int, list[float]] = {}
-    costs = None if edge_cost is None else np.asarray(edge_cost, dtype=float)
+    costs = np.zeros((len(start), 3)) if edge_cost is None else np.asarray(edge_cost, dtype=float)
     cost_rows: dict[int, list[float]] = {}
 
     def best(t: int) -> tuple[float, int]:
+        """The best gain of moving ``t`` to a patch beside it: its worth there, and the cost
+        of the edges beside its own patch (which start to lie between patches) less that of
+        those beside the other (which stop)."""
         mine = now_in[t]
         row = rows.get(t)
         if row is None:
             row = rows[t] = value[t].tolist()
-        here = row[label[mine]]
-        beside = [now_in[u] for u in fans.neighbours(t)]
-        options = set(beside) - {mine}
-        if costs is None:
-            return max(((row[label[g]] - here, g) for g in sorted(options)), default=(0.0, -1))
         edges = cost_rows.get(t)
         if edges is None:
             edges = cost_rows[t] = costs[t].tolist()
-        # the edges beside g stop lying between patches, those beside t's own patch start to
-        shorter = [sum(c for c, b in zip(edges, beside, strict=True) if b == g) - sum(
-            c for c, b in zip(edges, beside, strict=True) if b == mine) for g in sorted(options)]
-        return max(((row[label[g]] - here + d, g) for g, d in zip(sorted(options), shorter, strict=True)),
-                   default=(0.0, -1))
+        beside = [now_in[u] for u in fans.neighbours(t)]
+        gains = [(row[label[g]] - row[label[mine]]
+                  + sum(c * ((b == g) - (b == mine)) for c, b in zip(edges, beside, strict=True)), g)
+                 for g in sorted(set(beside) - {mine})]
+        return max(gains, default=(0.0, -1))
 
     heap: list[tuple[float, int, int]] = []
 
@@ -189,13 +187,8 @@ def polish(triangles: np.ndarray, value: np.ndarray, patch: np.ndarray, directio
         if gain > 1e-15:
             heapq.heappush(heap, (-gain, t, g))
 
-    labels = np.asarray(direction)
-    beside = labels[start[fans.across]]  # per triangle, the labels of the patches beside it
-    gains = np.take_along_axis(value, beside, axis=1) - value[np.arange(len(start)), labels[start]][:, None]
-    if costs is not None:  # a move may pay by shortening the patch edges: every triangle on one
-        gains = np.where(start[fans.across] != start[:, None], 1.0, 0.0)
-    for t in np.nonzero((gains > 1e-15).any(axis=1))[0].tolist():
-        push(t)
+    for t in np.nonzero((start[fans.across] != start[:, None]).any(axis=1))[0].tolist():
+        push(t)  # every triangle on a patch edge; push keeps those with a gain
     moves, total = 0, 0.0
     while heap and (max_moves is None or moves < max_moves):
         neg, t, g = heapq.heappop(heap)
@@ -244,9 +237,9 @@ def polish_layout(lay: Layout, target: np.ndarray | None = None, compactness: fl
     the same polycube, drawn on the same refined surface, the labels nearer the normals (or
     the ``target``, per refined triangle)."""
     r = lay.embedded.refined
-    normals = [lay.polycube.face_normal(f) for f in range(len(lay.polycube.faces))]
-    direction = np.array([int(d) for d in normals if d is not None], dtype=np.int64)
-    if len(direction) != len(normals):
+    try:
+        direction = face_directions(lay.polycube)
+    except ValueError:
         return lay  # a face without an axis: the layout is not certified anyway
     done = polish(r.triangles, worth(r.surface, target), lay.patch, direction, lay.corners,
                   edge_cost=edge_costs(r.surface, compactness))
@@ -261,8 +254,7 @@ def polished_fidelity(r: Refined, e: Embedded, target: np.ndarray | None = None,
     """A quick foretaste of a structure's certified fidelity (or agreement with ``target``, per
     refined triangle): its rough patches (each triangle the face of the nearest crossing in its
     region, :func:`~polyloops.segment.search.nearest_faces`) polished, with no layout."""
-    normals = [e.polycube.face_normal(f) for f in range(len(e.polycube.faces))]
-    direction = np.array([int(d) if d is not None else 0 for d in normals], dtype=np.int64)
+    direction = face_directions(e.polycube)
     value = worth(r.surface, target)
     done = polish(r.triangles, value, nearest_faces(r, e), direction,
                   edge_cost=edge_costs(r.surface, compactness))

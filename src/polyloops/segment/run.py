@@ -53,8 +53,8 @@ class Candidate:
     search ended certified (else ``reason``), and the terms of its score: the labels'
     ``fidelity``, their ``agreement`` with the guide (when there is one), the ``loops`` and
     their ``price``, ``score`` = (agreement with a guide, else fidelity) - price x loops; the
-    ``estimate`` of that score that ranked the start (its scouting search's, from labels read
-    off the loops without a layout); the charts and corners of its labelling, its wall
+    ``estimate`` of that score that ranked the start (its scouting search's best state, a
+    rough layout polished, no paths drawn); the charts and corners of its labelling, its wall
     ``seconds``, whether its searches ``converged``, and whether it was ``kept`` (the run's
     result)."""
 
@@ -197,7 +197,7 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
                     on_candidate: Callable[[Candidate], None] | None = None) -> SegmentResult:
     """:func:`segment_mesh` on a checked surface: the search from the given start, or from
     each recipe of :func:`~polyloops.segment.starts.recipes` (``workers`` at a time): each
-    scouted (searched for a share of the budget, ranked by the search's estimate), the
+    scouted (searched for a share of the budget, ranked by an estimate), the
     best-ranked searched on and laid out while the budget lasts, the best certified result
     kept; then from the grids until one is certified;
     a ``guide`` that is already a valid labelling is returned as it is; with ``direct`` and
@@ -232,8 +232,9 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
 
     deformed = polycube_heights(surface)
     own = recipes(surface.genus, planes)
-    # scouting: each start built and searched for a share of the budget, judged by the
-    # search's estimate alone (no layout); then the best-ranked are searched on and laid out
+    # scouting: each start built and searched for a share of the budget, judged by an
+    # estimate (a rough layout polished, no paths drawn); then the best-ranked are searched on
+    # and laid out
     share = max(SCOUTING * budget * max(workers, 1) / len(own), 1.0)
     jobs = [(surface, recipe, began, knobs, deformed, share, on_step if workers <= 1 else None)
             for recipe in own]
@@ -363,20 +364,19 @@ def _direct(surface: Surface, began: float) -> SegmentResult | None:
     to a chart beside them: :func:`~polyloops.segment.polish.polish_labels`), or ``None``:
     where one is, the search's result is kept only when it is more faithful still.  The
     per-triangle labelling, valid, is the most faithful there is: it is kept as it is."""
-    for labelling, how in ((naive_labels, "the per-triangle labelling"),
-                           (graphcut_labels, "the graph-cut labelling")):
-        labels = labelling(surface)
-        as_it_is = _kept_labelling(surface, labels, how + ", valid as it is", began)
-        if as_it_is is None or labelling is naive_labels:
-            if as_it_is is not None:
-                return as_it_is
-            continue
-        polished, moved = polish_labels(surface, labels)
-        if moved and fidelity(surface, polished) > as_it_is.fidelity:
-            how = f"{how}, valid, polished ({moved} triangles moved)"
-            return _kept_labelling(surface, polished, how, began) or as_it_is
-        return as_it_is
-    return None
+    how = "the per-triangle labelling, valid as it is"
+    naive = _kept_labelling(surface, naive_labels(surface), how, began)
+    if naive is not None:
+        return naive
+    labels = graphcut_labels(surface)
+    as_it_is = _kept_labelling(surface, labels, "the graph-cut labelling, valid as it is", began)
+    if as_it_is is None:
+        return None
+    polished, moved = polish_labels(surface, labels)
+    if moved and fidelity(surface, polished) > as_it_is.fidelity:
+        how = f"the graph-cut labelling, valid, polished ({moved} triangles moved)"
+        return _kept_labelling(surface, polished, how, began) or as_it_is
+    return as_it_is
 
 
 def _kept_labelling(surface: Surface, labels: Sequence[Direction], how: str, began: float

@@ -43,7 +43,7 @@ from polyloops.core.errors import PolyloopsError
 from polyloops.core.moves import removals, valid_additions
 from polyloops.segment import PRICE
 from polyloops.segment.embedded import Embedded, Loop, NotAStructure, SurfaceLoop, read_structure
-from polyloops.segment.labellings import DIRECTION_VECTORS
+from polyloops.segment.labellings import DIRECTION_VECTORS, face_directions
 from polyloops.segment.paths import addition_path
 from polyloops.segment.refine import Plane, Refined, cut
 from polyloops.segment.surface import Surface
@@ -196,11 +196,8 @@ class _Scorer:
     def fidelity(self, e: Embedded) -> float:
         polycube = e.polycube
         allowed = np.full((int(e.region.max()) + 1, 6), -np.inf)
-        for f, face in enumerate(polycube.faces):
-            d = polycube.face_normal(f)
-            if d is None:
-                raise ValueError(f"face {f} of the polycube is not axis-parallel")
-            allowed[list(face), int(d)] = 0.0
+        for face, d in zip(polycube.faces, face_directions(polycube).tolist(), strict=True):
+            allowed[list(face), d] = 0.0
         best = (self.worth + allowed[e.region]).max(axis=1)
         return float((self.areas * best).sum() / self.areas.sum())
 
