@@ -37,8 +37,19 @@ from polyloops.segment.layout import Layout, lay_out
 from polyloops.segment.polish import polish_labels, polish_layout, polished_fidelity
 from polyloops.segment.refine import Refined
 from polyloops.segment.search import SearchSettings, StartError, State, greedy_search
+from polyloops.segment.seeds import polycube_map
 from polyloops.segment.start import embed_start
-from polyloops.segment.starts import GRIDS, OVERRUN, Recipe, Start, build_start, grid_starts, recipes
+from polyloops.segment.starts import (
+    GRIDS,
+    OVERRUN,
+    Charts,
+    Heights,
+    Recipe,
+    Start,
+    build_start,
+    grid_starts,
+    recipes,
+)
 from polyloops.segment.surface import Surface, surface_of
 from polyloops.segmentation import SegmentationReport, check_segmentation
 from polyloops.segmentation.quality import backwards_fraction
@@ -232,11 +243,21 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
 
     deformed = polycube_heights(surface)
     own = recipes(surface.genus, planes)
+    mapped = None
+    if kept_direct is not None:
+        # a valid labelling of the mesh (the graph-cut one: a valid naive one was returned
+        # above) seeds a search of its own, from its polycube's loops drawn on the surface
+        try:
+            mapped = polycube_map(surface, kept_direct.report)
+        except ValueError:
+            pass
+        else:
+            own = [Recipe("seed", Heights.POLYCUBE, charts=Charts.GRAPH_CUT), *own]
     # scouting: each start built and searched for a share of the budget, judged by an
     # estimate (a rough layout polished, no paths drawn); then the best-ranked are searched on
     # and laid out
     share = max(SCOUTING * budget * max(workers, 1) / len(own), 1.0)
-    jobs = [(surface, recipe, began, knobs, deformed, share, on_step if workers <= 1 else None)
+    jobs = [(surface, recipe, began, knobs, deformed, mapped, share, on_step if workers <= 1 else None)
             for recipe in own]
     scouted = []
     for candidate, scout in run_jobs(_scout_job, jobs, workers=workers):
@@ -296,7 +317,7 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
 Scouted = tuple[Start, tuple[frozenset[int], ...]]  # a start at its best state, and its search's last states
 
 
-def _scout_job(job: tuple[Surface, Recipe, float, SearchSettings, np.ndarray, float,
+def _scout_job(job: tuple[Surface, Recipe, float, SearchSettings, np.ndarray, np.ndarray | None, float,
                           Callable[[State], None] | None]
                ) -> tuple[Candidate, Scouted | None]:
     """One recipe built and searched for ``share`` seconds (in a worker process or here): its
@@ -304,12 +325,13 @@ def _scout_job(job: tuple[Surface, Recipe, float, SearchSettings, np.ndarray, fl
     surface, the candidates and paths drawn, the chosen loops) with its search's last states
     (their loops, the last first), or ``None`` when it gave none.
     A recipe begun after the budget is spent is skipped."""
-    surface, recipe, began, knobs, deformed, share, on_step = job
+    surface, recipe, began, knobs, deformed, mapped, share, on_step = job
     t0 = time.monotonic()
     if t0 - began > knobs.budget:
         return Candidate(recipe.name, False, "not begun: the time budget was spent"), None
     try:
-        r, loops, chosen, how = build_start(surface, recipe, t0 + max(knobs.budget / 4, 3.0), deformed)
+        deadline = t0 + max(knobs.budget / 4, 3.0)
+        r, loops, chosen, how = build_start(surface, recipe, deadline, deformed, mapped)
     except StartError as err:
         return Candidate(recipe.name, False, str(err), seconds=time.monotonic() - t0), None
     path = greedy_search(r, loops, chosen, replace(knobs, budget=share), on_step)

@@ -37,6 +37,7 @@ from polyloops.segment.labellings import graphcut_labels, naive_label_indices
 from polyloops.segment.levels import GAPS, level_grid
 from polyloops.segment.refine import Refined
 from polyloops.segment.search import StartError, candidate_loops, start_state
+from polyloops.segment.seeds import seed_grid
 from polyloops.segment.surface import Surface
 
 __all__ = ["GRIDS", "MENDING", "OVERRUN", "Charts", "Heights", "Recipe", "Start", "build_start",
@@ -50,10 +51,13 @@ Start = tuple[Refined, Sequence[Loop], list[int], str]  # the cut surface, its c
 
 
 class Heights(Enum):
-    """What the planes of a start cut: the surface's coordinates or its polycube-like deformation."""
+    """What the planes of a start cut: the surface's coordinates, its polycube-like
+    deformation, or its map onto the polycube that realises a valid labelling of it
+    (:mod:`~polyloops.segment.seeds`)."""
 
     COORDINATES = "coordinates"
     DEFORMATION = "deformation"
+    POLYCUBE = "polycube"
 
 
 class Charts(Enum):
@@ -67,8 +71,9 @@ class Charts(Enum):
 
 @dataclass(frozen=True)
 class Recipe:
-    """One start to build: ``kind`` ``"levels"`` (of ``charts``, with its ``gap``) or
-    ``"cube"`` (with ``planes`` candidate planes an axis), cutting the ``heights``."""
+    """One start to build: ``kind`` ``"levels"`` (of ``charts``, with its ``gap``), ``"cube"``
+    (with ``planes`` candidate planes an axis) or ``"seed"`` (the loops of the valid labelling
+    ``charts``), cutting the ``heights``."""
 
     kind: str
     heights: Heights
@@ -81,6 +86,8 @@ class Recipe:
         """How the start is named in a result (``start`` in the JSON)."""
         if self.kind == "cube":
             return "the cube"
+        if self.kind == "seed":
+            return f"the loops of the valid {self.charts.value} labelling"
         where = "polycube-like deformation" if self.heights is Heights.DEFORMATION else "coordinates"
         of = "" if self.charts is Charts.TRIANGLES else f" of the {self.charts.value} charts"
         return f"the levels{of} in the {where} (gap {self.gap:g})"
@@ -97,10 +104,11 @@ def recipes(genus: int, planes: int = 9) -> list[Recipe]:
 
 
 def build_start(surface: Surface, recipe: Recipe, deadline: float = float("inf"),
-                deformed: np.ndarray | None = None) -> Start:
+                deformed: np.ndarray | None = None, mapped: np.ndarray | None = None) -> Start:
     """The start of ``recipe`` on ``surface`` (mending within ``deadline``, a
     :func:`time.monotonic` time; ``deformed``: the polycube-like heights, computed when needed
-    and not given).
+    and not given; ``mapped``: for a seed, the surface mapped onto the polycube of its valid
+    labelling, :func:`~polyloops.segment.seeds.polycube_map`).
 
     Raises
     ------
@@ -110,6 +118,11 @@ def build_start(surface: Surface, recipe: Recipe, deadline: float = float("inf")
     if recipe.kind == "cube":
         r, loops, _ = candidate_loops(surface, recipe.planes)
         return r, loops, start_state(r, loops), recipe.name
+    if recipe.kind == "seed":
+        if mapped is None:
+            raise StartError(f"{recipe.name}: no map onto its polycube was given")
+        r, loops, chosen = seed_grid(surface, mapped, recipe.name, deadline)
+        return r, loops, chosen, recipe.name
     heights = None
     if recipe.heights is Heights.DEFORMATION:
         heights = polycube_heights(surface) if deformed is None else deformed
