@@ -1,6 +1,8 @@
 """Seeds of ``polyloops segment``: a valid labelling's own loops, drawn on the surface through
 its map onto the realising polycube (:mod:`polyloops.segment.seeds`)."""
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 from hypothesis import HealthCheck, assume, given, settings
@@ -9,7 +11,9 @@ from hypothesis import strategies as st
 from polyloops.core.canonical import is_isomorphic
 from polyloops.core.directions import Direction
 from polyloops.core.duality import dualize
+from polyloops.io.labelled_mesh import read_triangle_mesh
 from polyloops.segment.embedded import read_structure
+from polyloops.segment.labellings import graphcut_labels
 from polyloops.segment.run import segment_mesh
 from polyloops.segment.search import StartError
 from polyloops.segment.seeds import polycube_map, seed_start
@@ -94,3 +98,27 @@ def test_a_valid_graph_cut_labelling_seeds_a_search_of_its_own():
     rows = {c.start: c for c in done.candidates}
     assert "the loops of the valid graph-cut labelling" in rows
     assert done.certified
+
+
+SHARED = Path(__file__).resolve().parents[2] / "shared" / "meshes"
+
+
+@pytest.mark.slow
+@pytest.mark.skipif(not SHARED.is_dir(), reason="../shared/meshes is not here")
+def test_every_valid_graph_cut_labelling_of_the_shared_meshes_gives_back_its_loops():
+    """On each shared mesh whose graph-cut labelling the checker finds valid, the seed is the
+    realising polycube's loop structure."""
+    seeded = 0
+    for path in sorted(SHARED.glob("*/*.stl")):
+        points, triangles = read_triangle_mesh(path)
+        s = surface_of(np.array(points, dtype=float), np.array(triangles))
+        labels = graphcut_labels(s)
+        report = check_segmentation(LabelledMesh(tuple(map(tuple, s.points.tolist())),
+                                                 tuple(map(tuple, s.triangles.tolist())), labels))
+        if report.valid is not True:
+            continue
+        r, loops, chosen, _ = seed_start(s, labels, "graph-cut", report)
+        found = read_structure(r, [loops[i] for i in chosen]).structure
+        assert is_isomorphic(found, dualize(report.polycube)), path.name
+        seeded += 1
+    assert seeded >= 20

@@ -43,6 +43,7 @@ MAX_ROUNDS = 6  # refinements before a layout is given up (each at least halves 
 CORNER_TRIES = 4  # corner vertices tried in a region before it is refined
 FEATURE_DISCOUNT = 0.2  # a length of path along a change of the per-triangle label costs this much
 DEPTH_WEIGHT = 0.25  # how much being deep inside a region counts beside agreeing with its faces
+JOIN_WEIGHT = 1.0  # per typical edge length of the label boundaries to the corner, against agreement
 
 
 @dataclass(frozen=True, eq=False)
@@ -297,6 +298,17 @@ def _region_layout(e: Embedded, mine: np.ndarray, cycle: list[int], sides: list[
     far = dist[index[inner]]
     agree = r.vertex_normals[inner] @ _direction_sum(e, sides, crossing_face)
     score = agree + DEPTH_WEIGHT * far / max(float(far.max()), 1e-300)
+    if naive is not None:
+        # where the labels change between two sectors, the patches' boundary runs from the
+        # side's middle to the corner: the corner sits where those boundaries are cheapest
+        # together (on a crease, the corner between an X and a Z face lies on it; the normal
+        # alone cannot tell, being as near both directions on either side)
+        ends_of = [int(index[m]) for j, (_, m) in enumerate(sides)
+                   if _turns(e, crossing_face, sides[j][0], sides[(j + 1) % len(sides)][0])]
+        if ends_of:
+            along = coo_matrix((np.concatenate([costs, costs]), both_ways), shape=size).tocsr()
+            joined = dijkstra(along, indices=ends_of).sum(axis=0)[index[inner]]
+            score = score - joined / max(float(np.median(lengths)), 1e-300) * JOIN_WEIGHT
     order = [int(v) for v in inner[np.lexsort((-inner, -score))] if degree[index[v]] >= len(sides)]
     found = None
     for corner in order[:CORNER_TRIES]:
@@ -330,6 +342,12 @@ def _region_layout(e: Embedded, mine: np.ndarray, cycle: list[int], sides: list[
             return _all_edges(local_tris)
         face_of_sector[s] = crossing_face[c]
     return corner, region_paths, {t: face_of_sector[int(sector[i])] for t, i in local.items()}
+
+
+def _turns(e: Embedded, crossing_face: dict[int, int], a: int, b: int) -> bool:
+    """Whether the faces of crossings ``a`` and ``b`` face different ways (the labels change
+    between their sectors)."""
+    return e.polycube.face_normal(crossing_face[a]) != e.polycube.face_normal(crossing_face[b])
 
 
 def _direction_sum(e: Embedded, sides: list[tuple[int, int]], crossing_face: dict[int, int]) -> np.ndarray:
