@@ -9,21 +9,24 @@ fidelity; "backwards" the share of segment's boundary length that runs against i
 edge's direction; "converged" says whether segment's search ended with no improving move (else the
 budget stopped it); "start" how its search began (the cube, a grid of sections, or a start given
 by ``--start MESH=START``, which is what ``segment --start START`` takes).  One Markdown table per
-subfolder.
+subfolder, then a summary per subfolder (``--summarize FILE`` prints only the summary of an
+earlier run's output, to set runs side by side).
 
 Usage: python benchmarks/segment.py DIR [--budget SECONDS] [--seed N] [--only NAME ...]
        [--start MESH=START ...]
+       python benchmarks/segment.py DIR --summarize FILE
 """
 
 from __future__ import annotations
 
+import statistics
 import sys
 import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from _common import mesh_benchmark_parser, print_tables_by_folder
+from _common import markdown_table, mesh_benchmark_parser, print_tables_by_folder
 
 from polyloops.cli.segment import read_start
 from polyloops.io.labelled_mesh import read_triangle_mesh
@@ -71,17 +74,73 @@ def row(path: Path, budget: float, seed: int, start_arg: str | None, workers: in
             done.start.replace("the given start", f"given {start_arg}")]
 
 
+HEADER = ["mesh", "triangles", "genus", "naive fidelity (bound)", "naive", "naive charts", "graph-cut",
+          "graph-cut fidelity", "graph-cut charts", "graph-cut s", "segment", "fidelity", "gap", "charts",
+          "loops", "backwards", "converged", "segment s", "start"]
+
+
+def read_rows(text: str) -> list[tuple[str, dict[str, str]]]:
+    """The rows of an earlier output of this script, each with its subfolder."""
+    out, folder = [], ""
+    for line in text.splitlines():
+        if line.startswith("### "):
+            folder = line[4:].strip()
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if line.startswith("| ") and len(cells) == len(HEADER) and cells[0] != "mesh":
+            out.append((folder, dict(zip(HEADER, cells, strict=True))))
+    return out
+
+
+def summary(rows: list[tuple[str, dict[str, str]]]) -> str:
+    """Per subfolder: meshes, certified, mean gap, median charts (segment / graph-cut), how many
+    graph-cut labellings are valid and on how many of those segment is at least as faithful,
+    how often the mesh's own labelling is the output, mean backwards share, longest run; then
+    the mean gap of the genus-0 meshes."""
+    table = []
+    for folder in sorted({f for f, _ in rows}):
+        mine = [r for f, r in rows if f == folder]
+        done = [r for r in mine if r["segment"] == "certified"]
+        valid_cut = [r for r in done if r["graph-cut"] == "valid"]
+        at_least = sum(float(r["fidelity"]) >= float(r["graph-cut fidelity"]) - 5e-5 for r in valid_cut)
+        kept = ("the per-triangle labelling", "the graph-cut labelling")
+        own = sum(r["start"].startswith(kept) for r in done)
+        gaps = [float(r["gap"]) for r in done]
+        table.append([folder, len(mine), len(done), f"{statistics.mean(gaps):.4f}" if gaps else "",
+                      f"{statistics.median(int(r['charts']) for r in done):g} / "
+                      f"{statistics.median(int(r['graph-cut charts']) for r in mine):g}",
+                      len(valid_cut), f"{at_least} of {len(valid_cut)}", own,
+                      f"{statistics.mean(float(r['backwards']) for r in done):.3f}" if done else "",
+                      f"{max(float(r['segment s']) for r in mine):.1f} s"])
+    genus0 = [float(r["gap"]) for _, r in rows if r["segment"] == "certified" and r["genus"] == "0"]
+    tail = ""
+    if genus0:
+        tail = f"\n\nMean gap over the {len(genus0)} genus-0 meshes: {statistics.mean(genus0):.4f}"
+    return markdown_table(["folder", "meshes", "certified", "mean gap", "median charts (segment / graph-cut)",
+                           "graph-cut valid", "segment at least graph-cut where valid",
+                           "mesh's own labelling kept", "mean backwards", "longest run"], table) + tail
+
+
 def main() -> None:
     parser = mesh_benchmark_parser(__doc__.split("\n\n")[0])
     parser.add_argument("--start", action="append", default=[], metavar="MESH=START",
                         help="begin segment on mesh MESH (its stem) from START, as segment --start")
+    parser.add_argument("--summarize", type=Path, metavar="FILE",
+                        help="print only the summary of FILE, an earlier output of this script")
     args = parser.parse_args()
+    if args.summarize is not None:
+        print(summary(read_rows(args.summarize.read_text())))
+        return
     starts = dict(item.split("=", 1) for item in args.start)
-    header = ["mesh", "triangles", "genus", "naive fidelity (bound)", "naive", "naive charts", "graph-cut",
-              "graph-cut fidelity", "graph-cut charts", "graph-cut s", "segment", "fidelity", "gap", "charts",
-              "loops", "backwards", "converged", "segment s", "start"]
-    print_tables_by_folder(args.folder, args.only, header,
-                           lambda p: [row(p, args.budget, args.seed, starts.get(p.stem), args.workers)])
+    rows: list[tuple[str, dict[str, str]]] = []
+
+    def measured(p: Path) -> list[list[object]]:
+        found = row(p, args.budget, args.seed, starts.get(p.stem), args.workers)
+        rows.append((p.parent.name, dict(zip(HEADER, map(str, found), strict=True))))
+        return [found]
+
+    print_tables_by_folder(args.folder, args.only, HEADER, measured)
+    print("\n### Summary\n")
+    print(summary(rows))
 
 if __name__ == "__main__":
     main()

@@ -15,13 +15,20 @@ from polyloops.core.canonical import canonical_form
 from polyloops.core.moves import add_loop, remove_loop
 from polyloops.io.labelled_mesh import parse_labels, read_triangle_mesh
 from polyloops.segment.certify import layout_problem
-from polyloops.segment.embedded import kernel_addition, read_structure
+from polyloops.segment.embedded import NotAStructure, kernel_addition, read_structure
 from polyloops.segment.flow import disjoint_paths
 from polyloops.segment.from_polycube import UncertifiedError, certified_from_polycube
-from polyloops.segment.grid import grid_start
+from polyloops.segment.grid import every_crossing, grid_start
 from polyloops.segment.layout import lay_out
+from polyloops.segment.refine import Plane, Refined, cut
 from polyloops.segment.run import segment_mesh
-from polyloops.segment.search import SearchSettings, candidate_loops, greedy_search, start_state
+from polyloops.segment.search import (
+    SearchSettings,
+    candidate_loops,
+    greedy_search,
+    section_loops,
+    start_state,
+)
 from polyloops.segment.surface import SurfaceError, surface_of
 from polyloops.segmentation import check_segmentation
 from polyloops.shapes.builders import box, dented_slab
@@ -225,6 +232,24 @@ def test_a_grid_of_sections_is_a_genus_one_start_on_a_torus():
     r, loops, chosen = grid_start(surface_of(*torus(2.0, 0.7, 32, 16)), 9)
     e = read_structure(r, [loops[i] for i in chosen])
     assert e.structure.genus == 1 and check_polycube_loop_structure(e.structure).valid
+
+
+def test_curves_in_two_parts_that_do_not_cross_give_the_larger_part():
+    """On a dumbbell, the sections round each ball cross each other but none round the other
+    ball: all of them leave a region that is an annulus, so the start is one part, a cube on
+    one ball, whose regions are discs (a connected union of curves on a sphere)."""
+    points, triangles = sphere(4)
+    x = points[:, 0]
+    g = 0.3 + 0.7 * np.abs(np.sin(np.pi * x))  # necks at the middle and at the poles
+    s = surface_of(np.column_stack([2 * x, points[:, 1] * g, points[:, 2] * g]), triangles)
+    r = cut(Refined.of(s), [Plane(0, -1.0), Plane(0, 1.0), Plane(1, 0.45), Plane(2, 0.4)])
+    loops = section_loops(r)
+    assert len(loops) == 6  # two curves a plane
+    with pytest.raises(NotAStructure, match="not a disc"):
+        read_structure(r, loops)
+    grid = every_crossing(r, loops, "the dumbbell's sections")
+    assert len(grid.chosen) == 3 and grid.report.valid
+    assert {r.planes[loops[i].plane].axis for i in grid.chosen} == {0, 1, 2}
 
 
 @pytest.mark.slow

@@ -30,6 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from polyloops.core.directions import Direction
+from polyloops.core.disjoint_sets import DisjointSets
 from polyloops.segment.embedded import Embedded, NotAStructure, SurfaceLoop, read_structure
 from polyloops.segment.refine import Plane, Refined, cut
 from polyloops.segment.search import StartError, candidate_loops, crossing_only, section_loops
@@ -88,8 +89,31 @@ def every_crossing(r: Refined, loops: list[SurfaceLoop], what: str) -> CutGrid:
     try:
         e = read_structure(r, [loops[i] for i in chosen])
     except NotAStructure as err:
-        raise StartError(f"{what} of {len(chosen)} section curves is no loop structure: {err}") from None
+        why = f"{what} of {len(chosen)} section curves is no loop structure: {err}"
+        # on a sphere the faces of a connected union of curves are discs: the largest set of
+        # curves joined by crossings, of all three axes, is a loop structure there (the aeroplane:
+        # the curves round a wing cross none of those round the fuselage)
+        for part in _crossing_parts(r, loops, chosen) if r.surface.genus == 0 else []:
+            try:
+                e = read_structure(r, [loops[i] for i in part])
+            except NotAStructure:
+                continue
+            return CutGrid(r, loops, part, e, check_polycube_loop_structure(e.structure))
+        raise StartError(why) from None
     return CutGrid(r, loops, chosen, e, check_polycube_loop_structure(e.structure))
+
+
+def _crossing_parts(r: Refined, loops: list[SurfaceLoop], chosen: list[int]) -> list[list[int]]:
+    """The connected parts of the graph of ``chosen`` curves joined where they cross, those with
+    curves of all three axes, most curves first."""
+    vsets = {i: set(loops[i].vertices) for i in chosen}
+    joined: DisjointSets[int] = DisjointSets(chosen)
+    for i, j in itertools.combinations(chosen, 2):
+        if vsets[i] & vsets[j]:
+            joined.union(i, j)
+    parts = [sorted(p) for p in joined.to_sets()]
+    full = [p for p in parts if len({r.planes[loops[i].plane].axis for i in p}) == 3]
+    return sorted(full, key=lambda p: (-len(p), p))
 
 
 def grid_start(surface: Surface, planes_per_axis: int, heights: np.ndarray | None = None,

@@ -1,6 +1,7 @@
 """Primalization on the surface: corners, paths and patches, and the labels they give.
 
-Each region (a corner of the polycube) gets a corner vertex inside it, and each of its sides (a
+Each region (a corner of the polycube) gets a corner vertex inside it (where the boundaries
+between its patches of different directions are cheapest together), and each of its sides (a
 segment of a loop, dual to a polycube edge) a point in its middle that both regions beside it
 share.  Paths inside the region join the corner to the points of its sides, meeting only at the
 corner (:func:`~polyloops.segment.flow.disjoint_paths`, the shortest such), so they cut the

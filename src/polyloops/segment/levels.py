@@ -150,7 +150,9 @@ def level_grid(surface: Surface, heights: np.ndarray | None = None, gap: float =
     points by default, of the charts of ``labels`` when given (:func:`levels`).  At positive
     genus there is no cube to begin with, nor at genus 0 when
     the curves nearest the centre make none: every curve that crosses another is taken at
-    once, and must make a loop structure.  No curve is added after ``deadline`` (a
+    once, and must make a loop structure (at genus 0, where they leave a region that is not a
+    disc, the largest set of them joined by crossings, of all three axes:
+    :func:`~polyloops.segment.grid.every_crossing`).  No curve is added after ``deadline`` (a
     :func:`time.monotonic` time): the curves kept by then are the start.
 
     Raises
