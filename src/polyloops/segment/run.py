@@ -213,7 +213,8 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
     kept; then from the grids until one is certified;
     a ``guide`` that is already a valid labelling is returned as it is; with ``direct`` and
     without a start or a guide, the naive and graph-cut labellings that the checker finds
-    valid are candidates too (:func:`_direct`)."""
+    valid are candidates too (:func:`_direct`), and the result is the best score among those
+    at least as faithful as that labelling."""
     began = time.monotonic()
     if guide is not None and len(guide) != len(surface.triangles):
         raise ValueError(f"a guide of {len(guide)} labels for {len(surface.triangles)} triangles")
@@ -303,11 +304,12 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
         found_results.append((_candidate(kept_direct, knobs, kept_direct.seconds), kept_direct))
     if not found_results:
         raise UncertifiedError("; ".join(f"from {c.start}: {c.reason}" for c, _ in tried))
-    # the best score; between the search and a valid labelling of the mesh itself, the more
-    # faithful (that labelling draws no loops, so no price is asked of it)
-    best_c, best = max(found_results, key=lambda cr: (
-        cr[1].fidelity if kept_direct is not None else
-        cr[0].score if cr[0].score is not None else -float("inf")))
+    # the best score; where a labelling of the mesh itself is valid, among the results at
+    # least as faithful as it (that labelling among them, scored by its realising polycube's
+    # loops): never less faithful than a valid labelling the mesh already has
+    if kept_direct is not None:
+        found_results = [cr for cr in found_results if cr[1].fidelity >= kept_direct.fidelity]
+    best_c, best = max(found_results, key=lambda cr: cr[0].score if cr[0].score is not None else -float("inf"))
     rows = tuple(replace(c, kept=c is best_c) for c, _ in tried) + (
         (replace(best_c, kept=True),) if best is kept_direct else ())
     return replace(best, seconds=time.monotonic() - began, candidates=rows, score=best_c.score,
@@ -384,7 +386,8 @@ def _direct(surface: Surface, began: float) -> SegmentResult | None:
     checker finds valid (it builds a polycube that realises them), the graph-cut one polished
     where that makes it more faithful (the same charts, boundaries and corners, triangles moved
     to a chart beside them: :func:`~polyloops.segment.polish.polish_labels`), or ``None``:
-    where one is, the search's result is kept only when it is more faithful still.  The
+    where one is, a search's result is kept only when it is at least as faithful and scores
+    better (:func:`segment_surface`).  The
     per-triangle labelling, valid, is the most faithful there is: it is kept as it is."""
     how = "the per-triangle labelling, valid as it is"
     naive = _kept_labelling(surface, naive_labels(surface), how, began)
@@ -503,7 +506,8 @@ def segment_mesh(points: Sequence[Sequence[float]] | np.ndarray,
     and otherwise ``guide_changed`` reports the share of the area labelled otherwise.
     Without a start or a guide, the mesh's own naive and graph-cut labellings are candidates
     where the checker finds them valid (``direct=False``: the search's segmentation, with its
-    loops, whatever they are): the more faithful is the result.
+    loops, whatever they are): the result is then the best score among the results at least
+    as faithful as that labelling (it included, priced by its realising polycube's loops).
 
     Raises
     ------
