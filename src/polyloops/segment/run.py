@@ -309,7 +309,8 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
     # loops): never less faithful than a valid labelling the mesh already has
     if kept_direct is not None:
         found_results = [cr for cr in found_results if cr[1].fidelity >= kept_direct.fidelity]
-    best_c, best = max(found_results, key=lambda cr: cr[0].score if cr[0].score is not None else -float("inf"))
+    best_c, best = max(found_results,
+                       key=lambda cr: cr[0].score if cr[0].score is not None else -float("inf"))
     rows = tuple(replace(c, kept=c is best_c) for c, _ in tried) + (
         (replace(best_c, kept=True),) if best is kept_direct else ())
     return replace(best, seconds=time.monotonic() - began, candidates=rows, score=best_c.score,
