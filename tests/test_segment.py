@@ -515,12 +515,15 @@ def test_a_valid_labelling_of_the_mesh_itself_is_kept_when_more_faithful():
     the search's labels, and ``direct=False`` gives the search's."""
     from polyloops.segment.labellings import fidelity, graphcut_labels
     from polyloops.segment.run import _direct
+    from polyloops.segment.starts import Charts
 
     points, triangles = sphere(3)
     points = points / np.abs(points).max(axis=1, keepdims=True) * np.array([1.0, 0.8, 0.4])
     s = surface_of(points, triangles)
-    own = _direct(s, 0.0)
-    assert own is not None and own.layout is None and own.start.startswith("the graph-cut labelling, valid")
+    found = _direct(s, 0.0)
+    assert found is not None and found[1] is Charts.GRAPH_CUT
+    own = found[0]
+    assert own.layout is None and own.start.startswith("the graph-cut labelling, valid")
     assert own.fidelity >= fidelity(s, graphcut_labels(s)) - 1e-12 and own.report.polycube is own.polycube
     done = segment_mesh(points, triangles, budget=0.5)
     searched = segment_mesh(points, triangles, budget=0.5, direct=False)

@@ -36,6 +36,7 @@ from polyloops.segment.labellings import (
 from polyloops.segment.layout import Layout, lay_out
 from polyloops.segment.polish import polish_labels, polish_layout, polished_fidelity
 from polyloops.segment.refine import Refined
+from polyloops.segment.repair import repair_labels
 from polyloops.segment.search import SearchSettings, StartError, State, greedy_search
 from polyloops.segment.seeds import polycube_map
 from polyloops.segment.start import embed_start
@@ -219,16 +220,17 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
     if guide is not None and len(guide) != len(surface.triangles):
         raise ValueError(f"a guide of {len(guide)} labels for {len(surface.triangles)} triangles")
     knobs = SearchSettings(budget, seed, planes, price, None if guide is None else label_vectors(guide))
-    kept_direct = None
+    kept_direct, which = None, Charts.GRAPH_CUT
     if guide is not None:
         kept = _kept_labelling(surface, guide, "the guide, already valid", began)
         if kept is not None:
             return _alone(replace(kept, guide_changed=0.0), knobs)
     elif start is None and direct:
-        kept_direct = _direct(surface, began)
-        if kept_direct is not None and kept_direct.fidelity >= kept_direct.naive_fidelity - 1e-12:
-            # the per-triangle labelling, valid: no labelling is more faithful
-            return _alone(kept_direct, knobs)
+        found_direct = _direct(surface, began)
+        if found_direct is not None:
+            kept_direct, which = found_direct
+            if which is Charts.NAIVE:  # no labelling is more faithful
+                return _alone(kept_direct, knobs)
     if start is not None:
         r, loops, placed = embed_start(surface, start, GRIDS, budget)
         how = f"the given start, turned by {placed.symmetry}" + (
@@ -246,14 +248,14 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
     own = recipes(surface.genus, planes)
     mapped = None
     if kept_direct is not None:
-        # a valid labelling of the mesh (the graph-cut one: a valid naive one was returned
-        # above) seeds a search of its own, from its polycube's loops drawn on the surface
+        # a valid labelling of the mesh (the graph-cut one, as it is or repaired) seeds a
+        # search of its own, from its polycube's loops drawn on the surface
         try:
             mapped = polycube_map(surface, kept_direct.report)
         except ValueError:
             pass
         else:
-            own = [Recipe("seed", Heights.POLYCUBE, charts=Charts.GRAPH_CUT), *own]
+            own = [Recipe("seed", Heights.POLYCUBE, charts=which), *own]
     # scouting: each start built and searched for a share of the budget, judged by an
     # estimate (a rough layout polished, no paths drawn); then the best-ranked are searched on
     # and laid out
@@ -382,35 +384,46 @@ def _candidate(result: SegmentResult, knobs: SearchSettings, seconds: float) -> 
                      corners=result.corners, seconds=seconds, converged=result.converged)
 
 
-def _direct(surface: Surface, began: float) -> SegmentResult | None:
-    """The more faithful of the naive and graph-cut labellings of the mesh itself that the
-    checker finds valid (it builds a polycube that realises them), the graph-cut one polished
-    where that makes it more faithful (the same charts, boundaries and corners, triangles moved
-    to a chart beside them: :func:`~polyloops.segment.polish.polish_labels`), or ``None``:
-    where one is, a search's result is kept only when it is at least as faithful and scores
-    better (:func:`segment_surface`).  The
-    per-triangle labelling, valid, is the most faithful there is: it is kept as it is."""
+def _direct(surface: Surface, began: float) -> tuple[SegmentResult, Charts] | None:
+    """A valid labelling of the mesh itself and which it is, or ``None``: the per-triangle
+    labelling when the checker finds it valid (it builds a polycube that realises it; no
+    labelling is more faithful, so it is kept as it is); else the graph-cut labelling, valid
+    as it is or repaired (:func:`~polyloops.segment.repair.repair_labels`), polished where that
+    makes it more faithful (the same charts, boundaries and corners, triangles moved to a chart
+    beside them: :func:`~polyloops.segment.polish.polish_labels`).  Where there is one, a
+    search's result is kept only when it is at least as faithful and scores better
+    (:func:`segment_surface`)."""
     how = "the per-triangle labelling, valid as it is"
     naive = _kept_labelling(surface, naive_labels(surface), how, began)
     if naive is not None:
-        return naive
+        return naive, Charts.NAIVE
     labels = graphcut_labels(surface)
-    as_it_is = _kept_labelling(surface, labels, "the graph-cut labelling, valid as it is", began)
+    how, which = "the graph-cut labelling, valid", Charts.GRAPH_CUT
+    as_it_is = _kept_labelling(surface, labels, f"{how} as it is", began)
     if as_it_is is None:
-        return None
+        # invalid for local reasons (a thin part's sides meeting, specks, islands): repaired
+        repaired = repair_labels(surface, labels)
+        if repaired is None:
+            return None
+        labels, which = repaired.labels, Charts.REPAIRED
+        how = f"the graph-cut labelling, repaired ({repaired.charts} charts changed)"
+        as_it_is = _kept_labelling(surface, labels, how, began, repaired.report)
+        if as_it_is is None:
+            return None
     polished, moved = polish_labels(surface, labels)
     if moved and fidelity(surface, polished) > as_it_is.fidelity:
-        how = f"the graph-cut labelling, valid, polished ({moved} triangles moved)"
-        return _kept_labelling(surface, polished, how, began) or as_it_is
-    return as_it_is
+        how = f"{how}, polished ({moved} triangles moved)"
+        return _kept_labelling(surface, polished, how, began) or as_it_is, which
+    return as_it_is, which
 
 
-def _kept_labelling(surface: Surface, labels: Sequence[Direction], how: str, began: float
-                    ) -> SegmentResult | None:
+def _kept_labelling(surface: Surface, labels: Sequence[Direction], how: str, began: float,
+                    report: SegmentationReport | None = None) -> SegmentResult | None:
     """A labelling of the mesh itself as the result, when the checker finds it valid and
-    builds a polycube that realises it (no loops were drawn: the layout is ``None``)."""
+    builds a polycube that realises it (no loops were drawn: the layout is ``None``;
+    ``report``: the checker's, when it was made already)."""
     mesh = _labelled(surface.points, surface.triangles, labels)
-    report = check_segmentation(mesh)
+    report = check_segmentation(mesh) if report is None else report
     if report.valid is not True or report.polycube is None:
         return None
     loops = len(dualize(report.polycube).loops)

@@ -62,11 +62,13 @@ class Heights(Enum):
 
 class Charts(Enum):
     """What a level start groups into levels: the triangles, or the charts of a labelling of
-    the surface (:func:`~polyloops.segment.levels.levels`)."""
+    the surface (:func:`~polyloops.segment.levels.levels`); for a seed, the valid labelling
+    whose loops it draws."""
 
     TRIANGLES = "triangles"
     NAIVE = "naive"
     GRAPH_CUT = "graph-cut"
+    REPAIRED = "repaired graph-cut"  # a seed's only: the graph-cut labelling made valid
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,125 @@
+"""Repair of a labelling by local moves, until the checker finds it valid.
+
+The graph-cut labelling of a smooth mesh is often invalid for a few local reasons the checker
+names (:mod:`polyloops.segmentation.local`), and each has a local remedy:
+
+- *a boundary between opposite labels* (a thin part's two sides meeting, such as a fin's
+  ``+X`` and ``-X``): the triangles of the smaller chart along it take, each, the direction
+  perpendicular to both that it faces most, so a strip of the third and fourth directions
+  comes between, as a polycube has round a thin plate;
+- *a chart with fewer than four boundaries, a closed boundary, a handle, or a corner no
+  polycube has*: the smaller chart concerned joins a chart beside it, the one whose label its
+  triangles face best (a speck, an island, a bump's top).
+
+Each round makes every remedy the checker's report asks for, at most one per chart, the smallest
+charts first; rounds repeat while the report names local violations, at most :data:`ROUNDS`.
+What comes out is returned only when the checker finds it valid (so a global violation, such as
+a level graph with a cycle, ends the repair with nothing): the repair is a heuristic, and the
+checker its judge.
+
+>>> from polyloops.shapes.meshes import ellipsoid
+>>> from polyloops.segment.labellings import graphcut_labels
+>>> from polyloops.segment.surface import surface_of
+>>> s = surface_of(*ellipsoid(1.0, 0.6, 0.05, level=3))  # a thin plate: +Z meets -Z at the rim
+>>> done = repair_labels(s, graphcut_labels(s))
+>>> done is not None and done.report.valid, done.rounds
+(True, 1)
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from polyloops.core.directions import Direction
+from polyloops.segment.labellings import DIRECTION_VECTORS
+from polyloops.segment.surface import Surface
+from polyloops.segmentation import SegmentationReport, check_segmentation
+from polyloops.segmentation.charts import Segmentation
+from polyloops.segmentation.local import LocalViolation
+from polyloops.surface.mesh import LabelledMesh
+
+__all__ = ["ROUNDS", "Repaired", "repair_labels"]
+
+ROUNDS = 8  # rounds of remedies before giving up (the successes on the shared meshes took 1 to 4)
+JOINS = frozenset({"few-boundaries", "closed-boundary", "chart-handle", "corner"})
+
+
+@dataclass(frozen=True)
+class Repaired:
+    """A valid labelling made from another: its ``labels``, the checker's ``report`` on them,
+    the ``rounds`` of remedies it took, and the ``charts`` changed (joined or cut a strip)."""
+
+    labels: tuple[Direction, ...]
+    report: SegmentationReport
+    rounds: int
+    charts: int
+
+
+def repair_labels(surface: Surface, labels: Sequence[Direction], rounds: int = ROUNDS) -> Repaired | None:
+    """``labels`` (one per triangle of ``surface``) repaired by the local remedies of the module
+    docstring until the checker finds them valid, or ``None`` when it does not within
+    ``rounds`` rounds, or a round has nothing to remedy (a valid labelling is returned as it
+    is, after 0 rounds)."""
+    lab = np.array([int(d) for d in labels], dtype=np.int64)
+    worth = (surface.normals @ DIRECTION_VECTORS.T) * surface.areas[:, None]
+    incident = _incident(surface)
+    changed = 0
+    for k in range(rounds + 1):
+        report = check_segmentation(LabelledMesh(
+            tuple(map(tuple, surface.points.tolist())), tuple(map(tuple, surface.triangles.tolist())),
+            tuple(Direction(int(d)) for d in lab)))
+        if report.valid is True:
+            return Repaired(tuple(Direction(int(d)) for d in lab), report, k, changed)
+        if k == rounds or not report.local.violations:
+            return None
+        done = _remedy(surface, report.segmentation, report.local.violations, lab, worth, incident)
+        if not done:
+            return None
+        changed += done
+    return None
+
+
+def _incident(surface: Surface) -> list[np.ndarray]:
+    """Per vertex, the triangles round it."""
+    flat = surface.triangles.ravel()
+    order = np.argsort(flat, kind="stable")
+    cuts = np.searchsorted(flat[order], np.arange(len(surface.points) + 1))
+    return [order[cuts[v]:cuts[v + 1]] // 3 for v in range(len(surface.points))]
+
+
+def _remedy(surface: Surface, seg: Segmentation, violations: Sequence[LocalViolation], lab: np.ndarray,
+            worth: np.ndarray, incident: list[np.ndarray]) -> int:
+    """One round's remedies made on ``lab`` (in place); how many charts they changed."""
+    chart_of = np.asarray(seg.chart_of_triangle)
+    area = np.bincount(chart_of, weights=surface.areas, minlength=len(seg.charts))
+    touched: set[int] = set()
+    count = 0
+    for v in sorted(violations, key=lambda v: min((area[c] for c in v.charts), default=0.0)):
+        if not v.charts or touched & set(v.charts):
+            continue
+        if v.rule == "opposite-labels":
+            b = seg.boundaries[v.boundaries[0]]
+            small = min((b.left, b.right), key=lambda c: area[c])
+            along = np.unique(np.concatenate([incident[u] for u in b.vertices]))
+            strip = along[chart_of[along] == small]
+            axis = int(seg.charts[small].label) // 2
+            across = [d for d in range(6) if d // 2 != axis]
+            lab[strip] = np.array(across)[np.argmax(worth[strip][:, across], axis=1)]
+            touched |= {b.left, b.right}
+        elif v.rule in JOINS:
+            small = min(v.charts, key=lambda c: area[c])
+            mine = np.asarray(seg.charts[small].triangles)
+            near = np.unique(np.concatenate([incident[u] for u in np.unique(surface.triangles[mine])]))
+            beside = sorted({int(c) for c in chart_of[near]} - {small})
+            if not beside:
+                continue
+            best = max(beside, key=lambda c: (worth[mine, int(seg.charts[c].label)].sum(), -c))
+            lab[mine] = int(seg.charts[best].label)
+            touched |= {small, best}
+        else:
+            continue
+        count += 1
+    return count
