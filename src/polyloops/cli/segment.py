@@ -62,8 +62,9 @@ def add_command(command: Callable[..., argparse.ArgumentParser]) -> None:
                    "per triangle): return a certified one that keeps as much of it as it can (a valid "
                    "one unchanged) and report the share of the area labelled otherwise")
     p.add_argument("--search-only", action="store_true", help="the search's segmentation, with its loops, "
-                   "even where the mesh's own per-triangle or graph-cut labelling is valid and more faithful "
-                   "(by default that one is returned)")
+                   "whatever the mesh's own labellings are (by default a valid per-triangle or graph-cut "
+                   "labelling, the latter repaired where it can be, is a candidate, and the result is never "
+                   "less faithful than it)")
     p.add_argument("--start", metavar="START", help="begin from this polycube loop structure of the mesh's "
                    "genus, embedded by plane sections (any symmetry of it): a shipped class name such as "
                    "T32.1, sig:SIGNATURE, example:NAME or a structure or polycube file")
