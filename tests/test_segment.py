@@ -530,6 +530,7 @@ def test_a_valid_labelling_of_the_mesh_itself_is_kept_when_more_faithful():
     # (each search is stopped by its budget, so the two runs' searches need not agree)
     assert done.certified and done.fidelity >= own.fidelity
     assert done.layout is not None or (done.fidelity == own.fidelity and done.start == own.start)
+    assert "the loops of the valid graph-cut labelling" in {c.start for c in done.candidates}  # a seed
     assert searched.layout is not None  # the search's own, with its loops
 
 

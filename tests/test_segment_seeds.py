@@ -14,7 +14,6 @@ from polyloops.core.duality import dualize
 from polyloops.io.labelled_mesh import read_triangle_mesh
 from polyloops.segment.embedded import read_structure
 from polyloops.segment.labellings import graphcut_labels
-from polyloops.segment.run import segment_mesh
 from polyloops.segment.search import StartError
 from polyloops.segment.seeds import polycube_map, seed_start
 from polyloops.segment.surface import surface_of
@@ -88,17 +87,6 @@ def test_an_invalid_labelling_gives_no_seed():
     labels = [Direction.PX] * len(s.triangles)  # one label everywhere: one chart, no corner
     with pytest.raises(StartError, match="not valid"):
         seed_start(s, labels)
-
-
-def test_a_valid_graph_cut_labelling_seeds_a_search_of_its_own():
-    """On a box-shaped mesh whose graph-cut labelling is valid, its loops are a start tried
-    beside the others, and the result is certified."""
-    points, triangles = sphere(3)
-    points = points / np.abs(points).max(axis=1, keepdims=True) * np.array([1.0, 0.8, 0.4])
-    done = segment_mesh(points, triangles, budget=1.0)
-    rows = {c.start: c for c in done.candidates}
-    assert "the loops of the valid graph-cut labelling" in rows
-    assert done.certified
 
 
 SHARED = Path(__file__).resolve().parents[2] / "shared" / "meshes"
