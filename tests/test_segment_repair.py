@@ -79,3 +79,22 @@ def test_a_thin_plate_gets_a_strip_round_its_rim_and_seeds_a_search():
     run = segment_mesh(points, triangles, budget=1.0)
     assert run.certified and run.fidelity >= found[0].fidelity
     assert "the loops of the valid repaired graph-cut labelling" in {c.start for c in run.candidates}
+
+
+def test_an_invalid_guide_that_the_remedies_make_valid_is_a_floor_on_the_agreement():
+    """A thin plate's graph-cut labelling as a guide: invalid, repaired by a strip round the
+    rim; that repair seeds a search and is a floor: the output agrees with the guide at least as
+    well."""
+    from polyloops.segment.labellings import fidelity, label_vectors
+
+    points, triangles = ellipsoid(1.0, 0.6, 0.05, level=3)
+    s = surface_of(points, triangles)
+    guide = graphcut_labels(s)
+    done = repair_labels(s, guide)
+    assert done is not None
+    floor = fidelity(s, done.labels, label_vectors(guide))
+    run = segment_mesh(points, triangles, budget=1.0, guide=guide)
+    assert "the loops of the valid repaired guide labelling" in {c.start for c in run.candidates}  # a seed
+    kept = next(c for c in run.candidates if c.kept)
+    assert run.certified and kept.agreement is not None and kept.agreement >= floor - 1e-12
+    assert run.guide_changed is not None and run.guide_changed <= 0.2

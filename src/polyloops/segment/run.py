@@ -225,6 +225,16 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
         kept = _kept_labelling(surface, guide, "the guide, already valid", began)
         if kept is not None:
             return _alone(replace(kept, guide_changed=0.0), knobs)
+        # an invalid guide repaired by local remedies, where they make it valid: a candidate,
+        # a floor on the agreement, and a seed
+        repaired = repair_labels(surface, guide)
+        if repaired is not None:
+            how = f"the guide, repaired ({repaired.charts} charts changed)"
+            kept = _kept_labelling(surface, repaired.labels, how, began, repaired.report)
+            if kept is not None:
+                assert knobs.guide is not None
+                changed = _changed(surface.areas, knobs.guide, repaired.labels)
+                kept_direct, which = replace(kept, guide_changed=changed), Charts.GUIDE
     elif start is None and direct:
         found_direct = _direct(surface, began)
         if found_direct is not None:
@@ -310,7 +320,8 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
     # least as faithful as it (that labelling among them, scored by its realising polycube's
     # loops): never less faithful than a valid labelling the mesh already has
     if kept_direct is not None:
-        found_results = [cr for cr in found_results if cr[1].fidelity >= kept_direct.fidelity]
+        floor = _candidate(kept_direct, knobs, 0.0)
+        found_results = [cr for cr in found_results if _aim(cr, knobs) >= _aim((floor, kept_direct), knobs)]
     best_c, best = max(found_results,
                        key=lambda cr: cr[0].score if cr[0].score is not None else -float("inf"))
     rows = tuple(replace(c, kept=c is best_c) for c, _ in tried) + (
@@ -372,13 +383,35 @@ def _alone(result: SegmentResult, knobs: SearchSettings) -> SegmentResult:
     return replace(result, candidates=(row,), score=row.score)
 
 
+def _aim(row: tuple[Candidate, SegmentResult], knobs: SearchSettings) -> float:
+    """What a run maximises before the loops' price: the agreement with the guide, or the
+    fidelity."""
+    candidate, result = row
+    if knobs.guide is not None and candidate.agreement is not None:
+        return candidate.agreement
+    return result.fidelity
+
+
+def _changed(areas: np.ndarray, wanted: np.ndarray, labels: Sequence[Direction]) -> float:
+    """The share of the area whose label is not the one ``wanted`` (a unit vector per
+    triangle)."""
+    given = label_vectors(labels)
+    return float(areas[(wanted * given).sum(axis=1) < 0.5].sum() / areas.sum())
+
+
 def _candidate(result: SegmentResult, knobs: SearchSettings, seconds: float) -> Candidate:
     """The row of a certified result."""
     agreement = None
-    if knobs.guide is not None and result.layout is not None:
-        refined = result.layout.embedded.refined
-        agreement = fidelity(refined.surface, result.layout.labels, knobs.guide[refined.parent])
-    score = result.score if result.score is not None else result.fidelity - knobs.price * result.loops
+    if knobs.guide is not None:
+        if result.layout is not None:
+            refined = result.layout.embedded.refined
+            agreement = fidelity(refined.surface, result.layout.labels, knobs.guide[refined.parent])
+        else:  # a labelling of the mesh itself
+            mesh = result.mesh
+            own = Surface(np.asarray(mesh.points, dtype=float), np.asarray(mesh.triangles, dtype=np.int64))
+            agreement = fidelity(own, mesh.labels, knobs.guide[np.asarray(result.face_map)])
+    aim = result.fidelity if agreement is None else agreement
+    score = result.score if result.score is not None else aim - knobs.price * result.loops
     return Candidate(result.start, True, "", fidelity=result.fidelity, agreement=agreement,
                      loops=result.loops, price=knobs.price, score=score, charts=result.charts,
                      corners=result.corners, seconds=seconds, converged=result.converged)
@@ -481,10 +514,7 @@ def _search_from(surface: Surface, found: Start, began: float, knobs: SearchSett
     refined = lay.embedded.refined
     changed = None
     if knobs.guide is not None:  # the share of the area whose label is not the guide's
-        wanted = knobs.guide[refined.parent]
-        given = label_vectors(lay.labels)
-        areas = refined.surface.areas
-        changed = float(areas[(wanted * given).sum(axis=1) < 0.5].sum() / areas.sum())
+        changed = _changed(refined.surface.areas, knobs.guide[refined.parent], lay.labels)
     return SegmentResult(mesh, tuple(int(p) for p in refined.parent.tolist()), lay.polycube, report,
                          surface.genus, len(surface.triangles), len(kept), fid,
                          naive_fidelity(surface), time.monotonic() - began, len(path), searched.converged,

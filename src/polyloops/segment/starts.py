@@ -69,6 +69,7 @@ class Charts(Enum):
     NAIVE = "naive"
     GRAPH_CUT = "graph-cut"
     REPAIRED = "repaired graph-cut"  # a seed's only: the graph-cut labelling made valid
+    GUIDE = "repaired guide"  # a seed's only: a guide made valid
 
 
 @dataclass(frozen=True)
