@@ -76,7 +76,7 @@ def test_a_thin_plate_gets_a_strip_round_its_rim_and_seeds_a_search():
     found = _direct(s, 0.0)
     assert found is not None and found[1] is Charts.REPAIRED
     assert found[0].start.startswith("the graph-cut labelling, repaired")
-    run = segment_mesh(points, triangles, budget=1.0)
+    run = segment_mesh(points, triangles, budget=0.5)
     assert run.certified and run.fidelity >= found[0].fidelity
     assert "the loops of the valid repaired graph-cut labelling" in {c.start for c in run.candidates}
 
@@ -93,7 +93,7 @@ def test_an_invalid_guide_that_the_remedies_make_valid_is_a_floor_on_the_agreeme
     done = repair_labels(s, guide)
     assert done is not None
     floor = fidelity(s, done.labels, label_vectors(guide))
-    run = segment_mesh(points, triangles, budget=1.0, guide=guide)
+    run = segment_mesh(points, triangles, budget=0.5, guide=guide)
     assert "the loops of the valid repaired guide labelling" in {c.start for c in run.candidates}  # a seed
     kept = next(c for c in run.candidates if c.kept)
     assert run.certified and kept.agreement is not None and kept.agreement >= floor - 1e-12
