@@ -13,13 +13,14 @@ Usage: python benchmarks/seeds.py FOLDER [--only NAME ...]
 
 from __future__ import annotations
 
+import argparse
 import sys
 import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from _common import mesh_benchmark_parser, print_tables_by_folder
+from _common import _folder, print_tables_by_folder
 
 from polyloops.core.canonical import is_isomorphic
 from polyloops.core.duality import dualize
@@ -31,7 +32,6 @@ from polyloops.segment.polish import polish_layout
 from polyloops.segment.seeds import seed_start
 from polyloops.segment.surface import surface_of
 from polyloops.segmentation import check_segmentation
-from polyloops.surface.mesh import LabelledMesh
 
 HEADER = ["mesh", "triangles", "genus", "loops", "same", "graph-cut", "laid out", "polished", "shortfall",
           "s"]
@@ -41,8 +41,7 @@ SHORTFALLS: list[tuple[str, float]] = []
 def rows(path: Path) -> list[list[object]]:
     s = surface_of(*read_triangle_mesh(path))
     labels = graphcut_labels(s)
-    report = check_segmentation(LabelledMesh(tuple(map(tuple, s.points.tolist())),
-                                             tuple(map(tuple, s.triangles.tolist())), labels))
+    report = check_segmentation(s.labelled(labels))
     if report.valid is not True or report.polycube is None:
         return []
     began = time.perf_counter()
@@ -61,7 +60,10 @@ def rows(path: Path) -> list[list[object]]:
 
 
 def main() -> None:
-    args = mesh_benchmark_parser(__doc__.split("\n\n")[0]).parse_args()
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("folder", type=_folder)
+    parser.add_argument("--only", nargs="*", help="mesh names (stems) to run")
+    args = parser.parse_args()
     print_tables_by_folder(args.folder, args.only, HEADER, rows)
     if SHORTFALLS:
         values = [v for _, v in SHORTFALLS]

@@ -128,7 +128,14 @@ def main() -> None:
                         help="print only the summary of FILE, an earlier output of this script")
     args = parser.parse_args()
     if args.summarize is not None:
-        print(summary(read_rows(args.summarize.read_text())))
+        try:
+            text = args.summarize.read_text()
+        except (OSError, UnicodeDecodeError) as err:
+            parser.error(f"{args.summarize}: cannot read: {getattr(err, 'strerror', None) or err}")
+        rows_read = read_rows(text)
+        if not rows_read:
+            parser.error(f"{args.summarize}: no table of this script in it")
+        print(summary(rows_read))
         return
     starts = dict(item.split("=", 1) for item in args.start)
     rows: list[tuple[str, dict[str, str]]] = []

@@ -35,11 +35,11 @@ import numpy as np
 
 from polyloops.core.directions import Direction
 from polyloops.segment.labellings import DIRECTION_VECTORS
+from polyloops.segment.polish import Fans
 from polyloops.segment.surface import Surface
 from polyloops.segmentation import SegmentationReport, check_segmentation
 from polyloops.segmentation.charts import Segmentation
 from polyloops.segmentation.local import LocalViolation
-from polyloops.surface.mesh import LabelledMesh
 
 __all__ = ["ROUNDS", "Repaired", "repair_labels"]
 
@@ -65,33 +65,23 @@ def repair_labels(surface: Surface, labels: Sequence[Direction], rounds: int = R
     is, after 0 rounds)."""
     lab = np.array([int(d) for d in labels], dtype=np.int64)
     worth = (surface.normals @ DIRECTION_VECTORS.T) * surface.areas[:, None]
-    incident = _incident(surface)
+    fans = Fans(surface.triangles)
     changed = 0
     for k in range(rounds + 1):
-        report = check_segmentation(LabelledMesh(
-            tuple(map(tuple, surface.points.tolist())), tuple(map(tuple, surface.triangles.tolist())),
-            tuple(Direction(int(d)) for d in lab)))
+        report = check_segmentation(surface.labelled([Direction(int(d)) for d in lab]))
         if report.valid is True:
             return Repaired(tuple(Direction(int(d)) for d in lab), report, k, changed)
         if k == rounds or not report.local.violations:
             return None
-        done = _remedy(surface, report.segmentation, report.local.violations, lab, worth, incident)
+        done = _remedy(surface, report.segmentation, report.local.violations, lab, worth, fans)
         if not done:
             return None
         changed += done
     return None
 
 
-def _incident(surface: Surface) -> list[np.ndarray]:
-    """Per vertex, the triangles round it."""
-    flat = surface.triangles.ravel()
-    order = np.argsort(flat, kind="stable")
-    cuts = np.searchsorted(flat[order], np.arange(len(surface.points) + 1))
-    return [order[cuts[v]:cuts[v + 1]] // 3 for v in range(len(surface.points))]
-
-
 def _remedy(surface: Surface, seg: Segmentation, violations: Sequence[LocalViolation], lab: np.ndarray,
-            worth: np.ndarray, incident: list[np.ndarray]) -> int:
+            worth: np.ndarray, fans: Fans) -> int:
     """One round's remedies made on ``lab`` (in place); how many charts they changed."""
     chart_of = np.asarray(seg.chart_of_triangle)
     area = np.bincount(chart_of, weights=surface.areas, minlength=len(seg.charts))
@@ -103,7 +93,7 @@ def _remedy(surface: Surface, seg: Segmentation, violations: Sequence[LocalViola
         if v.rule == "opposite-labels":
             b = seg.boundaries[v.boundaries[0]]
             small = min((b.left, b.right), key=lambda c: area[c])
-            along = np.unique(np.concatenate([incident[u] for u in b.vertices]))
+            along = np.unique(np.concatenate([fans.fan(u) for u in b.vertices]))
             strip = along[chart_of[along] == small]
             axis = int(seg.charts[small].label) // 2
             across = [d for d in range(6) if d // 2 != axis]
@@ -112,7 +102,7 @@ def _remedy(surface: Surface, seg: Segmentation, violations: Sequence[LocalViola
         elif v.rule in JOINS:
             small = min(v.charts, key=lambda c: area[c])
             mine = np.asarray(seg.charts[small].triangles)
-            near = np.unique(np.concatenate([incident[u] for u in np.unique(surface.triangles[mine])]))
+            near = np.unique(np.concatenate([fans.fan(int(u)) for u in np.unique(surface.triangles[mine])]))
             beside = sorted({int(c) for c in chart_of[near]} - {small})
             if not beside:
                 continue

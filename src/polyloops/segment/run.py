@@ -184,18 +184,13 @@ def _laid_out(r: Refined, loops: Sequence[Loop], ways: list[bool], guide: np.nda
     return why
 
 
-def _labelled(points: np.ndarray, triangles: np.ndarray, labels: Sequence[Direction]) -> LabelledMesh:
-    return LabelledMesh(tuple(map(tuple, points.tolist())), tuple(map(tuple, triangles.tolist())),
-                        tuple(labels))
-
-
 def _certify(lay: Layout) -> tuple[LabelledMesh, SegmentationReport] | str:
     """The labelled mesh and the checker's report when both checks pass, else what failed."""
     problem = layout_problem(lay)
     if problem is not None:
         return f"the layout does not draw the polycube: {problem}"
     r = lay.embedded.refined
-    mesh = _labelled(r.points, r.triangles, lay.labels)
+    mesh = r.surface.labelled(lay.labels)
     report = check_segmentation(mesh)
     if report.valid is not True:
         return f"the checker finds the labels {'invalid' if report.valid is False else 'undecided'}"
@@ -312,16 +307,18 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
     order = {r.name: k for k, r in enumerate(own)}
     tried.sort(key=lambda cr: order.get(cr[0].start, len(order)))  # recipes in order, then grids
     found_results = [(c, res) for c, res in tried if res is not None]
+    floor = None
     if kept_direct is not None:
-        found_results.append((_candidate(kept_direct, knobs, kept_direct.seconds), kept_direct))
+        direct_row = _candidate(kept_direct, knobs, kept_direct.seconds)
+        found_results.append((direct_row, kept_direct))
+        floor = _aim((direct_row, kept_direct), knobs)
     if not found_results:
         raise UncertifiedError("; ".join(f"from {c.start}: {c.reason}" for c, _ in tried))
     # the best score; where a labelling of the mesh itself is valid, among the results at
     # least as faithful as it (that labelling among them, scored by its realising polycube's
     # loops): never less faithful than a valid labelling the mesh already has
-    if kept_direct is not None:
-        floor = _candidate(kept_direct, knobs, 0.0)
-        found_results = [cr for cr in found_results if _aim(cr, knobs) >= _aim((floor, kept_direct), knobs)]
+    if floor is not None:
+        found_results = [cr for cr in found_results if _aim(cr, knobs) >= floor]
     best_c, best = max(found_results,
                        key=lambda cr: cr[0].score if cr[0].score is not None else -float("inf"))
     rows = tuple(replace(c, kept=c is best_c) for c, _ in tried) + (
@@ -455,7 +452,7 @@ def _kept_labelling(surface: Surface, labels: Sequence[Direction], how: str, beg
     """A labelling of the mesh itself as the result, when the checker finds it valid and
     builds a polycube that realises it (no loops were drawn: the layout is ``None``;
     ``report``: the checker's, when it was made already)."""
-    mesh = _labelled(surface.points, surface.triangles, labels)
+    mesh = surface.labelled(labels)
     report = check_segmentation(mesh) if report is None else report
     if report.valid is not True or report.polycube is None:
         return None

@@ -40,7 +40,6 @@ from polyloops.segment.refine import Plane, Refined, cut
 from polyloops.segment.search import StartError, section_loops
 from polyloops.segment.surface import Surface
 from polyloops.segmentation import SegmentationReport, check_segmentation
-from polyloops.surface.mesh import LabelledMesh
 
 __all__ = ["polycube_map", "seed_grid", "seed_start"]
 
@@ -98,7 +97,7 @@ def polycube_map(surface: Surface, report: SegmentationReport) -> np.ndarray:
         level[chart_of[on]] = positions[at[on], axis_of[chart_of[on]]]
     if np.isnan(level).any():
         raise ValueError(f"chart {int(np.flatnonzero(np.isnan(level))[0])} has no corner")
-    lap = _weights(surface).tocsr()
+    lap = _weights(surface)
     heights = np.zeros((n, 3))
     for a in range(3):
         fixed = np.zeros(n, dtype=bool)
@@ -155,9 +154,7 @@ def seed_start(surface: Surface, labels: Sequence[Direction], what: str = "per-t
     """
     how = f"the loops of the valid {what} labelling"
     if report is None:
-        mesh = LabelledMesh(tuple(map(tuple, surface.points.tolist())),
-                            tuple(map(tuple, surface.triangles.tolist())), tuple(labels))
-        report = check_segmentation(mesh)
+        report = check_segmentation(surface.labelled(labels))
     try:
         heights = polycube_map(surface, report)
     except ValueError as err:

@@ -20,8 +20,10 @@ from functools import cached_property
 
 import numpy as np
 
+from polyloops.core.directions import Direction
 from polyloops.core.disjoint_sets import DisjointSets
 from polyloops.core.errors import PolyloopsError
+from polyloops.surface.mesh import LabelledMesh
 
 __all__ = ["Surface", "SurfaceError", "surface_of"]
 
@@ -37,6 +39,17 @@ class Surface:
 
     points: np.ndarray
     triangles: np.ndarray
+
+    @cached_property
+    def _as_tuples(self) -> tuple[tuple[tuple[float, float, float], ...], tuple[tuple[int, int, int], ...]]:
+        return (tuple((x, y, z) for x, y, z in self.points.tolist()),
+                tuple((a, b, c) for a, b, c in self.triangles.tolist()))
+
+    def labelled(self, labels: Sequence[Direction]) -> LabelledMesh:
+        """This surface with a label per triangle, as the checker takes it (the points and
+        triangles converted once per surface)."""
+        points, triangles = self._as_tuples
+        return LabelledMesh(points, triangles, tuple(labels))
 
     @cached_property
     def _cross(self) -> np.ndarray:
