@@ -529,9 +529,42 @@ def test_a_valid_labelling_of_the_mesh_itself_is_kept_when_more_faithful():
     searched = segment_mesh(points, triangles, budget=0.5, direct=False)
     # (each search is stopped by its budget, so the two runs' searches need not agree)
     assert done.certified and done.fidelity >= own.fidelity
-    assert done.layout is not None or (done.fidelity == own.fidelity and done.start == own.start)
+    kept = [c for c in done.candidates if c.kept]
+    assert len(kept) == 1 and kept[0].start == done.start and kept[0].fidelity == done.fidelity
+    assert done.layout is not None or "graph-cut labelling" in done.start
     assert "the loops of the valid graph-cut labelling" in {c.start for c in done.candidates}  # a seed
     assert searched.layout is not None  # the search's own, with its loops
+
+
+def test_finer_graph_cut_labellings_are_candidates_and_the_best_score_above_the_floor_is_kept():
+    """The graph-cut labellings of lighter compactness (``FINER``) that are valid, as they are
+    or repaired, are rows of the run beside the standard one, with the fidelity they have on
+    their own; the row kept scores best among the certified rows at least as faithful as the
+    standard graph-cut labelling (the floor)."""
+    from polyloops.segment.labellings import graphcut_labels
+    from polyloops.segment.run import FINER, _direct, _made_valid
+
+    points, triangles = sphere(3)
+    points = points / np.abs(points).max(axis=1, keepdims=True) * np.array([1.0, 0.7, 0.5])
+    points = points + 0.03 * np.sin(5 * points[:, [1, 2, 0]])  # gentle waves: the weights differ
+    s = surface_of(points, triangles)
+    done = segment_mesh(points, triangles, budget=0.5)
+    rows = {c.start: c for c in done.candidates}
+    for weight in FINER:
+        name = f"the graph-cut labelling of compactness {weight:g}"
+        made = _made_valid(s, graphcut_labels(s, weight), name, 0.0)
+        if made is not None:
+            row = rows[made[0].start]
+            assert row.certified and row.fidelity == pytest.approx(made[0].fidelity)
+        else:
+            assert not any(f"compactness {weight:g}" in name for name in rows)
+    standard = _direct(s, 0.0)
+    assert standard is not None
+    floor = standard[0].fidelity
+    eligible = [c for c in done.candidates if c.certified and c.fidelity is not None and c.fidelity >= floor]
+    kept = [c for c in done.candidates if c.kept]
+    assert len(kept) == 1 and kept[0].score == max(c.score for c in eligible if c.score is not None)
+    assert done.fidelity == kept[0].fidelity >= floor
 
 
 def test_where_the_layout_that_follows_the_labels_is_refused_the_plain_one_is_certified(monkeypatch):

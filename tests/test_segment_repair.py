@@ -11,6 +11,7 @@ from polyloops.segment.repair import repair_labels
 from polyloops.segment.run import _direct, segment_mesh
 from polyloops.segment.starts import Charts
 from polyloops.segment.surface import surface_of
+from polyloops.segmentation import check_segmentation
 from polyloops.shapes.meshes import _subdivide, ellipsoid
 from polyloops.surface.construct import labelled_mesh_from_polycube
 from strategies import polycubes
@@ -98,3 +99,19 @@ def test_an_invalid_guide_that_the_remedies_make_valid_is_a_floor_on_the_agreeme
     kept = next(c for c in run.candidates if c.kept)
     assert run.certified and kept.agreement is not None and kept.agreement >= floor - 1e-12
     assert run.guide_changed is not None and run.guide_changed <= 0.2
+
+
+def test_strips_that_continue_the_charts_at_their_ends_repair_a_thin_plate_too(monkeypatch):
+    """The second strategy alone (strips between opposite labels taking the labels of the
+    charts at the boundary's ends) repairs the thin plate, and what it returns the checker
+    finds valid."""
+    from polyloops.segment import repair
+
+    first = repair._rounds
+    monkeypatch.setattr(repair, "_rounds", lambda *a: None if not a[-1] else first(*a))
+    s = surface_of(*ellipsoid(1.0, 0.6, 0.05, level=3))
+    labels = graphcut_labels(s)
+    assert check_segmentation(s.labelled(labels)).valid is False
+    done = repair.repair_labels(s, labels)
+    assert done is not None and done.rounds >= 1
+    assert check_segmentation(s.labelled(done.labels)).valid is True

@@ -13,6 +13,9 @@ names (:mod:`polyloops.segmentation.local`), and each has a local remedy:
 
 Each round makes every remedy the checker's report asks for, at most one per chart, the smallest
 charts first; rounds repeat while the report names local violations, at most :data:`ROUNDS`.
+Where that fails, the repair starts again from the labelling given with strips that take, where
+they can, the labels of the charts that meet the boundary at its ends (a thin part's rim
+continued rather than a new chart made beside it).
 What comes out is returned only when the checker finds it valid (so a global violation, such as
 a level graph with a cycle, ends the repair with nothing): the repair is a heuristic, and the
 checker its judge.
@@ -38,7 +41,7 @@ from polyloops.segment.labellings import DIRECTION_VECTORS
 from polyloops.segment.polish import Fans
 from polyloops.segment.surface import Surface
 from polyloops.segmentation import SegmentationReport, check_segmentation
-from polyloops.segmentation.charts import Segmentation
+from polyloops.segmentation.charts import Boundary, Segmentation
 from polyloops.segmentation.local import LocalViolation
 
 __all__ = ["ROUNDS", "Repaired", "repair_labels"]
@@ -62,10 +65,21 @@ def repair_labels(surface: Surface, labels: Sequence[Direction], rounds: int = R
     """``labels`` (one per triangle of ``surface``) repaired by the local remedies of the module
     docstring until the checker finds them valid, or ``None`` when it does not within
     ``rounds`` rounds, or a round has nothing to remedy (a valid labelling is returned as it
-    is, after 0 rounds)."""
+    is, after 0 rounds).  Strips between opposite labels take the directions their triangles
+    face best; where that fails, the repair starts again with strips that take, where they
+    can, the labels of the charts at the boundary's ends (:func:`_ends`)."""
     lab = np.array([int(d) for d in labels], dtype=np.int64)
     worth = (surface.normals @ DIRECTION_VECTORS.T) * surface.areas[:, None]
     fans = Fans(surface.triangles)
+    for ends in (False, True):
+        done = _rounds(surface, lab.copy(), rounds, worth, fans, ends)
+        if done is not None:
+            return done
+    return None
+
+
+def _rounds(surface: Surface, lab: np.ndarray, rounds: int, worth: np.ndarray, fans: Fans, ends: bool
+            ) -> Repaired | None:
     changed = 0
     for k in range(rounds + 1):
         report = check_segmentation(surface.labelled([Direction(int(d)) for d in lab]))
@@ -73,7 +87,7 @@ def repair_labels(surface: Surface, labels: Sequence[Direction], rounds: int = R
             return Repaired(tuple(Direction(int(d)) for d in lab), report, k, changed)
         if k == rounds or not report.local.violations:
             return None
-        done = _remedy(surface, report.segmentation, report.local.violations, lab, worth, fans)
+        done = _remedy(surface, report.segmentation, report.local.violations, lab, worth, fans, ends)
         if not done:
             return None
         changed += done
@@ -81,8 +95,10 @@ def repair_labels(surface: Surface, labels: Sequence[Direction], rounds: int = R
 
 
 def _remedy(surface: Surface, seg: Segmentation, violations: Sequence[LocalViolation], lab: np.ndarray,
-            worth: np.ndarray, fans: Fans) -> int:
-    """One round's remedies made on ``lab`` (in place); how many charts they changed."""
+            worth: np.ndarray, fans: Fans, ends: bool = False) -> int:
+    """One round's remedies made on ``lab`` (in place); how many charts they changed.  With
+    ``ends``, a strip between opposite labels takes the labels of the charts at the boundary's
+    ends where there are such (:func:`_ends`)."""
     chart_of = np.asarray(seg.chart_of_triangle)
     area = np.bincount(chart_of, weights=surface.areas, minlength=len(seg.charts))
     touched: set[int] = set()
@@ -96,7 +112,7 @@ def _remedy(surface: Surface, seg: Segmentation, violations: Sequence[LocalViola
             along = np.unique(np.concatenate([fans.fan(u) for u in b.vertices]))
             strip = along[chart_of[along] == small]
             axis = int(seg.charts[small].label) // 2
-            across = [d for d in range(6) if d // 2 != axis]
+            across = (_ends(seg, b, axis) if ends else []) or [d for d in range(6) if d // 2 != axis]
             lab[strip] = np.array(across)[np.argmax(worth[strip][:, across], axis=1)]
             touched |= {b.left, b.right}
         elif v.rule in JOINS:
@@ -113,3 +129,11 @@ def _remedy(surface: Surface, seg: Segmentation, violations: Sequence[LocalViola
             continue
         count += 1
     return count
+
+
+def _ends(seg: Segmentation, b: Boundary, axis: int) -> list[int]:
+    """The labels across ``axis`` of the charts that meet the boundary ``b`` at its ends: a
+    strip of them joins those charts (a thin part's rim, continued) instead of making a new
+    chart."""
+    charts = {c for k in (b.start, b.end) if k is not None for _, _, c in seg.corners[k].sides}
+    return sorted({int(seg.charts[c].label) for c in charts} - {2 * axis, 2 * axis + 1})

@@ -56,7 +56,11 @@ from polyloops.segmentation import SegmentationReport, check_segmentation
 from polyloops.segmentation.quality import backwards_fraction
 from polyloops.surface.mesh import LabelledMesh
 
-__all__ = ["Candidate", "SegmentResult", "segment_mesh"]
+__all__ = ["FINER", "Candidate", "SegmentResult", "segment_mesh"]
+
+# the lighter compactness weights of the graph-cut labellings that are candidates beside the
+# standard one (weight 1): nearer the per-triangle labelling, often valid once repaired
+FINER = (0.5, 0.25)
 
 
 @dataclass(frozen=True)
@@ -216,6 +220,7 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
         raise ValueError(f"a guide of {len(guide)} labels for {len(surface.triangles)} triangles")
     knobs = SearchSettings(budget, seed, planes, price, None if guide is None else label_vectors(guide))
     kept_direct, which = None, Charts.GRAPH_CUT
+    finer: list[SegmentResult] = []
     if guide is not None:
         kept = _kept_labelling(surface, guide, "the guide, already valid", began)
         if kept is not None:
@@ -236,6 +241,7 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
             kept_direct, which = found_direct
             if which is Charts.NAIVE:  # no labelling is more faithful
                 return _alone(kept_direct, knobs)
+        finer = _finer(surface, began, workers)
     if start is not None:
         r, loops, placed = embed_start(surface, start, GRIDS, budget)
         how = f"the given start, turned by {placed.symmetry}" + (
@@ -302,16 +308,19 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
                 note(_candidate(searched, knobs, time.monotonic() - t0), searched)
                 break
         except StartError:
-            if kept_direct is None:
+            if kept_direct is None and not finer:
                 raise
     order = {r.name: k for k, r in enumerate(own)}
     tried.sort(key=lambda cr: order.get(cr[0].start, len(order)))  # recipes in order, then grids
     found_results = [(c, res) for c, res in tried if res is not None]
+    # the labellings of the mesh itself that are valid (as they are or repaired)
+    own_rows = [(_candidate(res, knobs, res.seconds), res) for res in finer]
     floor = None
     if kept_direct is not None:
         direct_row = _candidate(kept_direct, knobs, kept_direct.seconds)
-        found_results.append((direct_row, kept_direct))
+        own_rows.insert(0, (direct_row, kept_direct))
         floor = _aim((direct_row, kept_direct), knobs)
+    found_results += own_rows
     if not found_results:
         raise UncertifiedError("; ".join(f"from {c.start}: {c.reason}" for c, _ in tried))
     # the best score; where a labelling of the mesh itself is valid, among the results at
@@ -321,8 +330,7 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
         found_results = [cr for cr in found_results if _aim(cr, knobs) >= floor]
     best_c, best = max(found_results,
                        key=lambda cr: cr[0].score if cr[0].score is not None else -float("inf"))
-    rows = tuple(replace(c, kept=c is best_c) for c, _ in tried) + (
-        (replace(best_c, kept=True),) if best is kept_direct else ())
+    rows = tuple(replace(c, kept=c is best_c) for c, _ in (*tried, *own_rows))
     return replace(best, seconds=time.monotonic() - began, candidates=rows, score=best_c.score,
                    converged=best.converged and all(c.converged is not False for c, _ in tried))
 
@@ -417,18 +425,24 @@ def _candidate(result: SegmentResult, knobs: SearchSettings, seconds: float) -> 
 def _direct(surface: Surface, began: float) -> tuple[SegmentResult, Charts] | None:
     """A valid labelling of the mesh itself and which it is, or ``None``: the per-triangle
     labelling when the checker finds it valid (it builds a polycube that realises it; no
-    labelling is more faithful, so it is kept as it is); else the graph-cut labelling, valid
-    as it is or repaired (:func:`~polyloops.segment.repair.repair_labels`), polished where that
-    makes it more faithful (the same charts, boundaries and corners, triangles moved to a chart
-    beside them: :func:`~polyloops.segment.polish.polish_labels`).  Where there is one, a
-    search's result is kept only when it is at least as faithful and scores better
-    (:func:`segment_surface`)."""
+    labelling is more faithful, so it is kept as it is); else the graph-cut labelling, made
+    valid by :func:`_made_valid`.  Where there is one, a search's result is kept only when it
+    is at least as faithful and scores better (:func:`segment_surface`)."""
     how = "the per-triangle labelling, valid as it is"
     naive = _kept_labelling(surface, naive_labels(surface), how, began)
     if naive is not None:
         return naive, Charts.NAIVE
-    labels = graphcut_labels(surface)
-    how, which = "the graph-cut labelling, valid", Charts.GRAPH_CUT
+    return _made_valid(surface, graphcut_labels(surface), "the graph-cut labelling", began)
+
+
+def _made_valid(surface: Surface, labels: Sequence[Direction], name: str, began: float
+                ) -> tuple[SegmentResult, Charts] | None:
+    """``labels`` as a result where the checker finds them valid as they are or repaired
+    (:func:`~polyloops.segment.repair.repair_labels`), polished where that makes them more
+    faithful (the same charts, boundaries and corners, triangles moved to a chart beside them:
+    :func:`~polyloops.segment.polish.polish_labels`), with which they are (valid as given or
+    repaired); ``None`` where the repair fails."""
+    how, which = f"{name}, valid", Charts.GRAPH_CUT
     as_it_is = _kept_labelling(surface, labels, f"{how} as it is", began)
     if as_it_is is None:
         # invalid for local reasons (a thin part's sides meeting, specks, islands): repaired
@@ -436,7 +450,7 @@ def _direct(surface: Surface, began: float) -> tuple[SegmentResult, Charts] | No
         if repaired is None:
             return None
         labels, which = repaired.labels, Charts.REPAIRED
-        how = f"the graph-cut labelling, repaired ({repaired.charts} charts changed)"
+        how = f"{name}, repaired ({repaired.charts} charts changed)"
         as_it_is = _kept_labelling(surface, labels, how, began, repaired.report)
         if as_it_is is None:
             return None
@@ -445,6 +459,21 @@ def _direct(surface: Surface, began: float) -> tuple[SegmentResult, Charts] | No
         how = f"{how}, polished ({moved} triangles moved)"
         return _kept_labelling(surface, polished, how, began) or as_it_is, which
     return as_it_is, which
+
+
+def _finer(surface: Surface, began: float, workers: int) -> list[SegmentResult]:
+    """The valid labellings (as they are or repaired, polished) of the graph-cut labellings of
+    lighter compactness (:data:`FINER`): closer to the per-triangle labelling, with more
+    charts; candidates beside the others, scored alike."""
+    jobs = [(surface, compactness, began) for compactness in FINER]
+    return [found for found in run_jobs(_finer_job, jobs, workers=workers) if found is not None]
+
+
+def _finer_job(job: tuple[Surface, float, float]) -> SegmentResult | None:
+    surface, compactness, began = job
+    name = f"the graph-cut labelling of compactness {compactness:g}"
+    made = _made_valid(surface, graphcut_labels(surface, compactness), name, began)
+    return None if made is None else made[0]
 
 
 def _kept_labelling(surface: Surface, labels: Sequence[Direction], how: str, began: float,
