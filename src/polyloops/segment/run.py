@@ -214,7 +214,8 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
     a ``guide`` that is already a valid labelling is returned as it is; with ``direct`` and
     without a start or a guide, the naive and graph-cut labellings that the checker finds
     valid are candidates too (:func:`_direct`), and the result is the best score among those
-    at least as faithful as that labelling."""
+    at least as faithful as that labelling; so are the finer graph-cut labellings made valid
+    (:func:`_finer`), scored alike but no floor."""
     began = time.monotonic()
     if guide is not None and len(guide) != len(surface.triangles):
         raise ValueError(f"a guide of {len(guide)} labels for {len(surface.triangles)} triangles")
