@@ -242,7 +242,6 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
             kept_direct, which = found_direct
             if which is Charts.NAIVE:  # no labelling is more faithful
                 return _alone(kept_direct, knobs)
-        finer = _finer(surface, began, workers)
     if start is not None:
         r, loops, placed = embed_start(surface, start, GRIDS, budget)
         how = f"the given start, turned by {placed.symmetry}" + (
@@ -250,6 +249,7 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
         given = _search_from(surface, (r, loops, list(placed.curves), how), began, knobs, on_step)
         return _alone(given, knobs)
     tried: list[tuple[Candidate, SegmentResult | None]] = []
+    no_start: StartError | None = None
 
     def note(candidate: Candidate, result: SegmentResult | None) -> None:
         tried.append((candidate, result))
@@ -308,9 +308,13 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
                     continue
                 note(_candidate(searched, knobs, time.monotonic() - t0), searched)
                 break
-        except StartError:
-            if kept_direct is None and not finer:
-                raise
+        except StartError as err:
+            no_start = err
+    if guide is None and direct:
+        # after the search, so that they take nothing from its budget
+        finer = _finer(surface, began, workers)
+    if no_start is not None and kept_direct is None and not finer:
+        raise no_start
     order = {r.name: k for k, r in enumerate(own)}
     tried.sort(key=lambda cr: order.get(cr[0].start, len(order)))  # recipes in order, then grids
     found_results = [(c, res) for c, res in tried if res is not None]
