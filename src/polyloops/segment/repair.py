@@ -69,20 +69,22 @@ def repair_labels(surface: Surface, labels: Sequence[Direction], rounds: int = R
     face best; where that fails, the repair starts again with strips that take, where they
     can, the labels of the charts at the boundary's ends (:func:`_ends`)."""
     lab = np.array([int(d) for d in labels], dtype=np.int64)
+    given = check_segmentation(surface.labelled(list(labels)))  # where both strategies start
     worth = (surface.normals @ DIRECTION_VECTORS.T) * surface.areas[:, None]
     fans = Fans(surface.triangles)
     for ends in (False, True):
-        done = _rounds(surface, lab.copy(), rounds, worth, fans, ends)
-        if done is not None:
+        done = _rounds(surface, lab.copy(), given, rounds, worth, fans, ends)
+        if done is not None or given.valid is True or not given.local.violations:
             return done
     return None
 
 
-def _rounds(surface: Surface, lab: np.ndarray, rounds: int, worth: np.ndarray, fans: Fans, ends: bool
-            ) -> Repaired | None:
+def _rounds(surface: Surface, lab: np.ndarray, given: SegmentationReport, rounds: int, worth: np.ndarray,
+            fans: Fans, ends: bool) -> Repaired | None:
+    """Rounds of remedies from ``lab``, whose report is ``given``."""
     changed = 0
     for k in range(rounds + 1):
-        report = check_segmentation(surface.labelled([Direction(int(d)) for d in lab]))
+        report = given if k == 0 else check_segmentation(surface.labelled([Direction(int(d)) for d in lab]))
         if report.valid is True:
             return Repaired(tuple(Direction(int(d)) for d in lab), report, k, changed)
         if k == rounds or not report.local.violations:
