@@ -26,6 +26,7 @@ from polyloops.segment.certify import layout_problem
 from polyloops.segment.deform import polycube_heights
 from polyloops.segment.embedded import Loop, NotAStructure
 from polyloops.segment.from_polycube import UncertifiedError
+from polyloops.segment.graft import graft_labels
 from polyloops.segment.labellings import (
     fidelity,
     graphcut_labels,
@@ -222,6 +223,9 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
     knobs = SearchSettings(budget, seed, planes, price, None if guide is None else label_vectors(guide))
     kept_direct, which = None, Charts.GRAPH_CUT
     finer: list[SegmentResult] = []
+    donors: list[np.ndarray] = []  # labellings whose patches are grafted into the result
+    if guide is not None:
+        donors.append(np.array([int(d) for d in guide], dtype=np.int64))
     if guide is not None:
         kept = _kept_labelling(surface, guide, "the guide, already valid", began)
         if kept is not None:
@@ -237,7 +241,7 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
                 changed = _changed(surface.areas, knobs.guide, repaired.labels)
                 kept_direct, which = replace(kept, guide_changed=changed), Charts.GUIDE
     elif start is None and direct:
-        found_direct = _direct(surface, began)
+        found_direct = _direct(surface, began, donors)
         if found_direct is not None:
             kept_direct, which = found_direct
             if which is Charts.NAIVE:  # no labelling is more faithful
@@ -312,7 +316,7 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
             no_start = err
     if guide is None and direct:
         # after the search, so that they take nothing from its budget
-        finer = _finer(surface, began, workers)
+        finer = _finer(surface, began, workers, donors)
     if no_start is not None and kept_direct is None and not finer:
         raise no_start
     order = {r.name: k for k, r in enumerate(own)}
@@ -335,9 +339,53 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
         found_results = [cr for cr in found_results if _aim(cr, knobs) >= floor]
     best_c, best = max(found_results,
                        key=lambda cr: cr[0].score if cr[0].score is not None else -float("inf"))
-    rows = tuple(replace(c, kept=c is best_c) for c, _ in (*tried, *own_rows))
-    return replace(best, seconds=time.monotonic() - began, candidates=rows, score=best_c.score,
+    rows = [*(c for c, _ in tried), *(c for c, _ in own_rows)]
+    grafted = _grafted(surface, best, best_c, donors, knobs, began)
+    if grafted is not None:
+        best_c, best = grafted
+        rows.append(best_c)
+    return replace(best, seconds=time.monotonic() - began, score=best_c.score,
+                   candidates=tuple(replace(c, kept=c is best_c) for c in rows),
                    converged=best.converged and all(c.converged is not False for c, _ in tried))
+
+
+GRAFTING = 0.5  # of the budget, the most the grafting of patches into the result takes
+
+
+def _grafted(surface: Surface, best: SegmentResult, row: Candidate, donors: Sequence[np.ndarray],
+             knobs: SearchSettings, began: float) -> tuple[Candidate, SegmentResult] | None:
+    """The run's result with the patches of the ``donors`` (labellings of the input mesh: the
+    graph-cut ones, or the guide) that keep it valid and raise its score grafted into it
+    (:func:`~polyloops.segment.graft.graft_labels`), polished, and its row; ``None`` when
+    nothing was grafted or the grafted labelling does not score better than ``row`` (its loops
+    counted on the checker's polycube)."""
+    if not donors:
+        return None
+    t0 = time.monotonic()
+    mesh, parent = best.mesh, np.asarray(best.face_map)
+    own = Surface(np.asarray(mesh.points, dtype=float), np.asarray(mesh.triangles, dtype=np.int64))
+    target = None if knobs.guide is None else knobs.guide[parent]
+    done = graft_labels(own, mesh.labels, [d[parent] for d in donors], knobs.price,
+                        t0 + GRAFTING * knobs.budget, target, best.report)
+    if not done.kept:
+        return None
+    labels, moved = polish_labels(own, done.labels, target)
+    whose = "the guide" if knobs.guide is not None else "graph-cut labellings"
+    how = f"{best.start}, grafted ({done.kept} patches of {whose})"
+    result = None
+    if moved:
+        result = _kept_labelling(own, labels, f"{how}, polished ({moved} triangles moved)", began,
+                                 parent=parent, input_triangles=best.input_triangles)
+    if result is None:
+        result = _kept_labelling(own, done.labels, how, began, done.report, parent, best.input_triangles)
+    if result is None:
+        return None
+    if knobs.guide is not None:
+        result = replace(result, guide_changed=_changed(own.areas, knobs.guide[parent], result.mesh.labels))
+    candidate = _candidate(result, knobs, time.monotonic() - t0)
+    if candidate.score is None or row.score is None or candidate.score <= row.score:
+        return None
+    return candidate, replace(result, states=best.states)
 
 
 Scouted = tuple[Start, tuple[frozenset[int], ...]]  # a start at its best state, and its search's last states
@@ -427,17 +475,22 @@ def _candidate(result: SegmentResult, knobs: SearchSettings, seconds: float) -> 
                      corners=result.corners, seconds=seconds, converged=result.converged)
 
 
-def _direct(surface: Surface, began: float) -> tuple[SegmentResult, Charts] | None:
+def _direct(surface: Surface, began: float, donors: list[np.ndarray] | None = None
+            ) -> tuple[SegmentResult, Charts] | None:
     """A valid labelling of the mesh itself and which it is, or ``None``: the per-triangle
     labelling when the checker finds it valid (it builds a polycube that realises it; no
     labelling is more faithful, so it is kept as it is); else the graph-cut labelling, made
     valid by :func:`_made_valid`.  Where there is one, a search's result is kept only when it
-    is at least as faithful and scores better (:func:`segment_surface`)."""
+    is at least as faithful and scores better (:func:`segment_surface`).  The graph-cut
+    labelling is appended to ``donors``."""
     how = "the per-triangle labelling, valid as it is"
     naive = _kept_labelling(surface, naive_labels(surface), how, began)
     if naive is not None:
         return naive, Charts.NAIVE
-    return _made_valid(surface, graphcut_labels(surface), "the graph-cut labelling", began)
+    standard = graphcut_labels(surface)
+    if donors is not None:
+        donors.append(np.array([int(d) for d in standard], dtype=np.int64))
+    return _made_valid(surface, standard, "the graph-cut labelling", began)
 
 
 def _made_valid(surface: Surface, labels: Sequence[Direction], name: str, began: float
@@ -466,33 +519,44 @@ def _made_valid(surface: Surface, labels: Sequence[Direction], name: str, began:
     return as_it_is, which
 
 
-def _finer(surface: Surface, began: float, workers: int) -> list[SegmentResult]:
+def _finer(surface: Surface, began: float, workers: int, donors: list[np.ndarray]) -> list[SegmentResult]:
     """The valid labellings (as they are or repaired, polished) of the graph-cut labellings of
     lighter compactness (:data:`FINER`): closer to the per-triangle labelling, with more
-    charts; candidates beside the others, scored alike."""
+    charts; candidates beside the others, scored alike.  The graph-cut labellings are appended
+    to ``donors``."""
     jobs = [(surface, compactness, began) for compactness in FINER]
-    return [found for found in run_jobs(_finer_job, jobs, workers=workers) if found is not None]
+    out = []
+    for labels, found in run_jobs(_finer_job, jobs, workers=workers):
+        donors.append(labels)
+        if found is not None:
+            out.append(found)
+    return out
 
 
-def _finer_job(job: tuple[Surface, float, float]) -> SegmentResult | None:
+def _finer_job(job: tuple[Surface, float, float]) -> tuple[np.ndarray, SegmentResult | None]:
     surface, compactness, began = job
     name = f"the graph-cut labelling of compactness {compactness:g}"
-    made = _made_valid(surface, graphcut_labels(surface, compactness), name, began)
-    return None if made is None else made[0]
+    labels = graphcut_labels(surface, compactness)
+    made = _made_valid(surface, labels, name, began)
+    return np.array([int(d) for d in labels], dtype=np.int64), None if made is None else made[0]
 
 
 def _kept_labelling(surface: Surface, labels: Sequence[Direction], how: str, began: float,
-                    report: SegmentationReport | None = None) -> SegmentResult | None:
+                    report: SegmentationReport | None = None, parent: np.ndarray | None = None,
+                    input_triangles: int | None = None) -> SegmentResult | None:
     """A labelling of the mesh itself as the result, when the checker finds it valid and
     builds a polycube that realises it (no loops were drawn: the layout is ``None``;
-    ``report``: the checker's, when it was made already)."""
+    ``report``: the checker's, when it was made already).  ``surface`` may be the input
+    refined, ``parent`` giving each of its triangles' input triangle, of ``input_triangles``."""
     mesh = surface.labelled(labels)
     report = check_segmentation(mesh) if report is None else report
     if report.valid is not True or report.polycube is None:
         return None
     loops = len(dualize(report.polycube).loops)
-    return SegmentResult(mesh, tuple(range(len(surface.triangles))), report.polycube, report, surface.genus,
-                         len(surface.triangles), loops, fidelity(surface, labels), naive_fidelity(surface),
+    face_map = tuple(range(len(surface.triangles))) if parent is None else tuple(int(p) for p in parent)
+    return SegmentResult(mesh, face_map, report.polycube, report, surface.genus,
+                         len(surface.triangles) if input_triangles is None else input_triangles, loops,
+                         fidelity(surface, labels), naive_fidelity(surface),
                          time.monotonic() - began, 0, True, None, how)
 
 
