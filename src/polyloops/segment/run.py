@@ -385,7 +385,7 @@ def _grafted(surface: Surface, best: SegmentResult, row: Candidate, donors: Sequ
     candidate = _candidate(result, knobs, time.monotonic() - t0)
     if candidate.score is None or row.score is None or candidate.score <= row.score:
         return None
-    return candidate, replace(result, states=best.states)
+    return candidate, replace(result, states=best.states, converged=best.converged)
 
 
 Scouted = tuple[Start, tuple[frozenset[int], ...]]  # a start at its best state, and its search's last states
