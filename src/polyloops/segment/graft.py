@@ -10,7 +10,8 @@ is the area-weighted ``n . label`` the donor's label adds there (or the agreemen
 target, such as a guide).  The patches are tried best gain first: each is kept when the
 checker finds the labelling with it valid and the gain pays for the loops it adds (at
 ``price`` each, counted on the checker's polycube before and after, so that both sides of the
-comparison are counted alike); sweeps repeat while they keep something, until a deadline.  Nothing kept is ever unchecked: the last report is the certificate.
+comparison are counted alike); sweeps repeat while they keep something, until a deadline.
+Nothing kept is ever unchecked: the last report is the certificate.
 
 >>> import numpy as np
 >>> from polyloops.shapes.meshes import ellipsoid
