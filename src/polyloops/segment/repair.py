@@ -33,6 +33,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
+from enum import Enum
 
 import numpy as np
 
@@ -44,7 +45,7 @@ from polyloops.segmentation import SegmentationReport, check_segmentation
 from polyloops.segmentation.charts import Boundary, Segmentation
 from polyloops.segmentation.local import LocalViolation
 
-__all__ = ["ROUNDS", "Repaired", "repair_labels"]
+__all__ = ["ROUNDS", "Repaired", "Way", "repair_labels"]
 
 ROUNDS = 8  # rounds of remedies before giving up (the successes on the shared meshes took 1 to 4)
 JOINS = frozenset({"few-boundaries", "closed-boundary", "chart-handle", "corner"})
@@ -72,15 +73,23 @@ def repair_labels(surface: Surface, labels: Sequence[Direction], rounds: int = R
     given = check_segmentation(surface.labelled(list(labels)))  # where both strategies start
     worth = (surface.normals @ DIRECTION_VECTORS.T) * surface.areas[:, None]
     fans = Fans(surface.triangles)
-    for ends in (False, True):
-        done = _rounds(surface, lab.copy(), given, rounds, worth, fans, ends)
+    for way in Way:
+        done = _rounds(surface, lab.copy(), given, rounds, worth, fans, way)
         if done is not None or given.valid is True or not given.local.violations:
             return done
     return None
 
 
+class Way(Enum):
+    """The strategies of the repair, tried in turn until one makes the labelling valid."""
+
+    PLAIN = "strips that face best, joins into the chart faced best"
+    ENDS = "strips that continue the charts at the boundary's ends"
+    CAREFUL = "strips smoothed along the boundary, joins that make no opposite pair, missing sides filled"
+
+
 def _rounds(surface: Surface, lab: np.ndarray, given: SegmentationReport, rounds: int, worth: np.ndarray,
-            fans: Fans, ends: bool) -> Repaired | None:
+            fans: Fans, way: Way) -> Repaired | None:
     """Rounds of remedies from ``lab``, whose report is ``given``."""
     changed = 0
     for k in range(rounds + 1):
@@ -89,7 +98,11 @@ def _rounds(surface: Surface, lab: np.ndarray, given: SegmentationReport, rounds
             return Repaired(tuple(Direction(int(d)) for d in lab), report, k, changed)
         if k == rounds or not report.local.violations:
             return None
-        done = _remedy(surface, report.segmentation, report.local.violations, lab, worth, fans, ends)
+        if way is Way.CAREFUL:
+            done = _careful(surface, report.segmentation, report.local.violations, lab, worth, fans)
+        else:
+            done = _remedy(surface, report.segmentation, report.local.violations, lab, worth, fans,
+                           way is Way.ENDS)
         if not done:
             return None
         changed += done
@@ -139,3 +152,135 @@ def _ends(seg: Segmentation, b: Boundary, axis: int) -> list[int]:
     chart."""
     charts = {c for k in (b.start, b.end) if k is not None for _, _, c in seg.corners[k].sides}
     return sorted({int(seg.charts[c].label) for c in charts} - {2 * axis, 2 * axis + 1})
+
+
+# the careful strategy (Way.CAREFUL)
+SWITCH = 8.0  # a strip's price for each change of label along its boundary, in its mean triangle areas
+FILL = 0.002  # of the fidelity: a chart whose join would lose more has its missing side filled instead
+
+
+def _careful(surface: Surface, seg: Segmentation, violations: Sequence[LocalViolation], lab: np.ndarray,
+             worth: np.ndarray, fans: Fans) -> int:
+    """One round of the careful strategy on ``lab`` (in place); how many remedies it made.
+
+    Every boundary between opposite labels gets its strip first (smallest charts first), each
+    strip labelled along its boundary by :func:`_smoothed`.  Then each chart named by another
+    rule joins a chart beside it of another label, one that would meet no chart of the opposite
+    label where there is such, the one its triangles face best; but where that join would lose
+    more than :data:`FILL` of the fidelity (a large chart), a chart with too few boundaries gets
+    its missing sides instead (:func:`_fill`), and a chart that has none to fill waits: the
+    cheapest such join is made only in a round with nothing else to do."""
+    chart_of = np.asarray(seg.chart_of_triangle)
+    area = np.bincount(chart_of, weights=surface.areas, minlength=len(seg.charts))
+    total = float(surface.areas.sum())
+    touched: set[int] = set()
+    count = 0
+    waiting: list[tuple[float, np.ndarray, int]] = []
+    order = sorted(violations, key=lambda v: (v.rule != "opposite-labels",
+                                              min((area[c] for c in v.charts), default=0.0)))
+    for v in order:
+        if not v.charts or touched & set(v.charts):
+            continue
+        if v.rule == "opposite-labels":
+            b = seg.boundaries[v.boundaries[0]]
+            small = min((b.left, b.right), key=lambda c: area[c])
+            along = np.unique(np.concatenate([fans.fan(u) for u in b.vertices]))
+            strip = along[chart_of[along] == small]
+            axis = int(seg.charts[small].label) // 2
+            across = [d for d in range(6) if d // 2 != axis]
+            lab[strip] = _smoothed(surface, b, strip, across, lab, worth, fans)
+            touched |= {b.left, b.right}
+            count += 1
+        elif v.rule in JOINS:
+            small = min(v.charts, key=lambda c: area[c])
+            mine = np.asarray(seg.charts[small].triangles)
+            own = int(seg.charts[small].label)
+            near = np.unique(np.concatenate([fans.fan(int(u)) for u in np.unique(surface.triangles[mine])]))
+            beside = [c for c in sorted({int(c) for c in chart_of[near]} - {small})
+                      if int(seg.charts[c].label) != own]
+            if not beside:
+                continue
+            labels = {int(seg.charts[c].label) for c in beside}
+            safe = [c for c in beside if int(seg.charts[c].label) ^ 1 not in labels] or beside
+            best = max(safe, key=lambda c: (worth[mine, int(seg.charts[c].label)].sum(), -c))
+            into = int(seg.charts[best].label)
+            loss = float(worth[mine, own].sum() - worth[mine, into].sum())
+            if loss > FILL * total:
+                filled = _fill(surface, seg, small, mine, lab, fans) if v.rule == "few-boundaries" else 0
+                if filled:
+                    touched.add(small)
+                    count += 1
+                else:
+                    waiting.append((loss, mine, into))
+                continue
+            lab[mine] = into
+            touched |= {small, best}
+            count += 1
+    if not count and waiting:
+        _, mine, into = min(waiting, key=lambda w: w[0])
+        lab[mine] = into
+        count = 1
+    return count
+
+
+def _smoothed(surface: Surface, b: Boundary, strip: np.ndarray, across: list[int], lab: np.ndarray,
+              worth: np.ndarray, fans: Fans) -> np.ndarray:
+    """Labels for the ``strip`` of triangles along boundary ``b``, among ``across``: each
+    triangle placed at the first of its vertices along ``b``, the labels along ``b`` chosen by a
+    dynamic programme that weighs what the triangles face (:data:`SWITCH` times their mean area
+    for each change of label), a label opposite to a triangle's neighbour outside the strip
+    refused, so that the strip's charts run along the boundary and make no new opposite pair."""
+    index = {int(u): k for k, u in enumerate(b.vertices)}
+    place = np.array([min(index.get(int(u), len(index)) for u in surface.triangles[t]) for t in strip])
+    switch = SWITCH * float(surface.areas[strip].mean())
+    value = worth[strip][:, across].copy()
+    inside = np.zeros(len(lab), dtype=bool)
+    inside[strip] = True
+    for i, t in enumerate(strip.tolist()):
+        for u in fans.across[t]:
+            if not inside[u]:  # refused: four changes of label cost less
+                value[i, [j for j, d in enumerate(across) if d == int(lab[u]) ^ 1]] -= 4 * switch
+    n, k = len(index) + 1, len(across)
+    cost = np.zeros((n, k))
+    np.add.at(cost, place, -value)
+    best = cost[0].copy()
+    back = np.zeros((n, k), dtype=np.int64)
+    for i in range(1, n):
+        j = int(best.argmin())
+        stay = best <= best[j] + switch
+        back[i] = np.where(stay, np.arange(k), j)
+        best = np.where(stay, best, best[j] + switch) + cost[i]
+    choice = np.zeros(n, dtype=np.int64)
+    choice[-1] = int(best.argmin())
+    for i in range(n - 1, 0, -1):
+        choice[i - 1] = back[i, choice[i]]
+    return np.asarray(across)[choice[place]]
+
+
+def _fill(surface: Surface, seg: Segmentation, chart: int, mine: np.ndarray, lab: np.ndarray,
+          fans: Fans) -> int:
+    """Missing sides given to ``chart``: where two neighbours of opposite labels follow each
+    other round it (a side of the third axis missing between them, as at the tail of a
+    fuselage whose top meets its side round the end), the triangles round the corner between
+    them take the third axis's label towards the side of the chart that corner lies on.  How
+    many sides it filled."""
+    axis = int(seg.charts[chart].label) // 2
+    centre = (surface.points[surface.triangles[mine]].mean(axis=1) * surface.areas[mine, None]).sum(axis=0)
+    centre /= surface.areas[mine].sum()
+    filled = 0
+    for cycle in seg.charts[chart].cycles:
+        if len(cycle) < 2:
+            continue
+        others = [int(seg.charts[seg.boundaries[b].right if seg.boundaries[b].left == chart
+                                 else seg.boundaries[b].left].label) for b, _ in cycle]
+        for i, (b, forward) in enumerate(cycle):
+            here, there = others[i], others[(i + 1) % len(cycle)]
+            corner = seg.boundaries[b].end if forward else seg.boundaries[b].start
+            if here ^ 1 != there or here // 2 == axis or corner is None:
+                continue
+            third = 3 - axis - here // 2
+            vertex = seg.corners[corner].vertex
+            fan = np.asarray(fans.fan(vertex))
+            lab[fan] = 2 * third + (0 if surface.points[vertex, third] >= centre[third] else 1)
+            filled += 1
+    return filled

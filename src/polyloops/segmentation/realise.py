@@ -48,8 +48,12 @@ class Realisation:
     chart_of_face: tuple[int, ...] = ()
 
 
-TRIES = 256  # orders of the zones tried before a realisation is given up (a few ms each)
-JITTER = 4.0  # the last try's jitter, in spans of the mesh's coordinates: nearly any order
+TRIES = 256  # orders of the zones tried first (a few ms each)
+JITTER = 4.0  # the last of those tries' jitter, in spans of the mesh's coordinates: nearly any order
+# then as many orders again, three times over, with new seeds and a jitter growing four times
+# more slowly: an order a little off the mesh's is what a chart that bends in space needs, and
+# which seeds give one is luck (half DualCube's aeroplane, repaired: try 316)
+FINE_TRIES = 768
 
 
 def corner_positions(seg: Segmentation, result: GlobalResult, attempt: int = 0) -> list[list[int]]:
@@ -61,7 +65,10 @@ def corner_positions(seg: Segmentation, result: GlobalResult, attempt: int = 0) 
     ``attempt`` takes a topological order of the mesh's coordinates jittered by a seeded
     amount that grows with the attempt."""
     rng = random.Random(attempt)
-    jitter = JITTER * attempt / TRIES
+    if attempt < TRIES:
+        jitter = JITTER * attempt / TRIES
+    else:
+        jitter = JITTER * (attempt - TRIES) / (TRIES + FINE_TRIES)
     pos = [[0, 0, 0] for _ in seg.corners]
     directions = _closer_to_mesh(seg, result.directions)
     for axis in Axis:
@@ -126,9 +133,10 @@ def _topological_levels(n: int, arcs: list[tuple[int, int]], mean: list[float]) 
 
 def realise(seg: Segmentation, result: GlobalResult) -> Realisation:
     """The polycube of the module docstring, or the reason the first order of the zones gave
-    none (when no order of :data:`TRIES` gives one)."""
+    none (when none of the :data:`TRIES` orders, nor the :data:`FINE_TRIES` after them, gives
+    one)."""
     first = None
-    for attempt in range(TRIES):
+    for attempt in range(TRIES + FINE_TRIES):
         found = _realise_at(seg, result, corner_positions(seg, result, attempt))
         if found.polycube is not None:
             return found
