@@ -240,9 +240,20 @@ def _smoothed(surface: Surface, b: Boundary, strip: np.ndarray, across: list[int
         for u in fans.across[t]:
             if not inside[u]:  # refused: four changes of label cost less
                 value[i, [j for j, d in enumerate(across) if d == int(lab[u]) ^ 1]] -= 4 * switch
-    n, k = len(index) + 1, len(across)
-    cost = np.zeros((n, k))
+    cost = np.zeros((len(index) + 1, len(across)))
     np.add.at(cost, place, -value)
+    return np.asarray(across)[_cheapest_run(cost, switch)[place]]
+
+
+def _cheapest_run(cost: np.ndarray, switch: float) -> np.ndarray:
+    """Per position (row of ``cost``, positions x labels), the label of the sequence whose
+    costs plus ``switch`` for each change between neighbouring positions are least (Viterbi:
+    O(positions x labels)).
+
+    >>> _cheapest_run(np.array([[0.0, 1.0], [0.6, 0.0], [0.0, 1.0]]), 1.0).tolist()
+    [0, 0, 0]
+    """
+    n, k = cost.shape
     best = cost[0].copy()
     back = np.zeros((n, k), dtype=np.int64)
     for i in range(1, n):
@@ -254,7 +265,7 @@ def _smoothed(surface: Surface, b: Boundary, strip: np.ndarray, across: list[int
     choice[-1] = int(best.argmin())
     for i in range(n - 1, 0, -1):
         choice[i - 1] = back[i, choice[i]]
-    return np.asarray(across)[choice[place]]
+    return choice
 
 
 def _fill(surface: Surface, seg: Segmentation, chart: int, mine: np.ndarray, lab: np.ndarray,
