@@ -30,7 +30,8 @@ def add_command(command: Callable[..., argparse.ArgumentParser]) -> None:
                 "realises the labels, by adding and removing loops (from the sections between the levels of "
                 "the surface and of its polycube-like deformation, the cube at genus 0, grids of plane "
                 "sections, or --start; the best kept), the labels then polished towards the normals "
-                "without changing the polycube; every output is certified by two checks "
+                "without changing the polycube, and patches of the graph-cut labellings (or of --guide) "
+                "grafted in where the checker still finds them valid; every output is certified "
                 "(exit 0 written, 1 no start or nothing certified, 2 bad input)",
                 file_arg=False)
     p.add_argument("mesh", metavar="MESH", help="a closed, oriented, connected triangle mesh (.obj, .stl or "

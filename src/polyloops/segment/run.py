@@ -216,7 +216,9 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
     without a start or a guide, the naive and graph-cut labellings that the checker finds
     valid are candidates too (:func:`_direct`), and the result is the best score among those
     at least as faithful as that labelling; so are the finer graph-cut labellings made valid
-    (:func:`_finer`), scored alike but no floor."""
+    (:func:`_finer`), scored alike but no floor.  Last, the patches of the graph-cut
+    labellings (or of the guide) that keep the result valid and raise its score are grafted
+    into it (:func:`_grafted`), for at most :data:`GRAFTING` of the budget."""
     began = time.monotonic()
     if guide is not None and len(guide) != len(surface.triangles):
         raise ValueError(f"a guide of {len(guide)} labels for {len(surface.triangles)} triangles")
@@ -226,7 +228,6 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
     donors: list[np.ndarray] = []  # labellings whose patches are grafted into the result
     if guide is not None:
         donors.append(np.array([int(d) for d in guide], dtype=np.int64))
-    if guide is not None:
         kept = _kept_labelling(surface, guide, "the guide, already valid", began)
         if kept is not None:
             return _alone(replace(kept, guide_changed=0.0), knobs)
