@@ -122,11 +122,7 @@ def _remedy(surface: Surface, seg: Segmentation, violations: Sequence[LocalViola
         if not v.charts or touched & set(v.charts):
             continue
         if v.rule == "opposite-labels":
-            b = seg.boundaries[v.boundaries[0]]
-            small = min((b.left, b.right), key=lambda c: area[c])
-            along = np.unique(np.concatenate([fans.fan(u) for u in b.vertices]))
-            strip = along[chart_of[along] == small]
-            axis = int(seg.charts[small].label) // 2
+            b, strip, axis = _strip(seg, v, area, chart_of, fans)
             across = (_ends(seg, b, axis) if ends else []) or [d for d in range(6) if d // 2 != axis]
             lab[strip] = np.array(across)[np.argmax(worth[strip][:, across], axis=1)]
             touched |= {b.left, b.right}
@@ -144,6 +140,16 @@ def _remedy(surface: Surface, seg: Segmentation, violations: Sequence[LocalViola
             continue
         count += 1
     return count
+
+
+def _strip(seg: Segmentation, v: LocalViolation, area: np.ndarray, chart_of: np.ndarray, fans: Fans
+           ) -> tuple[Boundary, np.ndarray, int]:
+    """For a boundary between opposite labels (``v``): the boundary, the triangles of its
+    smaller chart that touch it (the strip that takes other labels), and that chart's axis."""
+    b = seg.boundaries[v.boundaries[0]]
+    small = min((b.left, b.right), key=lambda c: area[c])
+    along = np.unique(np.concatenate([fans.fan(u) for u in b.vertices]))
+    return b, along[chart_of[along] == small], int(seg.charts[small].label) // 2
 
 
 def _ends(seg: Segmentation, b: Boundary, axis: int) -> list[int]:
@@ -182,11 +188,7 @@ def _careful(surface: Surface, seg: Segmentation, violations: Sequence[LocalViol
         if not v.charts or touched & set(v.charts):
             continue
         if v.rule == "opposite-labels":
-            b = seg.boundaries[v.boundaries[0]]
-            small = min((b.left, b.right), key=lambda c: area[c])
-            along = np.unique(np.concatenate([fans.fan(u) for u in b.vertices]))
-            strip = along[chart_of[along] == small]
-            axis = int(seg.charts[small].label) // 2
+            b, strip, axis = _strip(seg, v, area, chart_of, fans)
             across = [d for d in range(6) if d // 2 != axis]
             lab[strip] = _smoothed(surface, b, strip, across, lab, worth, fans)
             touched |= {b.left, b.right}
