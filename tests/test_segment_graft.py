@@ -148,3 +148,21 @@ def test_the_run_keeps_a_grafted_result_as_its_own_row_scoring_better():
     assert new_row.score is not None and row.score is not None and new_row.score > row.score
     assert new_row.start.startswith("the test's labelling, grafted (") and result.fidelity > best.fidelity
     assert _grafted(s, best, row, [], knobs, time.monotonic()) is None  # no donors: nothing
+
+
+def test_with_a_guide_the_share_changed_is_what_the_labels_written_differ_by():
+    """With an invalid guide (a thin plate's graph-cut labelling), whatever the run keeps
+    (grafted from the guide or not), ``guide_changed`` is the share of the area whose label,
+    read through each output triangle's input triangle, is not the guide's."""
+    from polyloops.segment.run import segment_mesh
+
+    points, triangles = ellipsoid(1.0, 0.6, 0.05, level=3)
+    s = surface_of(points, triangles)
+    guide = graphcut_labels(s)
+    run = segment_mesh(points, triangles, budget=0.5, guide=guide)
+    out = surface_of(np.asarray(run.mesh.points), np.asarray(run.mesh.triangles))
+    wanted = np.array([int(guide[p]) for p in run.face_map])
+    got = np.array([int(d) for d in run.mesh.labels])
+    share = float(out.areas[got != wanted].sum() / out.areas.sum())
+    assert run.certified and run.guide_changed == pytest.approx(share)
+    assert sum(c.kept for c in run.candidates) == 1
