@@ -39,7 +39,8 @@ from scipy.sparse.csgraph import connected_components
 
 from polyloops.core.directions import Direction
 from polyloops.core.duality import dualize
-from polyloops.segment.labellings import DIRECTION_VECTORS, chart_indices
+from polyloops.segment.labellings import chart_indices, label_indices
+from polyloops.segment.polish import worth
 from polyloops.segment.surface import Surface
 from polyloops.segmentation import SegmentationReport, check_segmentation
 
@@ -106,10 +107,10 @@ def graft_labels(surface: Surface, labels: Sequence[Direction], donors: Sequence
     ValueError
         When ``labels`` are not valid.
     """
-    value = ((surface.normals if target is None else target) @ DIRECTION_VECTORS.T) * surface.areas[:, None]
+    value = worth(surface, target)
     area = float(surface.areas.sum())
     least = LEAST * area
-    lab = np.array([int(d) for d in labels], dtype=np.int64)
+    lab = label_indices(labels)
     report = check_segmentation(surface.labelled(list(labels))) if report is None else report
     if report.valid is not True or report.polycube is None:
         raise ValueError("grafting starts from a valid labelling")

@@ -32,7 +32,7 @@ from polyloops.core.polycube import Polycube
 from polyloops.segment.surface import Surface
 
 __all__ = ["DIRECTION_VECTORS", "chart_indices", "energy", "face_directions", "fidelity", "graphcut_labels",
-           "label_vectors", "naive_fidelity", "naive_label_indices", "naive_labels"]
+           "label_indices", "label_vectors", "naive_fidelity", "naive_label_indices", "naive_labels"]
 
 # the unit vector of each Direction, in its order (+X, -X, +Y, -Y, +Z, -Z)
 DIRECTION_VECTORS = np.array([np.eye(3)[d // 2] * (1 if d % 2 == 0 else -1) for d in range(6)])
@@ -76,9 +76,14 @@ def face_directions(q: Polycube) -> np.ndarray:
     return out
 
 
+def label_indices(labels: Sequence[Direction]) -> np.ndarray:
+    """The labels as an array of the directions' indices (0..5)."""
+    return np.array([int(d) for d in labels], dtype=np.int64)
+
+
 def label_vectors(labels: Sequence[Direction]) -> np.ndarray:
     """Per label, its direction's unit vector (one row each)."""
-    return DIRECTION_VECTORS[np.array([int(d) for d in labels], dtype=np.int64)]
+    return DIRECTION_VECTORS[label_indices(labels)]
 
 
 def fidelity(surface: Surface, labels: Sequence[Direction], target: np.ndarray | None = None) -> float:
@@ -109,7 +114,7 @@ def _costs(s: Surface, compactness: float) -> tuple[np.ndarray, np.ndarray, np.n
 def energy(s: Surface, labels: tuple[Direction, ...] | list[Direction], compactness: float = 1.0) -> float:
     """The graph-cut energy of a labelling (the units of :func:`graphcut_labels`)."""
     unary, pairs, weights = _costs(s, compactness)
-    lab = np.array([int(d) for d in labels])
+    lab = label_indices(labels)
     return float(unary[np.arange(len(lab)), lab].sum() + weights[lab[pairs[:, 0]] != lab[pairs[:, 1]]].sum())
 
 
@@ -117,7 +122,7 @@ def graphcut_labels(s: Surface, compactness: float = 1.0, rounds: int = 5) -> tu
     """The Potts labelling by alpha-expansion from the naive one (at most ``rounds`` sweeps
     over the six labels)."""
     unary, pairs, weights = _costs(s, compactness)
-    lab = np.array([int(d) for d in naive_labels(s)])
+    lab = naive_label_indices(s)
     best = energy(s, tuple(Direction(int(k)) for k in lab), compactness)
     for _ in range(rounds):
         improved = False

@@ -43,7 +43,7 @@ import numpy as np
 
 from polyloops.core.directions import Direction
 from polyloops.segment.embedded import Embedded
-from polyloops.segment.labellings import DIRECTION_VECTORS, chart_indices, face_directions
+from polyloops.segment.labellings import DIRECTION_VECTORS, chart_indices, face_directions, label_indices
 from polyloops.segment.layout import Layout
 from polyloops.segment.refine import Refined
 from polyloops.segment.search import nearest_faces
@@ -266,7 +266,7 @@ def polish_labels(surface: Surface, labels: Sequence[Direction], target: np.ndar
                   compactness: float = COMPACTNESS) -> tuple[tuple[Direction, ...], int]:
     """A labelling with the same charts, boundaries and corners as ``labels`` (so valid exactly
     when it is), polished; and the number of triangles moved."""
-    index = np.array([int(d) for d in labels], dtype=np.int64)
+    index = label_indices(labels)
     chart = chart_indices(surface, index)
     direction = np.zeros(int(chart.max()) + 1, dtype=np.int64)
     direction[chart] = index

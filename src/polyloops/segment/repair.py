@@ -38,8 +38,9 @@ from enum import Enum
 import numpy as np
 
 from polyloops.core.directions import Direction
-from polyloops.segment.labellings import DIRECTION_VECTORS
+from polyloops.segment.labellings import label_indices
 from polyloops.segment.polish import Fans
+from polyloops.segment.polish import worth as facing
 from polyloops.segment.surface import Surface
 from polyloops.segmentation import SegmentationReport, check_segmentation
 from polyloops.segmentation.charts import Boundary, Segmentation
@@ -69,9 +70,9 @@ def repair_labels(surface: Surface, labels: Sequence[Direction], rounds: int = R
     is, after 0 rounds).  Strips between opposite labels take the directions their triangles
     face best; where that fails, the repair starts again with strips that take, where they
     can, the labels of the charts at the boundary's ends (:func:`_ends`)."""
-    lab = np.array([int(d) for d in labels], dtype=np.int64)
+    lab = label_indices(labels)
     given = check_segmentation(surface.labelled(list(labels)))  # where both strategies start
-    worth = (surface.normals @ DIRECTION_VECTORS.T) * surface.areas[:, None]
+    worth = facing(surface)  # per triangle and direction, its area times n . d
     fans = Fans(surface.triangles)
     for way in Way:
         done = _rounds(surface, lab.copy(), given, rounds, worth, fans, way)

@@ -30,6 +30,7 @@ from polyloops.segment.graft import graft_labels
 from polyloops.segment.labellings import (
     fidelity,
     graphcut_labels,
+    label_indices,
     label_vectors,
     naive_fidelity,
     naive_labels,
@@ -227,7 +228,7 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
     finer: list[SegmentResult] = []
     donors: list[np.ndarray] = []  # labellings whose patches are grafted into the result
     if guide is not None:
-        donors.append(np.array([int(d) for d in guide], dtype=np.int64))
+        donors.append(label_indices(guide))
         kept = _kept_labelling(surface, guide, "the guide, already valid", began)
         if kept is not None:
             return _alone(replace(kept, guide_changed=0.0), knobs)
@@ -490,7 +491,7 @@ def _direct(surface: Surface, began: float, donors: list[np.ndarray] | None = No
         return naive, Charts.NAIVE
     standard = graphcut_labels(surface)
     if donors is not None:
-        donors.append(np.array([int(d) for d in standard], dtype=np.int64))
+        donors.append(label_indices(standard))
     return _made_valid(surface, standard, "the graph-cut labelling", began)
 
 
@@ -539,7 +540,7 @@ def _finer_job(job: tuple[Surface, float, float]) -> tuple[np.ndarray, SegmentRe
     name = f"the graph-cut labelling of compactness {compactness:g}"
     labels = graphcut_labels(surface, compactness)
     made = _made_valid(surface, labels, name, began)
-    return np.array([int(d) for d in labels], dtype=np.int64), None if made is None else made[0]
+    return label_indices(labels), None if made is None else made[0]
 
 
 def _kept_labelling(surface: Surface, labels: Sequence[Direction], how: str, began: float,

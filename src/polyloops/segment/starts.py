@@ -33,7 +33,7 @@ import numpy as np
 from polyloops.segment.deform import polycube_heights
 from polyloops.segment.embedded import Loop
 from polyloops.segment.grid import cut_grid, mend
-from polyloops.segment.labellings import graphcut_labels, naive_label_indices
+from polyloops.segment.labellings import graphcut_labels, label_indices, naive_label_indices
 from polyloops.segment.levels import GAPS, level_grid
 from polyloops.segment.refine import Refined
 from polyloops.segment.search import StartError, candidate_loops, start_state
@@ -133,7 +133,7 @@ def build_start(surface: Surface, recipe: Recipe, deadline: float = float("inf")
     if recipe.charts is Charts.NAIVE:
         labels = naive_label_indices(surface)
     elif recipe.charts is Charts.GRAPH_CUT:
-        labels = np.array([int(d) for d in graphcut_labels(surface)], dtype=np.int64)
+        labels = label_indices(graphcut_labels(surface))
     r, loops, chosen = mend(level_grid(surface, heights, recipe.gap, labels, deadline), deadline=deadline)
     return r, loops, chosen, recipe.name
 
