@@ -58,11 +58,15 @@ from polyloops.segmentation import SegmentationReport, check_segmentation
 from polyloops.segmentation.quality import backwards_fraction
 from polyloops.surface.mesh import LabelledMesh
 
-__all__ = ["FINER", "Candidate", "SegmentResult", "segment_mesh"]
+__all__ = ["COARSER", "FINER", "Candidate", "SegmentResult", "segment_mesh"]
 
 # the lighter compactness weights of the graph-cut labellings that are candidates beside the
-# standard one (weight 1): nearer the per-triangle labelling, often valid once repaired
+# standard one (weight 1): nearer the per-triangle labelling, often valid once repaired; their
+# patches are grafted into the result
 FINER = (0.5, 0.25, 0.125)
+# the heavier ones: fewer charts and loops for a little fidelity, which the loops' price may
+# prefer (a thin wing's many steps, cut by the lighter labellings, merged)
+COARSER = (2.0, 3.0, 6.0)
 
 
 @dataclass(frozen=True)
@@ -215,9 +219,9 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
     kept; then from the grids until one is certified;
     a ``guide`` that is already a valid labelling is returned as it is; with ``direct`` and
     without a start or a guide, the naive and graph-cut labellings that the checker finds
-    valid are candidates too (:func:`_direct`), and the result is the best score among those
-    at least as faithful as that labelling; so are the finer graph-cut labellings made valid
-    (:func:`_finer`), scored alike but no floor.  Last, the patches of the graph-cut
+    valid are candidates too (:func:`_direct`), and the result is the best score, among those
+    at least as faithful as that labelling where it is valid as it is; so are the graph-cut
+    labellings of other compactness made valid (:func:`_finer`), scored alike but no floor.  Last, the patches of the graph-cut
     labellings (or of the guide) that keep the result valid and raise its score are grafted
     into it (:func:`_grafted`), for at most :data:`GRAFTING` of the budget."""
     began = time.monotonic()
@@ -336,8 +340,10 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
         raise UncertifiedError("; ".join(f"from {c.start}: {c.reason}" for c, _ in tried))
     # the best score; where a labelling of the mesh itself is valid, among the results at
     # least as faithful as it (that labelling among them, scored by its realising polycube's
-    # loops): never less faithful than a valid labelling the mesh already has
-    if floor is not None:
+    # loops): never less faithful than a valid labelling the mesh already has.  A repaired
+    # graph-cut labelling is ours, not the mesh's: no floor, only a candidate (a coarser one
+    # may score better with fewer loops)
+    if floor is not None and which is not Charts.REPAIRED:
         found_results = [cr for cr in found_results if _aim(cr, knobs) >= floor]
     best_c, best = max(found_results,
                        key=lambda cr: cr[0].score if cr[0].score is not None else -float("inf"))
@@ -523,13 +529,14 @@ def _made_valid(surface: Surface, labels: Sequence[Direction], name: str, began:
 
 def _finer(surface: Surface, began: float, workers: int, donors: list[np.ndarray]) -> list[SegmentResult]:
     """The valid labellings (as they are or repaired, polished) of the graph-cut labellings of
-    lighter compactness (:data:`FINER`): closer to the per-triangle labelling, with more
-    charts; candidates beside the others, scored alike.  The graph-cut labellings are appended
-    to ``donors``."""
-    jobs = [(surface, compactness, began) for compactness in FINER]
+    lighter compactness (:data:`FINER`: closer to the per-triangle labelling, with more
+    charts) and of heavier (:data:`COARSER`: fewer charts and loops); candidates beside the
+    others, scored alike.  The lighter graph-cut labellings are appended to ``donors``."""
+    jobs = [(surface, compactness, began) for compactness in (*FINER, *COARSER)]
     out = []
-    for labels, found in run_jobs(_finer_job, jobs, workers=workers):
-        donors.append(labels)
+    for (_, compactness, _), (labels, found) in zip(jobs, run_jobs(_finer_job, jobs, workers=workers)):
+        if compactness in FINER:
+            donors.append(labels)
         if found is not None:
             out.append(found)
     return out
