@@ -22,7 +22,7 @@ from polyloops.cli.load import (
     write_output,
     write_text,
 )
-from polyloops.segment import PRICE
+from polyloops.segment import PRICE, Floor
 
 
 def add_command(command: Callable[..., argparse.ArgumentParser]) -> None:
@@ -56,6 +56,10 @@ def add_command(command: Callable[..., argparse.ArgumentParser]) -> None:
     p.add_argument("--price", type=float, default=PRICE, metavar="P",
                    help="what a loop costs in the score: fidelity (or agreement with --guide) less P per "
                    f"loop (default {PRICE:g}; larger gives fewer loops and charts)")
+    p.add_argument("--floor", choices=[f.value for f in Floor], default=Floor.REPAIRED.value,
+                   help="which of the mesh's own labellings the result is never less faithful than: "
+                   "those valid as they are, or also the graph-cut labelling (or the guide) once "
+                   "repaired (default; 'valid' lets the price choose a coarser one with fewer loops)")
     p.add_argument("--score-csv", metavar="FILE", help="write one row per start tried: its fidelity, "
                    "agreement with the guide, loops, price, score, charts, corners, seconds, whether it "
                    "converged and was kept, or why it gave nothing")
@@ -119,6 +123,7 @@ def cmd_segment(args: argparse.Namespace) -> int:
     try:
         result = segment_mesh(points, triangles, budget=args.budget, seed=args.seed, price=args.price,
                               start=start, guide=guide, direct=not args.search_only, workers=args.workers,
+                              bound=Floor(args.floor),
                               on_candidate=lambda candidate: bar.update(1))
     except SurfaceError as err:
         raise CliError(f"{args.mesh}: {err}") from None

@@ -21,7 +21,7 @@ from polyloops.core.duality import dualize
 from polyloops.core.polycube import Polycube
 from polyloops.core.structure import LoopStructure
 from polyloops.parallel import run_jobs
-from polyloops.segment import PRICE
+from polyloops.segment import PRICE, Floor
 from polyloops.segment.certify import layout_problem
 from polyloops.segment.deform import polycube_heights
 from polyloops.segment.embedded import Loop, NotAStructure
@@ -211,7 +211,8 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
                     price: float = PRICE, on_step: Callable[[State], None] | None = None,
                     start: LoopStructure | None = None,
                     guide: Sequence[Direction] | None = None, direct: bool = True, workers: int = 1,
-                    on_candidate: Callable[[Candidate], None] | None = None) -> SegmentResult:
+                    on_candidate: Callable[[Candidate], None] | None = None,
+                    bound: Floor = Floor.REPAIRED) -> SegmentResult:
     """:func:`segment_mesh` on a checked surface: the search from the given start, or from
     each recipe of :func:`~polyloops.segment.starts.recipes` (``workers`` at a time): each
     scouted (searched for a share of the budget, ranked by an estimate), the
@@ -219,9 +220,10 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
     kept; then from the grids until one is certified;
     a ``guide`` that is already a valid labelling is returned as it is; with ``direct`` and
     without a start or a guide, the naive and graph-cut labellings that the checker finds
-    valid are candidates too (:func:`_direct`), and the result is the best score, among those
-    at least as faithful as that labelling where it is valid as it is; so are the graph-cut
-    labellings of other compactness made valid (:func:`_finer`), scored alike but no floor.  Last, the patches of the graph-cut
+    valid are candidates too (:func:`_direct`), and the result is the best score among those
+    at least as faithful as that labelling (where it is valid as it is, or repaired when
+    ``bound`` is :attr:`Floor.REPAIRED`); so are the graph-cut labellings of other
+    compactness made valid (:func:`_finer`), scored alike but no floor.  Last, the patches of the graph-cut
     labellings (or of the guide) that keep the result valid and raise its score are grafted
     into it (:func:`_grafted`), for at most :data:`GRAFTING` of the budget."""
     began = time.monotonic()
@@ -340,11 +342,10 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
         raise UncertifiedError("; ".join(f"from {c.start}: {c.reason}" for c, _ in tried))
     # the best score; where a labelling of the mesh itself is valid, among the results at
     # least as faithful as it (that labelling among them, scored by its realising polycube's
-    # loops): never less faithful than a valid labelling the mesh already has.  A repaired
-    # graph-cut labelling is ours, not the mesh's: no floor, only a candidate (a coarser one
-    # may score better with fewer loops)
-    if floor is not None and which is not Charts.REPAIRED:
-        found_results = [cr for cr in found_results if _aim(cr, knobs) >= floor]
+    # loops): never less faithful than a valid labelling the mesh already has; a repaired
+    # one (the graph-cut labelling or the guide) is a floor too unless ``floor`` says
+    # otherwise (a coarser labelling may then score better with fewer loops)
+    found_results = _above_floor(found_results, floor, which, bound, knobs)
     best_c, best = max(found_results,
                        key=lambda cr: cr[0].score if cr[0].score is not None else -float("inf"))
     rows = [*(c for c, _ in tried), *(c for c, _ in own_rows)]
@@ -447,6 +448,17 @@ def _alone(result: SegmentResult, knobs: SearchSettings) -> SegmentResult:
     """``result`` as the only start tried."""
     row = replace(_candidate(result, knobs, result.seconds), kept=True)
     return replace(result, candidates=(row,), score=row.score)
+
+
+def _above_floor(rows: list[tuple[Candidate, SegmentResult]], floor: float | None, which: Charts,
+                 bound: Floor, knobs: SearchSettings) -> list[tuple[Candidate, SegmentResult]]:
+    """The ``rows`` whose aim (:func:`_aim`) is at least ``floor``, the aim of the mesh's own
+    valid labelling (``None``: there is none, all rows), ``which`` says what that labelling is:
+    a repaired one (the graph-cut labelling or the guide) bounds the rows only when ``bound``
+    is :attr:`Floor.REPAIRED`."""
+    if floor is None or (bound is Floor.VALID and which in (Charts.REPAIRED, Charts.GUIDE)):
+        return rows
+    return [row for row in rows if _aim(row, knobs) >= floor]
 
 
 def _aim(row: tuple[Candidate, SegmentResult], knobs: SearchSettings) -> float:
@@ -637,7 +649,8 @@ def segment_mesh(points: Sequence[Sequence[float]] | np.ndarray,
                  on_step: Callable[[State], None] | None = None,
                  start: LoopStructure | None = None,
                  guide: Sequence[Direction] | None = None, direct: bool = True, workers: int = 1,
-                 on_candidate: Callable[[Candidate], None] | None = None) -> SegmentResult:
+                 on_candidate: Callable[[Candidate], None] | None = None,
+                 bound: Floor = Floor.REPAIRED) -> SegmentResult:
     """A certified polycube segmentation of the closed triangle mesh ``points``, ``triangles``
     (counter-clockwise seen from outside), by the greedy loop search of
     :mod:`~polyloops.segment.search` within ``budget`` seconds (its order fixed by ``seed``):
@@ -655,7 +668,9 @@ def segment_mesh(points: Sequence[Sequence[float]] | np.ndarray,
     Without a start or a guide, the mesh's own naive and graph-cut labellings are candidates
     where the checker finds them valid (``direct=False``: the search's segmentation, with its
     loops, whatever they are): the result is then the best score among the results at least
-    as faithful as that labelling (it included, priced by its realising polycube's loops).
+    as faithful as that labelling (it included, priced by its realising polycube's loops);
+    ``bound`` says whether the graph-cut labelling (or the guide) repaired is such a floor
+    (:attr:`Floor.REPAIRED`, the default) or only a candidate (:attr:`Floor.VALID`).
 
     Raises
     ------
@@ -670,4 +685,4 @@ def segment_mesh(points: Sequence[Sequence[float]] | np.ndarray,
         When no state of the search passed both checks (nothing is returned then).
     """
     return segment_surface(surface_of(points, triangles), budget, seed, planes, price, on_step, start, guide,
-                           direct, workers, on_candidate)
+                           direct, workers, on_candidate, bound)
