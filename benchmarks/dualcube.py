@@ -22,8 +22,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _common import mesh_benchmark_parser
 
 from polyloops.core.duality import dualize
-from polyloops.segment import Floor
 from polyloops.io.labelled_mesh import read_labels, read_triangle_mesh
+from polyloops.segment import Floor
 from polyloops.segment.labellings import fidelity, graphcut_labels, naive_fidelity
 from polyloops.segment.run import segment_surface
 from polyloops.segment.surface import surface_of

@@ -2,7 +2,7 @@
 
 For each mesh (``.stl``, ``.obj``, ``.mesh`` in DIR and its subfolders): the per-triangle
 (naive) labelling, the graph-cut labelling (:mod:`polyloops.segment.labellings`, compactness 1)
-and ``segment`` (the given budget and seed), each judged by the checker: its verdict (``valid``,
+and ``segment`` (the given budget, seed, price and floor), each judged by the checker: its verdict (``valid``,
 ``INVALID``, ``undecided``), its fidelity (area-weighted mean of n . label), the charts, and the
 wall time.  The naive fidelity is the bound no labelling exceeds; "gap" is the bound less the
 fidelity; "backwards" the share of segment's boundary length that runs against its polycube
@@ -13,7 +13,7 @@ subfolder, then a summary per subfolder (``--summarize FILE`` prints only the su
 earlier run's output, to set runs side by side).
 
 Usage: python benchmarks/segment.py DIR [--budget SECONDS] [--seed N] [--only NAME ...]
-       [--start MESH=START ...]
+       [--start MESH=START ...] [--price P] [--floor valid|repaired]
        python benchmarks/segment.py DIR --summarize FILE
 """
 
@@ -30,6 +30,7 @@ from _common import markdown_table, mesh_benchmark_parser, print_tables_by_folde
 
 from polyloops.cli.segment import read_start
 from polyloops.io.labelled_mesh import read_triangle_mesh
+from polyloops.segment import PRICE, Floor
 from polyloops.segment.labellings import fidelity, graphcut_labels, naive_labels
 from polyloops.segment.run import segment_surface
 from polyloops.segment.surface import surface_of
@@ -50,7 +51,8 @@ def share(x: float | None) -> str:
     return "" if x is None else f"{x:.4f}"
 
 
-def row(path: Path, budget: float, seed: int, start_arg: str | None, workers: int = 1) -> list[object]:
+def row(path: Path, budget: float, seed: int, start_arg: str | None, workers: int = 1,
+        price: float = PRICE, bound: Floor = Floor.REPAIRED) -> list[object]:
     s = surface_of(*read_triangle_mesh(path))
     naive = judged(s, naive_labels(s))
     start = time.perf_counter()
@@ -61,7 +63,7 @@ def row(path: Path, budget: float, seed: int, start_arg: str | None, workers: in
                          cut[0], f"{cut[1]:.4f}", cut[2], f"{cut_time:.1f}"]
     start = time.perf_counter()
     try:
-        done = segment_surface(s, budget=budget, seed=seed,
+        done = segment_surface(s, budget=budget, seed=seed, price=price, bound=bound,
                                start=read_start(start_arg) if start_arg else None, workers=workers)
     except Exception as err:  # a benchmark reports every failure in its row
         took = time.perf_counter() - start
@@ -124,6 +126,9 @@ def main() -> None:
     parser = mesh_benchmark_parser(__doc__.split("\n\n")[0])
     parser.add_argument("--start", action="append", default=[], metavar="MESH=START",
                         help="begin segment on mesh MESH (its stem) from START, as segment --start")
+    parser.add_argument("--price", type=float, default=PRICE, help=f"as segment --price (default {PRICE:g})")
+    parser.add_argument("--floor", choices=[f.value for f in Floor], default=Floor.REPAIRED.value,
+                        help="as segment --floor (default repaired)")
     parser.add_argument("--summarize", type=Path, metavar="FILE",
                         help="print only the summary of FILE, an earlier output of this script")
     args = parser.parse_args()
@@ -141,7 +146,8 @@ def main() -> None:
     rows: list[tuple[str, dict[str, str]]] = []
 
     def measured(p: Path) -> list[list[object]]:
-        found = row(p, args.budget, args.seed, starts.get(p.stem), args.workers)
+        found = row(p, args.budget, args.seed, starts.get(p.stem), args.workers, args.price,
+                    Floor(args.floor))
         rows.append((p.parent.name, dict(zip(HEADER, map(str, found), strict=True))))
         return [found]
 

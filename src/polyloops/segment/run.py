@@ -546,7 +546,8 @@ def _finer(surface: Surface, began: float, workers: int, donors: list[np.ndarray
     others, scored alike.  The lighter graph-cut labellings are appended to ``donors``."""
     jobs = [(surface, compactness, began) for compactness in (*FINER, *COARSER)]
     out = []
-    for (_, compactness, _), (labels, found) in zip(jobs, run_jobs(_finer_job, jobs, workers=workers)):
+    made = run_jobs(_finer_job, jobs, workers=workers)
+    for (_, compactness, _), (labels, found) in zip(jobs, made, strict=True):
         if compactness in FINER:
             donors.append(labels)
         if found is not None:
