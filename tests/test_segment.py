@@ -540,11 +540,10 @@ def test_graph_cut_labellings_of_other_weights_are_candidates_and_the_best_score
     """The graph-cut labellings of lighter and heavier compactness (``FINER``, ``COARSER``)
     that are valid, as they are or repaired, are rows of the run beside the standard one, with
     the fidelity they have on their own; the row kept scores best among the certified rows at
-    least as faithful as the standard graph-cut labelling (the floor) where that is valid as it
-    is, and among all certified rows where it had to be repaired (ours, not the mesh's)."""
+    least as faithful as the standard graph-cut labelling, as it is or repaired (the default
+    floor)."""
     from polyloops.segment.labellings import graphcut_labels
     from polyloops.segment.run import COARSER, FINER, _direct, _made_valid
-    from polyloops.segment.starts import Charts
 
     points, triangles = sphere(3)
     points = points / np.abs(points).max(axis=1, keepdims=True) * np.array([1.0, 0.7, 0.5])
@@ -562,7 +561,7 @@ def test_graph_cut_labellings_of_other_weights_are_candidates_and_the_best_score
             assert not any(f"compactness {weight:g}" in name for name in rows)
     standard = _direct(s, 0.0)
     assert standard is not None
-    floor = standard[0].fidelity if standard[1] is Charts.GRAPH_CUT else -1.0
+    floor = standard[0].fidelity
     eligible = [c for c in done.candidates if c.certified and c.fidelity is not None and c.fidelity >= floor]
     kept = [c for c in done.candidates if c.kept]
     assert len(kept) == 1 and kept[0].score == max(c.score for c in eligible if c.score is not None)

@@ -343,8 +343,8 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
     # the best score; where a labelling of the mesh itself is valid, among the results at
     # least as faithful as it (that labelling among them, scored by its realising polycube's
     # loops): never less faithful than a valid labelling the mesh already has; a repaired
-    # one (the graph-cut labelling or the guide) is a floor too unless ``floor`` says
-    # otherwise (a coarser labelling may then score better with fewer loops)
+    # one (the graph-cut labelling or the guide) is a floor too unless ``bound`` is
+    # Floor.VALID (a coarser labelling may then score better with fewer loops)
     found_results = _above_floor(found_results, floor, which, bound, knobs)
     best_c, best = max(found_results,
                        key=lambda cr: cr[0].score if cr[0].score is not None else -float("inf"))
