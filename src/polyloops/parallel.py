@@ -46,7 +46,7 @@ def _run_pool(func: Callable[[Any], T], items: Sequence[Any], workers: int, orde
               batch: int) -> Iterator[T]:
     """A local pool.  Leaving it early (an error, Ctrl-C, SIGTERM) terminates the workers at
     once; ``Pool.terminate`` itself can wait forever for a task it is still feeding to workers
-    that are gone (its pipe full), so it gets a few seconds in a daemon thread and the
+    that are gone (its pipe full), so it gets a second in a daemon thread and the
     exception goes on regardless."""
     import multiprocessing
     import threading
@@ -62,7 +62,7 @@ def _run_pool(func: Callable[[Any], T], items: Sequence[Any], workers: int, orde
             child.terminate()
         stopper = threading.Thread(target=pool.terminate, daemon=True)
         stopper.start()
-        stopper.join(timeout=5)
+        stopper.join(timeout=1)
         raise
 
 
