@@ -129,9 +129,7 @@ def _remedy(surface: Surface, seg: Segmentation, violations: Sequence[LocalViola
             touched |= {b.left, b.right}
         elif v.rule in JOINS:
             small = min(v.charts, key=lambda c: area[c])
-            mine = np.asarray(seg.charts[small].triangles)
-            near = np.unique(np.concatenate([fans.fan(int(u)) for u in np.unique(surface.triangles[mine])]))
-            beside = sorted({int(c) for c in chart_of[near]} - {small})
+            mine, beside = _beside(surface, seg, chart_of, small, fans)
             if not beside:
                 continue
             best = max(beside, key=lambda c: (worth[mine, int(seg.charts[c].label)].sum(), -c))
@@ -151,6 +149,15 @@ def _strip(seg: Segmentation, v: LocalViolation, area: np.ndarray, chart_of: np.
     small = min((b.left, b.right), key=lambda c: area[c])
     along = np.unique(np.concatenate([fans.fan(u) for u in b.vertices]))
     return b, along[chart_of[along] == small], int(seg.charts[small].label) // 2
+
+
+def _beside(surface: Surface, seg: Segmentation, chart_of: np.ndarray, chart: int, fans: Fans
+            ) -> tuple[np.ndarray, list[int]]:
+    """The triangles of ``chart``, and the other charts that share a vertex with it, in order:
+    the charts a join may merge it into."""
+    mine = np.asarray(seg.charts[chart].triangles)
+    near = np.unique(np.concatenate([fans.fan(int(u)) for u in np.unique(surface.triangles[mine])]))
+    return mine, sorted({int(c) for c in chart_of[near]} - {chart})
 
 
 def _ends(seg: Segmentation, b: Boundary, axis: int) -> list[int]:
@@ -196,11 +203,9 @@ def _careful(surface: Surface, seg: Segmentation, violations: Sequence[LocalViol
             count += 1
         elif v.rule in JOINS:
             small = min(v.charts, key=lambda c: area[c])
-            mine = np.asarray(seg.charts[small].triangles)
             own = int(seg.charts[small].label)
-            near = np.unique(np.concatenate([fans.fan(int(u)) for u in np.unique(surface.triangles[mine])]))
-            beside = [c for c in sorted({int(c) for c in chart_of[near]} - {small})
-                      if int(seg.charts[c].label) != own]
+            mine, near = _beside(surface, seg, chart_of, small, fans)
+            beside = [c for c in near if int(seg.charts[c].label) != own]
             if not beside:
                 continue
             labels = {int(seg.charts[c].label) for c in beside}

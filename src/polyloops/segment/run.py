@@ -223,15 +223,16 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
     valid are candidates too (:func:`_direct`), and the result is the best score among those
     at least as faithful as that labelling (where it is valid as it is, or repaired when
     ``bound`` is :attr:`Floor.REPAIRED`); so are the graph-cut labellings of other
-    compactness made valid (:func:`_finer`), scored alike but no floor.  Last, the patches of the graph-cut
-    labellings (or of the guide) that keep the result valid and raise its score are grafted
-    into it (:func:`_grafted`), for at most :data:`GRAFTING` of the budget."""
+    compactness made valid (:func:`_other_weights`), scored alike but no floor.  Last, the
+    patches of the graph-cut labellings (or of the guide) that keep the result valid and raise
+    its score are grafted into it (:func:`_grafted`), for at most :data:`GRAFTING` of the
+    budget."""
     began = time.monotonic()
     if guide is not None and len(guide) != len(surface.triangles):
         raise ValueError(f"a guide of {len(guide)} labels for {len(surface.triangles)} triangles")
     knobs = SearchSettings(budget, seed, planes, price, None if guide is None else label_vectors(guide))
     kept_direct, which = None, Charts.GRAPH_CUT
-    finer: list[SegmentResult] = []
+    weighted: list[SegmentResult] = []
     donors: list[np.ndarray] = []  # labellings whose patches are grafted into the result
     if guide is not None:
         donors.append(label_indices(guide))
@@ -324,14 +325,14 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
             no_start = err
     if guide is None and direct:
         # after the search, so that they take nothing from its budget
-        finer = _finer(surface, began, workers, donors)
-    if no_start is not None and kept_direct is None and not finer:
+        weighted = _other_weights(surface, began, workers, donors)
+    if no_start is not None and kept_direct is None and not weighted:
         raise no_start
     order = {r.name: k for k, r in enumerate(own)}
     tried.sort(key=lambda cr: order.get(cr[0].start, len(order)))  # recipes in order, then grids
     found_results = [(c, res) for c, res in tried if res is not None]
     # the labellings of the mesh itself that are valid (as they are or repaired)
-    own_rows = [(_candidate(res, knobs, res.seconds), res) for res in finer]
+    own_rows = [(_candidate(res, knobs, res.seconds), res) for res in weighted]
     floor = None
     if kept_direct is not None:
         direct_row = _candidate(kept_direct, knobs, kept_direct.seconds)
@@ -539,14 +540,15 @@ def _made_valid(surface: Surface, labels: Sequence[Direction], name: str, began:
     return as_it_is, which
 
 
-def _finer(surface: Surface, began: float, workers: int, donors: list[np.ndarray]) -> list[SegmentResult]:
+def _other_weights(surface: Surface, began: float, workers: int, donors: list[np.ndarray]
+                   ) -> list[SegmentResult]:
     """The valid labellings (as they are or repaired, polished) of the graph-cut labellings of
     lighter compactness (:data:`FINER`: closer to the per-triangle labelling, with more
     charts) and of heavier (:data:`COARSER`: fewer charts and loops); candidates beside the
     others, scored alike.  The lighter graph-cut labellings are appended to ``donors``."""
     jobs = [(surface, compactness, began) for compactness in (*FINER, *COARSER)]
     out = []
-    made = run_jobs(_finer_job, jobs, workers=workers)
+    made = run_jobs(_weight_job, jobs, workers=workers)
     for (_, compactness, _), (labels, found) in zip(jobs, made, strict=True):
         if compactness in FINER:
             donors.append(labels)
@@ -555,7 +557,7 @@ def _finer(surface: Surface, began: float, workers: int, donors: list[np.ndarray
     return out
 
 
-def _finer_job(job: tuple[Surface, float, float]) -> tuple[np.ndarray, SegmentResult | None]:
+def _weight_job(job: tuple[Surface, float, float]) -> tuple[np.ndarray, SegmentResult | None]:
     surface, compactness, began = job
     name = f"the graph-cut labelling of compactness {compactness:g}"
     labels = graphcut_labels(surface, compactness)
