@@ -8,6 +8,7 @@ from polyloops.core import compiled as compiled_parts
 from polyloops.core.canonical import from_signature
 from polyloops.core.directions import Axis
 from polyloops.core.labellings import polycube_structures, proper_colourings
+from polyloops.generate.torus import stages
 from polyloops.generate.torus.arrangement import TorusArrangement, canonical
 from polyloops.generate.torus.candidates import SecondStage, candidate_torus_arrangements
 from polyloops.generate.torus.cuts import (
@@ -16,6 +17,7 @@ from polyloops.generate.torus.cuts import (
     layered_need,
     orientable,
     third_sides_consistent,
+    zones_split_every_loop,
 )
 from polyloops.generate.torus.decompositions import independent_with_bipartite_rest, two_stage_decompositions
 from polyloops.generate.torus.stages import torus_arrangements, torus_children, two_axis_bases
@@ -418,3 +420,38 @@ def test_real_polycubes_are_orientable_with_any_axis_third():
                 assert orientable(TorusArrangement(tuple(ls.map.twin), (), layer)), (entry.name, third)
                 checked += 1
     assert checked > 700
+
+
+@pytest.mark.parametrize(("n", "colours"), [(6, None), (7, 2), pytest.param(8, 2, marks=pytest.mark.slow)])
+def test_each_curve_drawn_from_one_start_keeps_every_state(n, colours, monkeypatch):
+    """The first stage draws a new curve from one dart of each edge, from the least edge it
+    crosses only, and round a single loop with the loop's mark just before the curve's first
+    point; the Python search drawing every curve from every start, the mark in every gap, keeps
+    exactly the same states with the same facts, in the same order."""
+
+    def states(every: bool) -> list:
+        monkeypatch.setattr(stages, "EVERY_START", every)
+        out, stack, stats = [], [1, 0], stages.TorusSearchStats()
+        with running("torus", False):
+            while stack:
+                node = stack.pop()
+                kids = torus_children(node, n, colours, False, stats)
+                out += [(kid.code, facts) for kid, facts in kids]
+                stack.extend(kid for kid, _ in kids)
+        return [out, stats.closed]
+
+    (every, closed_every), (once, closed_once) = states(True), states(False)
+    assert once == every and any(f.target for _, f in once)
+    assert closed_once < closed_every / 2  # and the shortcuts do spare work
+
+
+@needs("torus")
+def test_the_compiled_zones_agree_with_the_python_zones():
+    """The compiled first stage's flag (the zones of each class split every loop) is
+    ``zones_split_every_loop`` on every cellular two-colour arrangement through 10 crossings,
+    both answers occurring."""
+    seen = {True: 0, False: 0}
+    for a, facts in stages._targets(10, 2, False, None):
+        assert facts.split is not None and facts.split == zones_split_every_loop(a)
+        seen[facts.split] += 1
+    assert min(seen.values()) > 100, seen

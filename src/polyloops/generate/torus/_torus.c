@@ -612,8 +612,9 @@ static PyObject *layered_code(PyObject *self, PyObject *args)
  * arc through a marked face in each of its kinds; a child is kept when it is within the limit
  * (its crossings plus half the marked faces' needs), colourable, and its new loop is the
  * canonical loop to delete (among loops whose deletion leaves it connected, those with fewest
- * crossings, the first met in the canonical numbering of the marked map).  Each child comes as
- * (canonical twin array, marks, is_cellular), possibly more than once. */
+ * crossings, the first met in the canonical numbering of the marked map).  Each child comes
+ * once, as (canonical twin array, marks, flags): flags bit 0 when it is cellular, bit 1 when
+ * moreover (two colours) the zones of each class split every loop of it. */
 
 #define A_MARK 0
 #define H_MARK 1
@@ -639,6 +640,9 @@ typedef struct {
     int side;                 /* the class the curve crosses (-1: not yet; 2 colours only) */
     int met[MAXL1];           /* the curve's crossings with each parent loop */
     int crossed;              /* the parent loops the curve has crossed */
+    int ban[2];               /* a single loop: the darts of the piece the curve may not cross */
+    int edge[MAXD];           /* the parent edge a dart lies on (its lesser dart); -1 on the curve */
+    int least;                /* the curve's start edge: it crosses no parent edge below it */
     unsigned stamp[MAXD];     /* face membership: stamp[d] == now for the darts of the face at hand */
     unsigned now;
     PyObject *out;            /* the children found: a list of (twin, marks, cellular) */
@@ -677,6 +681,7 @@ static void sub1(Draw *w, int y, int *q1, int *q2)
     int t = w->twin[y], a = w->n, b = w->n + 1;
     w->n += 2;
     w->loop[a] = w->loop[b] = w->loop[y];
+    w->edge[a] = w->edge[b] = w->edge[y];
     w->rot[a] = b; w->rot[b] = a; w->irot[a] = b; w->irot[b] = a;
     w->twin[y] = b; w->twin[b] = y; w->twin[a] = t; w->twin[t] = a;
     *q1 = a; *q2 = b;
@@ -694,6 +699,7 @@ static void chord1(Draw *w, int x, int y)
     int a = w->n, b = w->n + 1, nx, ny;
     w->n += 2;
     w->loop[a] = w->loop[b] = -1;
+    w->edge[a] = w->edge[b] = -1;
     nx = w->rot[x]; w->rot[x] = a; w->rot[a] = nx; w->irot[a] = x; w->irot[nx] = a;
     ny = w->rot[y]; w->rot[y] = b; w->rot[b] = ny; w->irot[b] = y; w->irot[ny] = b;
     w->twin[a] = b; w->twin[b] = a;
@@ -799,6 +805,40 @@ static int bipartite(const Kid *h)
                 else if (side[m] == side[l]) return 0;
             }
         }
+    }
+    return 1;
+}
+
+static int zone_find(int *up, int f)
+{
+    while (up[f] != f) { up[f] = up[up[f]]; f = up[f]; }
+    return f;
+}
+
+/* Whether, for each class of the bipartition of the (connected, bipartite) crossing graph, every
+ * loop of it has two different zones on its sides, the zones being the components left when the
+ * class's loops are cut away (cuts.zones_split_every_loop, its twin). */
+static int zones_split(const Kid *h)
+{
+    int side[MAXL1], stack[MAXL1], top = 0, up[MAXD];
+    for (int l = 0; l < h->nl; l++) side[l] = -1;
+    side[0] = 0;
+    stack[top++] = 0;
+    while (top) {
+        int l = stack[--top];
+        for (int m = 0; m < h->nl; m++)
+            if ((h->adj[l] >> m & 1) && side[m] < 0) { side[m] = 1 - side[l]; stack[top++] = m; }
+    }
+    for (int cls = 0; cls < 2; cls++) {
+        for (int f = 0; f < h->nf; f++) up[f] = f;
+        for (int d = 0; d < h->D; d++)
+            if (side[h->loop[d]] != cls) {
+                int a = zone_find(up, h->face[d]), b = zone_find(up, h->face[h->twin[d]]);
+                if (a != b) up[a] = b;
+            }
+        for (int d = 0; d < h->D; d++)
+            if (side[h->loop[d]] == cls && zone_find(up, h->face[d]) == zone_find(up, h->face[h->twin[d]]))
+                return 0;
     }
     return 1;
 }
@@ -912,7 +952,9 @@ static void emit1(Draw *w)
     if (!marks) { w->failed = 1; return; }
     for (int k = 0; k < h->nmarks; k++)
         PyList_SET_ITEM(marks, k, Py_BuildValue("(si)", (best[D + k] & 1) ? "H" : "A", best[D + k] >> 1));
-    PyObject *item = Py_BuildValue("(y#Ni)", (const char *)tw, (Py_ssize_t)(2 * D), marks, h->nmarks == 0);
+    /* bit 0: cellular; bit 1 (two colours, cellular): the zones split every loop */
+    int flags = h->nmarks == 0 ? 1 | (w->colours == 2 && zones_split(h) ? 2 : 0) : 0;
+    PyObject *item = Py_BuildValue("(y#Ni)", (const char *)tw, (Py_ssize_t)(2 * D), marks, flags);
     if (!item || PyList_Append(w->out, item) < 0) w->failed = 1;
     Py_XDECREF(item);
 }
@@ -970,7 +1012,7 @@ static void dfs1(Draw *w, int x, int end, int cr)
     if (cr >= w->budget || w->n + 8 > MAXD || cr >= 63) return;
     for (int j = 0; j < k && !w->failed; j++) {
         int y = targets[j], lp = w->loop[y];
-        if (lp < 0) continue;
+        if (lp < 0 || y == w->ban[0] || y == w->ban[1] || w->edge[y] < w->least) continue;
         if (w->colours == 2 && w->side >= 0 && w->klass[lp] != w->side) continue;
         int q1, q2, side = w->side;
         sub1(w, y, &q1, &q2);
@@ -1037,6 +1079,7 @@ static PyObject *first_children(PyObject *self, PyObject *args)
         w->rot[0] = w->irot[0] = 1; w->rot[1] = w->irot[1] = 0;
         w->twin[0] = 1; w->twin[1] = 0;
         w->loop[0] = w->loop[1] = 0;
+        w->edge[0] = w->edge[1] = 0;
         if (root == 0) { w->nmarks = 2; w->mkind[0] = w->mkind[1] = A_MARK; w->mdart[0] = 0; w->mdart[1] = 1; }
         else { w->nmarks = 1; w->mkind[0] = H_MARK; w->mdart[0] = 1; }
         w->nloops = 1; w->lcross[0] = 0; w->deletable[0] = 0; w->klass[0] = 0;
@@ -1071,7 +1114,10 @@ static PyObject *first_children(PyObject *self, PyObject *args)
             w->deletable[l] = connected_without1(h, l);
             w->klass[l] = -1;
         }
-        for (int d = 0; d < D; d++) w->loop[d] = h->loop[d];
+        for (int d = 0; d < D; d++) {
+            w->loop[d] = h->loop[d];
+            w->edge[d] = d < w->twin[d] ? d : w->twin[d];
+        }
         if (colours == 2) {   /* the parent's bipartition (its crossing graph is connected) */
             int stack[MAXL1], top = 0;
             w->klass[0] = 0;
@@ -1094,9 +1140,23 @@ static PyObject *first_children(PyObject *self, PyObject *args)
     w->seen = PySet_New(NULL);
     if (!w->seen) { Py_DECREF(w->out); return NULL; }
     int n0 = w->n;
+    /* The curve starts at a point of an edge and enters the face on the left of the edge's
+     * dart y0.  One dart an edge: a curve through the edge, walked the other way round, enters
+     * the face on the twin's left, and it is the same loop.  And the least edge it crosses:
+     * the curve is drawn from there only (w->least), not from every edge it crosses.  Both
+     * hold because every test on the way is a test of the whole curve (a branch cut is a curve
+     * that would fail at its end, whichever way and wherever it was begun). */
     for (int y0 = 0; y0 < n0 && !w->failed; y0++) {
+        if (w->twin[y0] < y0) continue;
         int p1, p2, lp = w->loop[y0];
         sub1(w, y0, &p1, &p2);
+        /* A single loop: its point of degree 2 is only a mark of where the loop is, and it may
+         * lie in any gap between the curve's points; in the gap before the first one (the
+         * piece from y0 to p2 is never crossed), so each curve is drawn once a start, not once
+         * a start and a gap. */
+        w->ban[0] = w->ban[1] = -1;
+        w->least = y0;
+        if (D == 0) { w->ban[0] = y0; w->ban[1] = p2; }
         w->met[lp] = 1;
         w->crossed = 1;
         w->side = colours == 2 ? w->klass[lp] : -1;

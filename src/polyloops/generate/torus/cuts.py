@@ -88,6 +88,7 @@ class Facts:
     bound: int  # a lower bound on the crossings of any target that grows from it
     target: bool  # a cellular arrangement (stage 1) or a candidate map (stage 2)
     colourable: bool
+    split: bool | None = None  # a two-colour target: zones_split_every_loop, when known
 
 
 def _colourable(adj: list[set[int]], colours: int) -> bool:

@@ -34,12 +34,14 @@ ROOTS = (  # a single loop, as a point of degree 2 on it: essential, or bounding
 class Drawing:
     """A parent's rotation system while a curve is drawn on it: darts of any degree, points
     where the curve crosses the parent's edges, chords; per dart its parent loop (-1 on the
-    curve), its layer, and (second stage) the region of ``B`` it lies in."""
+    curve), its layer, (second stage) the region of ``B`` it lies in, and the parent edge it
+    lies on (its lesser dart; -1 on the curve)."""
 
     def __init__(self, rot: Sequence[int], twin: Sequence[int], marks: Sequence[tuple[str, int]],
                  loop: Sequence[int], layer: Sequence[int], region: Sequence[int], curve_layer: int):
         self.rot, self.twin, self.marks = list(rot), list(twin), list(marks)
         self.loop, self.layer, self.region = list(loop), list(layer), list(region)
+        self.edge = [min(d, t) for d, t in enumerate(twin)]
         self.irot = [0] * len(self.rot)
         for d, r in enumerate(self.rot):
             self.irot[r] = d
@@ -54,9 +56,9 @@ class Drawing:
             if e == d:
                 return out
 
-    def _add(self, loop: int, layer: int, region: int) -> int:
+    def _add(self, loop: int, layer: int, region: int, edge: int = -1) -> int:
         for lst, v in ((self.rot, -1), (self.irot, -1), (self.twin, -1), (self.loop, loop),
-                       (self.layer, layer), (self.region, region)):
+                       (self.layer, layer), (self.region, region), (self.edge, edge)):
             lst.append(v)
         return len(self.rot) - 1
 
@@ -64,8 +66,8 @@ class Drawing:
         """A point on the edge of ``y``: darts ``q1`` (on, as ``y`` runs; beside ``y``'s face)
         and ``q2`` (back; beside the other face)."""
         t = self.twin[y]
-        q1 = self._add(self.loop[y], self.layer[y], self.region[y])
-        q2 = self._add(self.loop[y], self.layer[y], self.region[t])
+        q1 = self._add(self.loop[y], self.layer[y], self.region[y], self.edge[y])
+        q2 = self._add(self.loop[y], self.layer[y], self.region[t], self.edge[y])
         self.rot[q1], self.rot[q2], self.irot[q1], self.irot[q2] = q2, q1, q2, q1
         self.twin[y], self.twin[q2], self.twin[q1], self.twin[t] = q2, y, t, q1
         return q1, q2
@@ -116,7 +118,7 @@ class Drawing:
         """Undo everything drawn since ``snap`` was taken."""
         n, rot, irot, twin, marks = snap
         self.rot, self.irot, self.twin, self.marks = list(rot), list(irot), list(twin), marks
-        for lst in (self.loop, self.layer, self.region):
+        for lst in (self.loop, self.layer, self.region, self.edge):
             del lst[n:]
 
 

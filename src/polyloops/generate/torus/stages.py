@@ -60,6 +60,9 @@ __all__ = ["TorusSearchStats", "compiled_search_available", "first_stage", "forg
            "second_stage", "torus_arrangements", "torus_children", "two_axis_bases"]
 
 
+EVERY_START = False  # the Python first stage drawing each curve from every start (its twin, for the tests)
+
+
 @dataclass
 class TorusSearchStats:
     """What a search did: curves closed, children over the bound, not canonical, or with a
@@ -131,6 +134,9 @@ class _ChildSearch:
         # an edge of B and the new loop, which later third-axis loops (they cross only B, each
         # region once) can only cut into more such faces, so nothing grows from it.
         self.start_edge: set[int] = set()
+        self.root = isinstance(parent, int)
+        self.banned: set[int] = set()  # a single loop: the piece the curve never crosses
+        self.least = -1  # first stage: the curve's start edge, below which it crosses none
 
     def _count_crossings(self, parent: TorusArrangement) -> None:
         self.klass = klass = axis_classes(parent)
@@ -151,13 +157,22 @@ class _ChildSearch:
     def run(self) -> list[tuple[TorusArrangement, Facts]]:
         """The children, each once, ordered by code; the counts go to the statistics."""
         w = self.w
-        # The curve starts at a point on a parent edge and enters the face on the left of that edge.
+        # The curve starts at a point on a parent edge and enters the face on the left of that
+        # edge.  In the first stage one dart an edge (a curve walked the other way round enters
+        # the face on the twin's left, and it is the same loop), and the least edge the curve
+        # crosses (self.least): every test on the way is a test of the whole curve, whichever
+        # way and wherever it was begun, so each curve is still drawn.
         for y0 in range(len(w.rot)):
-            if w.layer[y0]:
+            if w.layer[y0] or (not self.layered and not EVERY_START and w.twin[y0] < y0):
                 continue
             snap = w.snapshot()
             t0 = w.twin[y0]
             p1, p2 = w.subdivide(y0)
+            # A single loop: its point of degree 2 only marks where it is and may lie in any gap
+            # between the curve's points; in the gap before the first (the piece from y0 to p2
+            # is never crossed), so each curve is drawn once a start, not once a start and a gap.
+            self.banned = {y0, p2} if self.root and not EVERY_START else set()
+            self.least = -1 if self.layered or EVERY_START else y0
             if self.layered:  # the start edge's two pieces, which the curve does not cross again
                 self.start_edge.update((y0, t0, p1, p2))
                 self.visited.add(w.region[p1])
@@ -272,7 +287,7 @@ class _ChildSearch:
             return  # (second stage: in the last region of B the curve only closes)
         for y in targets:
             lp = w.loop[y]
-            if lp < 0 or w.layer[y] or y in self.start_edge:
+            if lp < 0 or w.layer[y] or y in self.start_edge or y in self.banned or w.edge[y] < self.least:
                 continue  # the curve does not cross itself, nor (second stage) the third axis
             if self.layered:
                 there = w.region[w.twin[y]]
@@ -360,11 +375,12 @@ def _compiled_first_children(parent: TorusArrangement | int, max_crossings: int,
     stats.not_canonical += rejected
     stats.not_colourable += uncolourable
     kids: dict[tuple, tuple[TorusArrangement, Facts]] = {}
-    for twin, marks, cellular in found:
+    for twin, marks, flags in found:
         key = (twin, tuple(marks))
         if key not in kids:
             child = TorusArrangement(arrangement_of_twin(twin).twin, tuple(marks), (), key)
-            kids[key] = (child, Facts(0, bool(cellular), True))
+            split = bool(flags & 2) if flags & 1 and colours == 2 else None
+            kids[key] = (child, Facts(0, bool(flags & 1), True, split))
     out = [kids[k] for k in sorted(kids)]
     stats.states += len(out)
     stats.targets += sum(f.target for _, f in out)
@@ -378,13 +394,20 @@ def torus_arrangements(max_crossings: int, colours: int | None = None, regions: 
     crossings and a crossing graph that ``colours`` colours colour, once up to homeomorphism,
     mirror images identified; with ``regions``, only the candidate maps (regions of 3 to 6
     sides, none with two sides on one loop or on both sides of an edge, a simple quad mesh)."""
+    for a, _ in _targets(max_crossings, colours, regions, on_stats):
+        yield a
+
+
+def _targets(max_crossings: int, colours: int | None, regions: bool,
+             on_stats: Callable[[TorusSearchStats], None] | None) -> Iterator[tuple[TorusArrangement, Facts]]:
+    """:func:`torus_arrangements` with what the search knows of each."""
     stats = TorusSearchStats()
     stack: list[tuple[TorusArrangement, Facts] | int] = [1, 0]
     while stack:
         node = stack.pop()
         parent = node if isinstance(node, int) else node[0]
         if not isinstance(node, int) and node[1].target:
-            yield node[0]
+            yield node
         stack.extend(reversed(torus_children(parent, max_crossings, colours, regions, stats)))
     if on_stats:
         on_stats(stats)
@@ -395,8 +418,8 @@ def two_axis_bases(max_crossings: int, on_stats: Callable[[TorusSearchStats], No
     """Every cellular arrangement with a bipartite crossing graph and at most ``max_crossings``
     crossings whose loops each have two different zones on their sides: the arrangements ``B``
     of the second stage."""
-    for a in torus_arrangements(max_crossings, colours=2, on_stats=on_stats):
-        if zones_split_every_loop(a):
+    for a, facts in _targets(max_crossings, 2, False, on_stats):
+        if facts.split if facts.split is not None else zones_split_every_loop(a):  # the compiled search knows
             yield a
 
 
