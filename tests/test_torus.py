@@ -423,19 +423,18 @@ def test_real_polycubes_are_orientable_with_any_axis_third():
 
 
 @pytest.mark.parametrize(("n", "colours"), [(6, None), (7, 2), pytest.param(8, 2, marks=pytest.mark.slow)])
-def test_each_curve_drawn_from_one_start_keeps_every_state(n, colours, monkeypatch):
+def test_each_curve_drawn_from_one_start_keeps_every_state(n, colours):
     """The first stage draws a new curve from one dart of each edge, from the least edge it
     crosses only, and round a single loop with the loop's mark just before the curve's first
     point; the Python search drawing every curve from every start, the mark in every gap, keeps
     exactly the same states with the same facts, in the same order."""
 
     def states(every: bool) -> list:
-        monkeypatch.setattr(stages, "EVERY_START", every)
         out, stack, stats = [], [1, 0], stages.TorusSearchStats()
         with running("torus", False):
             while stack:
                 node = stack.pop()
-                kids = torus_children(node, n, colours, False, stats)
+                kids = torus_children(node, n, colours, False, stats, every_start=every)
                 out += [(kid.code, facts) for kid, facts in kids]
                 stack.extend(kid for kid, _ in kids)
         return [out, stats.closed]

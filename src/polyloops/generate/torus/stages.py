@@ -60,9 +60,6 @@ __all__ = ["TorusSearchStats", "compiled_search_available", "first_stage", "forg
            "second_stage", "torus_arrangements", "torus_children", "two_axis_bases"]
 
 
-EVERY_START = False  # the Python first stage drawing each curve from every start (its twin, for the tests)
-
-
 @dataclass
 class TorusSearchStats:
     """What a search did: curves closed, children over the bound, not canonical, or with a
@@ -98,8 +95,9 @@ class _ChildSearch:
     :class:`~polyloops.generate.torus.drawing.Drawing`, each step undone after its branch."""
 
     def __init__(self, parent: TorusArrangement | int, max_crossings: int, colours: int | None,
-                 regions: bool, stats: TorusSearchStats):
+                 regions: bool, stats: TorusSearchStats, every_start: bool = False):
         self.max_crossings, self.colours, self.regions, self.stats = max_crossings, colours, regions, stats
+        self.every_start = every_start  # the first stage's curves drawn from every start (a twin)
         self.layered = not isinstance(parent, int) and bool(parent.layer)
         self.base_crossings = 0  # second stage: crossings of B, and of the third axis with each class
         self.third_with = [0, 0]
@@ -163,7 +161,7 @@ class _ChildSearch:
         # crosses (self.least): every test on the way is a test of the whole curve, whichever
         # way and wherever it was begun, so each curve is still drawn.
         for y0 in range(len(w.rot)):
-            if w.layer[y0] or (not self.layered and not EVERY_START and w.twin[y0] < y0):
+            if w.layer[y0] or (not self.layered and not self.every_start and w.twin[y0] < y0):
                 continue
             snap = w.snapshot()
             t0 = w.twin[y0]
@@ -171,8 +169,8 @@ class _ChildSearch:
             # A single loop: its point of degree 2 only marks where it is and may lie in any gap
             # between the curve's points; in the gap before the first (the piece from y0 to p2
             # is never crossed), so each curve is drawn once a start, not once a start and a gap.
-            self.banned = {y0, p2} if self.root and not EVERY_START else set()
-            self.least = -1 if self.layered or EVERY_START else y0
+            self.banned = {y0, p2} if self.root and not self.every_start else set()
+            self.least = -1 if self.layered or self.every_start else y0
             if self.layered:  # the start edge's two pieces, which the curve does not cross again
                 self.start_edge.update((y0, t0, p1, p2))
                 self.visited.add(w.region[p1])
@@ -309,8 +307,8 @@ class _ChildSearch:
 
 
 def torus_children(parent: TorusArrangement | int, max_crossings: int, colours: int | None = None,
-                   regions: bool = False, stats: TorusSearchStats | None = None,
-                   ) -> list[tuple[TorusArrangement, Facts]]:
+                   regions: bool = False, stats: TorusSearchStats | None = None, *,
+                   every_start: bool = False) -> list[tuple[TorusArrangement, Facts]]:
     """The canonical children of ``parent`` that can still grow into a target with at most
     ``max_crossings`` crossings, each once, in a fixed order.
 
@@ -318,16 +316,19 @@ def torus_children(parent: TorusArrangement | int, max_crossings: int, colours: 
     with a ``layer`` is in the second stage: the new loop is of the third axis, crosses no loop
     of it and each region of ``B`` at most once.  ``colours`` keeps children whose crossing
     graph is that colourable; ``regions`` counts the crossings the faces need to become corners
-    of a candidate map (3 to 6 sides, no two on one loop) in the bound."""
+    of a candidate map (3 to 6 sides, no two on one loop) in the bound.  ``every_start`` (the
+    Python search, a twin for the tests) draws each curve of the first stage from every start,
+    both ways round from every edge it crosses and round a single loop with the mark in every
+    gap: the same children come out."""
     stats = stats if stats is not None else TorusSearchStats()
     layered = not isinstance(parent, int) and bool(parent.layer)
-    if compiled_search_available():
+    if compiled_search_available() and not every_start:
         if layered and regions and colours is None:
             assert not isinstance(parent, int)
             return _compiled_children(parent, max_crossings, stats)
         if not layered and not regions and colours in (None, 2):
             return _compiled_first_children(parent, max_crossings, colours or 0, stats)
-    return _ChildSearch(parent, max_crossings, colours, regions, stats).run()
+    return _ChildSearch(parent, max_crossings, colours, regions, stats, every_start).run()
 
 
 def _compiled_children(parent: TorusArrangement, max_crossings: int, stats: TorusSearchStats
