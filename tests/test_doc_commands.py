@@ -26,7 +26,7 @@ PAGES = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md")), ROOT / "cata
 # writes into the shipped catalog's own folder, or runs on a cluster (docs/cluster.md).  Parsed,
 # never run by the tests.
 REPRODUCTIONS = ("--max-corners 30 --generator plantri", "--max-corners 36 --generator loops",
-                 "--max-corners 40 --generator loops", "/shared/genus0-44",
+                 "--max-corners 40 --generator loops", "/shared/genus0-44", "/shared/genus1-47",
                  "--genus 1 --max-corners 44", "-o catalogs/genus0/", "-o catalogs/genus1/",
                  "tools/ship_catalog.py")
 # Commands that draw, build or replay: seconds to minutes each, run with --run-slow.
