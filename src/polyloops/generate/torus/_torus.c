@@ -645,7 +645,7 @@ typedef struct {
     int least;                /* the curve's start edge: it crosses no parent edge below it */
     unsigned stamp[MAXD];     /* face membership: stamp[d] == now for the darts of the face at hand */
     unsigned now;
-    PyObject *out;            /* the children found: a list of (twin, marks, cellular) */
+    PyObject *out;            /* the children found: a list of (twin, marks, flags) */
     PyObject *seen;           /* the children listed (a child is drawn in several ways) */
     int failed;               /* a Python error is set (out of memory): stop */
     long long nodes;          /* steps of the curve drawn */
