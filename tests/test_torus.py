@@ -422,7 +422,8 @@ def test_real_polycubes_are_orientable_with_any_axis_third():
     assert checked > 700
 
 
-@pytest.mark.parametrize(("n", "colours"), [(6, None), (7, 2), pytest.param(8, 2, marks=pytest.mark.slow)])
+@pytest.mark.parametrize(("n", "colours"), [(6, None), (6, 2), pytest.param(7, 2, marks=pytest.mark.slow),
+                                             pytest.param(8, 2, marks=pytest.mark.slow)])
 def test_each_curve_drawn_from_one_start_keeps_every_state(n, colours):
     """The first stage draws a new curve from one dart of each edge, from the least edge it
     crosses only, and round a single loop with the loop's mark just before the curve's first
@@ -447,10 +448,10 @@ def test_each_curve_drawn_from_one_start_keeps_every_state(n, colours):
 @needs("torus")
 def test_the_compiled_zones_agree_with_the_python_zones():
     """The compiled first stage's flag (the zones of each class split every loop) is
-    ``zones_split_every_loop`` on every cellular two-colour arrangement through 10 crossings,
+    ``zones_split_every_loop`` on every cellular two-colour arrangement through 9 crossings,
     both answers occurring."""
     seen = {True: 0, False: 0}
-    for a, facts in stages._targets(10, 2, False, None):
+    for a, facts in stages._targets(9, 2, False, None):
         assert facts.split is not None and facts.split == zones_split_every_loop(a)
         seen[facts.split] += 1
-    assert min(seen.values()) > 100, seen
+    assert min(seen.values()) > 40, seen
