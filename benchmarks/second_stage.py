@@ -1,0 +1,57 @@
+"""The genus-1 second stage by budget: the CPU the region search spends on a two-axis
+arrangement B, for a sample of the B of each number of crossings, at several corner budgets.
+
+    python benchmarks/second_stage.py --crossings 10 12 14 --budgets 44 47
+
+The B come from the first stage through the largest of ``--crossings`` (90 s through 14), a
+sample of ``--sample`` of each size drawn with ``--seed``; every B of the sample is searched at
+every budget, one process.  Prints a Markdown table: per size and budget, the mean CPU per B,
+the regions whose chords were chosen, and the third axes found
+(:func:`~polyloops.generate.torus.regions.third_axis_systems`).
+"""
+
+from __future__ import annotations
+
+import argparse
+import random
+import time
+from collections import defaultdict
+
+from _common import markdown_table
+
+from polyloops.generate.torus.arrangement import arrangement_of_twin
+from polyloops.generate.torus.regions import third_axis_systems
+from polyloops.generate.torus.stages import TorusSearchStats, first_stage
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--crossings", type=int, nargs="+", default=[10, 12, 14])
+    parser.add_argument("--budgets", type=int, nargs="+", default=[44, 47])
+    parser.add_argument("--sample", type=int, default=40)
+    parser.add_argument("--seed", type=int, default=1)
+    args = parser.parse_args()
+    bases, _ = first_stage(max(args.crossings))
+    by_size: dict[int, list[bytes]] = defaultdict(list)
+    for raw in bases:
+        by_size[len(raw) // 8].append(raw)  # four darts a crossing, two bytes a dart
+    rng = random.Random(args.seed)
+    rows: list[list[object]] = []
+    for c in args.crossings:
+        pick = rng.sample(by_size[c], min(args.sample, len(by_size[c])))
+        for budget in args.budgets:
+            if 3 * c > budget:
+                continue
+            stats, found = TorusSearchStats(), 0
+            start = time.process_time()
+            for raw in pick:
+                found += sum(1 for _ in third_axis_systems(arrangement_of_twin(raw), budget, stats))
+            cpu = time.process_time() - start
+            rows.append([c, budget, len(pick), f"{1000 * cpu / max(len(pick), 1):.1f}",
+                         stats.region_choices // max(len(pick), 1), found])
+    print(markdown_table(["B crossings", "corners budget", "B sampled", "ms a B", "regions cut a B",
+                          "third axes"], rows))
+
+
+if __name__ == "__main__":
+    main()
