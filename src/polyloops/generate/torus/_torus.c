@@ -789,9 +789,10 @@ static int connected_without1(const Kid *h, int skip)
     return seen == all;
 }
 
-static int bipartite(const Kid *h)
+/* Whether the crossing graph is bipartite; if so, side holds each loop's class. */
+static int bipartite(const Kid *h, int *side)
 {
-    int side[MAXL1], stack[MAXL1], top = 0;
+    int stack[MAXL1], top = 0;
     for (int l = 0; l < h->nl; l++) side[l] = -1;
     for (int s = 0; s < h->nl; s++) {
         if (side[s] >= 0) continue;
@@ -815,20 +816,12 @@ static int zone_find(int *up, int f)
     return f;
 }
 
-/* Whether, for each class of the bipartition of the (connected, bipartite) crossing graph, every
- * loop of it has two different zones on its sides, the zones being the components left when the
- * class's loops are cut away (cuts.zones_split_every_loop, its twin). */
-static int zones_split(const Kid *h)
+/* Whether, for each class of the bipartition (side, from bipartite), every loop of it has two
+ * different zones on its sides, the zones being the components left when the class's loops are
+ * cut away (cuts.zones_split_every_loop, its twin). */
+static int zones_split(const Kid *h, const int *side)
 {
-    int side[MAXL1], stack[MAXL1], top = 0, up[MAXD];
-    for (int l = 0; l < h->nl; l++) side[l] = -1;
-    side[0] = 0;
-    stack[top++] = 0;
-    while (top) {
-        int l = stack[--top];
-        for (int m = 0; m < h->nl; m++)
-            if ((h->adj[l] >> m & 1) && side[m] < 0) { side[m] = 1 - side[l]; stack[top++] = m; }
-    }
+    int up[MAXD];
     for (int cls = 0; cls < 2; cls++) {
         for (int f = 0; f < h->nf; f++) up[f] = f;
         for (int d = 0; d < h->D; d++)
@@ -906,7 +899,8 @@ static void emit1(Draw *w)
     int needs = 0;
     for (int k = 0; k < h->nmarks; k++) needs += mark_need(h->mkind[k]);
     if (D / 4 + (needs + 1) / 2 > w->limit) { w->bounded++; return; }
-    if (w->colours == 2 && !bipartite(h)) { w->uncolourable++; return; }
+    static int side[MAXL1];   /* two colours: each loop's class */
+    if (w->colours == 2 && !bipartite(h, side)) { w->uncolourable++; return; }
     static unsigned char cand[MAXL1];
     int fewest = 1 << 30, wanted = h->loop[curve];
     for (int l = 0; l < h->nl; l++) {
@@ -953,7 +947,7 @@ static void emit1(Draw *w)
     for (int k = 0; k < h->nmarks; k++)
         PyList_SET_ITEM(marks, k, Py_BuildValue("(si)", (best[D + k] & 1) ? "H" : "A", best[D + k] >> 1));
     /* bit 0: cellular; bit 1 (two colours, cellular): the zones split every loop */
-    int flags = h->nmarks == 0 ? 1 | (w->colours == 2 && zones_split(h) ? 2 : 0) : 0;
+    int flags = h->nmarks == 0 ? 1 | (w->colours == 2 && zones_split(h, side) ? 2 : 0) : 0;
     PyObject *item = Py_BuildValue("(y#Ni)", (const char *)tw, (Py_ssize_t)(2 * D), marks, flags);
     if (!item || PyList_Append(w->out, item) < 0) w->failed = 1;
     Py_XDECREF(item);

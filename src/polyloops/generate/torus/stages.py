@@ -420,7 +420,10 @@ def two_axis_bases(max_crossings: int, on_stats: Callable[[TorusSearchStats], No
     crossings whose loops each have two different zones on their sides: the arrangements ``B``
     of the second stage."""
     for a, facts in _targets(max_crossings, 2, False, on_stats):
-        if facts.split if facts.split is not None else zones_split_every_loop(a):  # the compiled search knows
+        split = facts.split  # the compiled search tells; the Python one leaves it to the test here
+        if split is None:
+            split = zones_split_every_loop(a)
+        if split:
             yield a
 
 
