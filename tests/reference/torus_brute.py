@@ -19,7 +19,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-__all__ = ["rooted_maps", "torus_maps_by_brute_force"]
+__all__ = ["rooted_maps", "surface_maps_by_brute_force", "torus_maps_by_brute_force"]
 
 
 def rooted_maps(n: int) -> Iterator[list[int]]:
@@ -110,7 +110,12 @@ def _least_code(pair: list[int]) -> tuple[int, ...]:
     return min(_code_from(pair, root, step) for step in (1, 3) for root in range(len(pair)))
 
 
+def surface_maps_by_brute_force(n: int, genus: int) -> set[tuple[int, ...]]:
+    """The cellular arrangements of simple loops on the surface of ``genus`` with ``n``
+    crossings, each as its least code (a set: one element an arrangement up to homeomorphism)."""
+    return {_least_code(p) for p in rooted_maps(n) if _genus(p) == genus and _simple_loops(p)}
+
+
 def torus_maps_by_brute_force(n: int) -> set[tuple[int, ...]]:
-    """The cellular arrangements of simple loops on the torus with ``n`` crossings, each as its
-    least code (a set: one element an arrangement up to homeomorphism)."""
-    return {_least_code(p) for p in rooted_maps(n) if _genus(p) == 1 and _simple_loops(p)}
+    """:func:`surface_maps_by_brute_force` on the torus."""
+    return surface_maps_by_brute_force(n, 1)

@@ -21,7 +21,7 @@ registry, so a new generator (a genus-2 search) is one new folder:
   job is a share of the two-axis arrangements the second stage starts from.
 
 >>> sorted(generators())
-['loops', 'plantri', 'torus']
+['handles', 'loops', 'plantri', 'torus']
 >>> generators()["torus"].genus
 1
 >>> [job.name for job in generators()["plantri"].plan(8, 12, None, 1)]

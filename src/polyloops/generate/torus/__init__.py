@@ -58,9 +58,10 @@ class TorusGenerator(Generator):
         if stage is None:
             return self
         try:
-            return TorusGenerator(SecondStage(stage).value)
+            return type(self)(SecondStage(stage).value)
         except ValueError:
-            raise ValueError(f"the torus generator's stage is regions or loops, not {stage!r}") from None
+            raise ValueError(f"the {self.name} generator's stage is regions or loops, "
+                             f"not {stage!r}") from None
 
     def notes(self) -> list[str]:
         """That the Python search stands in for the compiled one, when that does not run (the
@@ -89,8 +90,13 @@ class TorusGenerator(Generator):
         13 crossings that takes minutes and gigabytes at its peak); a rerun reads the file."""
         if where is None:
             return [None] * len(jobs)
-        files = {base_bound(job.n): str(spill_bases(base_bound(job.n), where)) for job in jobs}
-        return [files[base_bound(job.n)] for job in jobs]
+        bounds = {job.n: base_bound(self.crossings(job.n)) for job in jobs}
+        files = {c: str(spill_bases(c, where, self.genus)) for c in set(bounds.values())}
+        return [files[bounds[job.n]] for job in jobs]
+
+    def crossings(self, corners: int) -> int:
+        """The crossings of a map of this genus with ``corners`` corners (quads: V - F = 2 - 2g)."""
+        return corners + 2 * (self.genus - 1)
 
     def candidates(self, job: Job, context: Any, tally: Tally) -> Iterator[HalfEdgeMap]:
         """The share's candidate maps; the search's statistics go to ``tally``."""
@@ -98,26 +104,32 @@ class TorusGenerator(Generator):
         from polyloops.generate.torus.stages import TorusSearchStats
 
         stats: list[TorusSearchStats] = []
-        bases = read_bases(context, base_bound(job.n)) if context is not None else None
-        for a in candidate_torus_arrangements(job.n, job.res, job.mod, on_stats=stats.append, bases=bases,
-                                              stage=SecondStage(self.stage)):
-            if a.crossings >= job.low:
+        top = self.crossings(job.n)
+        bases = read_bases(context, base_bound(top), self.genus) if context is not None else None
+        for a in candidate_torus_arrangements(top, job.res, job.mod, on_stats=stats.append, bases=bases,
+                                              stage=SecondStage(self.stage), genus=self.genus):
+            if a.crossings >= self.crossings(job.low):
                 yield a.quad_mesh()
         total = vars(stats[0]) if stats else {}
         tally.statistics.update(total)
         tally.visited += total.get("states", 0) + total.get("region_choices", 0)
 
 
-def bases_tag(max_crossings: int) -> Any:
-    """What a spilled first stage must be to serve a torus run to ``max_crossings``."""
+def _bases_name(genus: int) -> str:
+    return "torus-bases" if genus == 1 else f"genus{genus}-bases"
+
+
+def bases_tag(max_crossings: int, genus: int = 1) -> Any:
+    """What a spilled first stage must be to serve a run of ``genus`` to ``max_crossings``."""
     from polyloops.generate.spill import SpillTag
 
-    return SpillTag("torus-bases", {"schema": SPILL_VERSION}, max_crossings)
+    return SpillTag(_bases_name(genus), {"schema": SPILL_VERSION}, max_crossings)
 
 
-def spill_bases(max_crossings: int, where: Path) -> Path:
-    """The first stage of the torus search (:func:`polyloops.generate.torus.stages.first_stage`) in
-    ``where/torus-bases-K.bin`` (:mod:`polyloops.generate.spill`; meta: the statistics; one
+def spill_bases(max_crossings: int, where: Path, genus: int = 1) -> Path:
+    """The first stage of the search (:func:`polyloops.generate.torus.stages.first_stage`) in
+    ``where/torus-bases-K.bin`` (``genusG-bases-K.bin`` at genus ``G`` >= 2;
+    :mod:`polyloops.generate.spill`; meta: the statistics; one
     record an arrangement's ``twin`` array).  Kept when the file there is proved to be this
     run's, computed and written atomically otherwise.
 
@@ -129,23 +141,23 @@ def spill_bases(max_crossings: int, where: Path) -> Path:
     from polyloops.generate.spill import SpillMismatch, write_spill
     from polyloops.generate.torus.stages import first_stage, forget_first_stage
 
-    path = where / f"torus-bases-{max_crossings}.bin"
+    path = where / f"{_bases_name(genus)}-{max_crossings}.bin"
     try:
-        read_bases(str(path), max_crossings)
+        read_bases(str(path), max_crossings, genus)
         return path
     except SpillMismatch:
         pass  # another run's, damaged, or absent: listed again
-    bases, stats = first_stage(max_crossings)
-    write_spill(path, bases_tag(max_crossings), bases, {"search": vars(stats)})
+    bases, stats = first_stage(max_crossings, genus)
+    write_spill(path, bases_tag(max_crossings, genus), bases, {"search": vars(stats)})
     forget_first_stage()  # the workers read the file
     read_bases.cache_clear()
     return path
 
 
 @lru_cache(maxsize=2)
-def read_bases(path: str, max_crossings: int) -> tuple[tuple[bytes, ...], Any]:
-    """The arrangements and statistics :func:`spill_bases` wrote for ``max_crossings`` (kept
-    for the process's later shares).
+def read_bases(path: str, max_crossings: int, genus: int = 1) -> tuple[tuple[bytes, ...], Any]:
+    """The arrangements and statistics :func:`spill_bases` wrote for ``max_crossings`` on the
+    surface of ``genus`` (kept for the process's later shares).
 
     Raises
     ------
@@ -155,7 +167,7 @@ def read_bases(path: str, max_crossings: int) -> tuple[tuple[bytes, ...], Any]:
     from polyloops.generate.spill import SpillMismatch, read_spill
     from polyloops.generate.torus.stages import TorusSearchStats
 
-    spill = read_spill(Path(path), bases_tag(max_crossings))
+    spill = read_spill(Path(path), bases_tag(max_crossings, genus))
     try:
         stats = TorusSearchStats(**spill.meta["search"])
     except (KeyError, TypeError) as exc:  # TypeError: other statistics

@@ -57,16 +57,18 @@ typedef struct {  /* a region's walk in progress: its chords laid from one cap t
     int placed[2];      /* per axis of B: the points numbered before this region */
 } Walk;
 
+#define MAXCYC 32   /* the cycles of the level graphs of B: one an axis on the torus, more at genus 2 or more */
+
 typedef struct {  /* the whole search: B's regions in search order and the state of the walk */
     int R;          /* regions */
     int E;          /* edges of B the regions use */
     int NL;         /* loops of B */
     int least;      /* B's crossings: the least each axis's third-axis crossings count for in the bound */
     int budget;     /* the crossings the third axis may add */
-    int ncyc;       /* cycles of B's level graphs to keep from being forced one way (0 to 2) */
+    int ncyc;       /* cycles of B's level graphs to keep from being forced one way (0 to MAXCYC) */
     int edge_axis[MAXE], edge_loop[MAXE];  /* per edge: its axis of B and its loop */
     Region reg[MAXR];                       /* the regions, in search order */
-    int cyclen[2], cycloop[2][MAXL], cycrho[2][MAXL];  /* per cycle: its loops and their senses */
+    int cyclen[MAXCYC], cycloop[MAXCYC][MAXL], cycrho[MAXCYC][MAXL];  /* per cycle: its loops and senses */
     int points[MAXE];                       /* per edge: its third-axis points, -1 while free */
     int parent[MAXL], par[MAXL];            /* the parity union-find of loop signs (Condition 3) */
     int trail[MAXL], ntrail;                /* its unions, to roll back on the way up */
@@ -440,7 +442,7 @@ static PyObject *systems(PyObject *self, PyObject *args) {
         }
     }
     S->ncyc = NEXT();
-    if (S->ncyc > 2 || S->ncyc < 0) bad = 1;
+    if (S->ncyc > MAXCYC || S->ncyc < 0) bad = 1;
     for (int c = 0; c < S->ncyc && !bad; c++) {
         S->cyclen[c] = NEXT();
         if (S->cyclen[c] > MAXL || S->cyclen[c] <= 0) { bad = 1; break; }

@@ -188,7 +188,7 @@ typedef struct {
 
 static Ctx ctx;
 static Map child;
-static int num[MAXD], order[MAXD], best[MAXD], code[MAXD];
+static int num[MAXD], order[MAXD], best[MAXD + 16], code[MAXD + 16];  /* the codes: the marks after the darts */
 
 /* The child's code from root r in orientation o (rot, or irot when o is 1): per dart in the
  * breadth-first numbering, twice its twin's number plus its layer.  Returns -1 when it exceeds
@@ -619,6 +619,7 @@ static PyObject *layered_code(PyObject *self, PyObject *args)
 #define A_MARK 0
 #define H_MARK 1
 #define MAXL1 64
+#define MAXM 8                /* marks: a piece of genus h with b boundaries adds h + b - 1 <= genus, so 2 genus at most */
 
 typedef struct {
     int n;                    /* darts of the drawing: the parent's, then 2 per point or chord */
@@ -626,9 +627,12 @@ typedef struct {
     int irot[MAXD];           /* the next dart clockwise (rot's inverse) */
     int twin[MAXD];           /* the dart at the edge's other end */
     int loop[MAXD];           /* the parent loop a dart lies on; -1 on the curve */
-    int nmarks;               /* the marked faces: none, one H, or two A (the annulus's ends) */
-    int mkind[2];             /* A_MARK or H_MARK */
-    int mdart[2];             /* a dart with the marked face on its left */
+    int nmarks;               /* the marked faces: on the torus none, one H, or two A (the annulus's ends) */
+    int mkind[MAXM];          /* A_MARK or H_MARK (torus) */
+    int mdart[MAXM];          /* a dart with the marked face on its left */
+    int general;              /* genus 2 or more: the marks name pieces (mgen, mpiece), not kinds */
+    int mgen[MAXM];           /* general: the genus of the piece the face bounds */
+    int mpiece[MAXM];         /* general: the piece's id (one mark a boundary of the piece) */
     int nloops;               /* the parent's loops */
     int lcross[MAXL1];        /* per parent loop: its crossings */
     int deletable[MAXL1];     /* per parent loop: its deletion leaves the parent connected */
@@ -662,8 +666,11 @@ typedef struct {              /* a child in canonical form's making */
     int nf;                   /* faces */
     int nl;                   /* loops */
     int nmarks;               /* marked faces, as in Draw */
-    int mkind[2];             /* A_MARK or H_MARK */
-    int mdart[2];             /* a dart with the marked face on its left */
+    int mkind[MAXM];          /* A_MARK or H_MARK (torus) */
+    int mdart[MAXM];          /* a dart with the marked face on its left */
+    int general;              /* as in Draw */
+    int mgen[MAXM];           /* general: the piece's genus and id, as in Draw */
+    int mpiece[MAXM];
     int twin[MAXD];           /* the dart across the edge */
     int face[MAXD];           /* the face on a dart's left */
     int fsize[MAXD];          /* per face: its sides */
@@ -729,12 +736,35 @@ static int in_face(Draw *w, int d, int x)
     return 0;
 }
 
-/* Twice the crossings the marked faces still need, those holding x or end aside. */
-static int needs1(Draw *w, int x, int end)
+/* Twice the crossings the pieces of the marks still need (cuts.pieces_need): a piece of genus h
+ * with b boundaries, 2 (2h + b - 1); with ``open`` (a mark per piece, or -1), a piece with a
+ * face marked open is left aside. */
+static int pieces_need1(int nmarks, const int *gen, const int *piece, const int *open)
 {
     int total = 0;
-    for (int k = 0; k < w->nmarks; k++)
-        if (!in_face(w, w->mdart[k], x) && !in_face(w, w->mdart[k], end)) total += mark_need(w->mkind[k]);
+    for (int k = 0; k < nmarks; k++) {
+        int first = 1, b = 0, skip = 0;
+        for (int j = 0; j < nmarks; j++) {
+            if (piece[j] != piece[k]) continue;
+            if (j < k) first = 0;
+            b++;
+            if (open && open[j]) skip = 1;
+        }
+        if (first && !skip) total += 2 * (2 * gen[k] + b - 1);
+    }
+    return total;
+}
+
+/* Twice the crossings the marked faces still need, those holding x or end aside (genus 2 or
+ * more: the pieces with such a face). */
+static int needs1(Draw *w, int x, int end)
+{
+    int total = 0, open[MAXM];
+    for (int k = 0; k < w->nmarks; k++) {
+        open[k] = in_face(w, w->mdart[k], x) || in_face(w, w->mdart[k], end);
+        if (!w->general && !open[k]) total += mark_need(w->mkind[k]);
+    }
+    if (w->general) total = pieces_need1(w->nmarks, w->mgen, w->mpiece, open);
     return total;
 }
 
@@ -759,12 +789,32 @@ static int kid_code(Kid *h, int o, int r, int have_best, const unsigned char *ca
 #undef VISIT
     /* the marked faces, each by its least dart number (in the mirror image, a face's darts
      * are rot of the original's), then kind; sorted */
+    int lows[MAXM];
     for (int k = 0; k < h->nmarks; k++) {
         int low = 1 << 30, d = h->mdart[k], e = d;
         do { int g = o ? rot4(e) : e; if (num[g] < low) low = num[g]; e = irot4(h->twin[e]); } while (e != d);
+        lows[k] = low;
         mcode[k] = 2 * low + h->mkind[k];
     }
-    if (h->nmarks == 2 && mcode[0] > mcode[1]) { int t = mcode[0]; mcode[0] = mcode[1]; mcode[1] = t; }
+    if (h->general) {
+        /* (least number, genus, the piece's rank by the least number of its boundaries) */
+        for (int k = 0; k < h->nmarks; k++) {
+            int glow = lows[k], rank = 0;
+            for (int j = 0; j < h->nmarks; j++) if (h->mpiece[j] == h->mpiece[k] && lows[j] < glow) glow = lows[j];
+            for (int j = 0; j < h->nmarks; j++) {
+                int first = 1, jlow = lows[j];
+                for (int i = 0; i < h->nmarks; i++) {
+                    if (h->mpiece[i] != h->mpiece[j]) continue;
+                    if (i < j) first = 0;
+                    if (lows[i] < jlow) jlow = lows[i];
+                }
+                if (first && jlow < glow) rank++;
+            }
+            mcode[k] = (lows[k] * 8 + h->mgen[k]) * 8 + rank;
+        }
+    }
+    for (int k = 1; k < h->nmarks; k++)  /* sorted */
+        for (int j = k; j > 0 && mcode[j - 1] > mcode[j]; j--) { int t = mcode[j]; mcode[j] = mcode[j - 1]; mcode[j - 1] = t; }
     if (!smaller)
         for (int k = 0; k < h->nmarks; k++) {
             if (mcode[k] > best[h->D + k]) return -1;
@@ -862,10 +912,13 @@ static void emit1(Draw *w)
         if (curve < 0 && w->loop[d] < 0) curve = id[d];
     }
     h->nmarks = w->nmarks;
+    h->general = w->general;
     for (int k = 0; k < w->nmarks; k++) {
         int e = w->mdart[k];
         while (id[e] < 0) e = w->irot[w->twin[e]];
         h->mkind[k] = w->mkind[k];
+        h->mgen[k] = w->mgen[k];
+        h->mpiece[k] = w->mpiece[k];
         h->mdart[k] = id[e];
     }
     /* faces, loops */
@@ -898,6 +951,7 @@ static void emit1(Draw *w)
     for (int l = 0; l < h->nl; l++) h->lcross[l] /= 2;
     int needs = 0;
     for (int k = 0; k < h->nmarks; k++) needs += mark_need(h->mkind[k]);
+    if (h->general) needs = pieces_need1(h->nmarks, h->mgen, h->mpiece, NULL);
     if (D / 4 + (needs + 1) / 2 > w->limit) { w->bounded++; return; }
     static int side[MAXL1];   /* two colours: each loop's class */
     if (w->colours == 2 && !bipartite(h, side)) { w->uncolourable++; return; }
@@ -910,7 +964,7 @@ static void emit1(Draw *w)
     for (int l = 0; l < h->nl; l++) cand[l] = cand[l] && h->lcross[l] == fewest;
     if (!cand[wanted]) { w->rejected++; return; }
     /* the least code over the roots of least key, and McKay's test */
-    int low = 1 << 30, have = 0, accepted = 0, mcode[2];
+    int low = 1 << 30, have = 0, accepted = 0, mcode[MAXM];
     for (int o = 0; o < 2; o++)
         for (int d = 0; d < D; d++) {
             int f = o ? h->face[h->twin[d]] : h->face[d];
@@ -932,7 +986,7 @@ static void emit1(Draw *w)
             if (first == wanted) accepted = 1;
         }
     if (!accepted) { w->rejected++; return; }
-    uint16_t tw[MAXD + 4];
+    uint16_t tw[MAXD + MAXM];
     for (int i = 0; i < D; i++) tw[i] = (uint16_t)best[i];
     for (int k = 0; k < h->nmarks; k++) tw[D + k] = (uint16_t)best[D + k];
     /* one of each child: the list would otherwise hold every way it was drawn */
@@ -944,8 +998,17 @@ static void emit1(Draw *w)
     if (listed) return;
     PyObject *marks = PyList_New(h->nmarks);
     if (!marks) { w->failed = 1; return; }
-    for (int k = 0; k < h->nmarks; k++)
-        PyList_SET_ITEM(marks, k, Py_BuildValue("(si)", (best[D + k] & 1) ? "H" : "A", best[D + k] >> 1));
+    for (int k = 0; k < h->nmarks; k++) {
+        PyObject *m;
+        if (h->general) {     /* ("g<genus>.<piece's rank>", least number) */
+            char kind[24];
+            snprintf(kind, sizeof kind, "g%d.%d", (best[D + k] >> 3) & 7, best[D + k] & 7);
+            m = Py_BuildValue("(si)", kind, best[D + k] >> 6);
+        } else
+            m = Py_BuildValue("(si)", (best[D + k] & 1) ? "H" : "A", best[D + k] >> 1);
+        if (!m) { Py_DECREF(marks); w->failed = 1; return; }
+        PyList_SET_ITEM(marks, k, m);
+    }
     /* bit 0: cellular; bit 1 (two colours, cellular): the zones split every loop */
     int flags = h->nmarks == 0 ? 1 | (w->colours == 2 && zones_split(h, side) ? 2 : 0) : 0;
     PyObject *item = Py_BuildValue("(y#Ni)", (const char *)tw, (Py_ssize_t)(2 * D), marks, flags);
@@ -955,17 +1018,94 @@ static void emit1(Draw *w)
 
 static void dfs1(Draw *w, int x, int end, int cr);
 
+static void go1(Draw *w, int then, int end, int cr)
+{
+    if (then < 0) emit1(w);
+    else dfs1(w, then, end, cr);
+}
+
+static void add_mark(Draw *w, int gen, int piece, int dart)
+{
+    w->mgen[w->nmarks] = gen; w->mpiece[w->nmarks] = piece; w->mdart[w->nmarks] = dart; w->nmarks++;
+}
+
+/* chords1 through a piece of genus h with b boundaries (mark mi on the face of x), on a surface
+ * of genus 2 or more (stages._ChildSearch._piece_chords, its twin): to another boundary, one
+ * piece with one boundary fewer; back to its own, either one piece of genus h - 1 with one
+ * boundary more, or two pieces of genus h1 and h - h1 sharing the other boundaries (a piece of
+ * genus 0 with one boundary is a disc). */
+static void piece_chords1(Draw *w, int x, int y, int then, int end, int cr, int mi)
+{
+    int snm = w->nmarks, sg[MAXM], sp[MAXM], sd[MAXM], others[MAXM], no = 0, fresh = 0;
+    int h = w->mgen[mi], piece = w->mpiece[mi];
+    for (int k = 0; k < snm; k++) {
+        sg[k] = w->mgen[k]; sp[k] = w->mpiece[k]; sd[k] = w->mdart[k];
+        if (sp[k] >= fresh) fresh = sp[k] + 1;
+        if (sp[k] == piece && k != mi) others[no++] = k;
+    }
+#define RESTORE() do { w->nmarks = snm; for (int k_ = 0; k_ < snm; k_++) { \
+        w->mgen[k_] = sg[k_]; w->mpiece[k_] = sp[k_]; w->mdart[k_] = sd[k_]; } } while (0)
+#define KEEP_REST() do { w->nmarks = 0; for (int k_ = 0; k_ < snm; k_++) \
+        if (sp[k_] != piece) add_mark(w, sg[k_], sp[k_], sd[k_]); } while (0)
+    if (!in_face(w, x, y)) { /* to another boundary of the piece: the two become one */
+        int mj = -1;
+        for (int j = 0; j < no; j++) if (in_face(w, sd[others[j]], y)) mj = others[j];
+        chord1(w, x, y);
+        int a = w->n - 2;
+        KEEP_REST();
+        for (int j = 0; j < no; j++) if (others[j] != mj) add_mark(w, h, piece, sd[others[j]]);
+        if (h || no > 1) add_mark(w, h, piece, a);  /* else now a disc */
+        go1(w, then, end, cr);
+        RESTORE();
+        unchord1(w, x, y);
+        return;
+    }
+    if (h >= 1) {            /* not separating */
+        chord1(w, x, y);
+        int a = w->n - 2, b = w->n - 1;
+        KEEP_REST();
+        for (int j = 0; j < no; j++) add_mark(w, h - 1, fresh, sd[others[j]]);
+        add_mark(w, h - 1, fresh, a);
+        add_mark(w, h - 1, fresh, b);
+        go1(w, then, end, cr);
+        RESTORE();
+        unchord1(w, x, y);
+        if (w->failed) return;
+    }
+    for (int h1 = 0; h1 <= h; h1++)
+        for (int mask = 0; mask < 1 << no; mask++) {
+            chord1(w, x, y);
+            int a = w->n - 2, b = w->n - 1;
+            KEEP_REST();
+            if (h1 || mask) {
+                for (int j = 0; j < no; j++) if (mask >> j & 1) add_mark(w, h1, fresh, sd[others[j]]);
+                add_mark(w, h1, fresh, a);
+            }
+            if (h - h1 || mask != (1 << no) - 1) {
+                for (int j = 0; j < no; j++) if (!(mask >> j & 1)) add_mark(w, h - h1, fresh + 1, sd[others[j]]);
+                add_mark(w, h - h1, fresh + 1, b);
+            }
+            go1(w, then, end, cr);
+            RESTORE();
+            unchord1(w, x, y);
+            if (w->failed) return;
+        }
+#undef RESTORE
+#undef KEEP_REST
+}
+
 /* Draws the chord from x to y in each way the faces allow; after each, emits the child
  * (then = -1) or continues the curve from dart `then` with cr crossings. */
 static void chords1(Draw *w, int x, int y, int then, int end, int cr)
 {
     int mi = -1, e = x, skind[2], sdart[2], snm = w->nmarks;
     for (int k = 0; k < 2; k++) { skind[k] = w->mkind[k]; sdart[k] = w->mdart[k]; }
-    int same = in_face(w, x, y);
     do {
         for (int k = 0; k < w->nmarks; k++) if (w->mdart[k] == e) mi = k;
         e = w->irot[w->twin[e]];
     } while (e != x);
+    if (w->general && mi >= 0) { piece_chords1(w, x, y, then, end, cr, mi); return; }
+    int same = in_face(w, x, y);
     int kind = mi < 0 ? -1 : w->mkind[mi];
     int options = !same ? 1 : kind < 0 ? 1 : kind == H_MARK ? 3 : 2;
     for (int opt = 0; opt < options; opt++) {
@@ -996,7 +1136,11 @@ static void dfs1(Draw *w, int x, int end, int cr)
     if (w->pc + cr + (needs1(w, x, end) + 1) / 2 > w->limit) { w->bounded++; return; }
     int k = face1(w, x, targets), mi = -1;
     for (int j = 0; j < w->nmarks; j++) if (w->stamp[w->mdart[j]] == w->now) mi = j;
-    if (mi >= 0 && w->mkind[mi] == A_MARK) {
+    if (mi >= 0 && w->general) {  /* the piece's other boundaries */
+        int here = mi;
+        for (int j = 0; j < w->nmarks; j++)
+            if (j != here && w->mpiece[j] == w->mpiece[here]) k += face1(w, w->mdart[j], targets + k);
+    } else if (mi >= 0 && w->mkind[mi] == A_MARK) {
         int other = w->mdart[1 - mi];
         k += face1(w, other, targets + k);
     }
@@ -1017,6 +1161,30 @@ static void dfs1(Draw *w, int x, int end, int cr)
         if (!--w->met[lp]) w->crossed--;
         unsub1(w, y, q1);
     }
+}
+
+/* Marks "g<genus>.<piece>" (genus 2 or more): each piece's genus, its boundaries' count within
+ * the surface's genus; returns their number, or -1. */
+static int parse_piece_marks(PyObject *marks, Draw *w, int D, int genus)
+{
+    if (!PyList_Check(marks) && !PyTuple_Check(marks)) return -1;
+    Py_ssize_t m = PySequence_Size(marks);
+    if (m < 0 || m > MAXM) return -1;
+    for (Py_ssize_t k = 0; k < m; k++) {
+        PyObject *it = PySequence_GetItem(marks, k);
+        const char *s;
+        int d, g, p, used = 0;
+        int ok = it && PyArg_ParseTuple(it, "si", &s, &d);
+        Py_XDECREF(it);
+        if (!ok) { PyErr_Clear(); return -1; }
+        if (d < 0 || d >= D || sscanf(s, "g%d.%d%n", &g, &p, &used) != 2 || s[used] || g < 0 || g > genus || p < 0
+            || p > 1000) return -1;
+        w->mgen[k] = g; w->mpiece[k] = p; w->mdart[k] = d; w->mkind[k] = 0;
+    }
+    for (Py_ssize_t k = 0; k < m; k++)
+        for (Py_ssize_t j = 0; j < m; j++)
+            if (w->mpiece[j] == w->mpiece[k] && w->mgen[j] != w->mgen[k]) return -1;
+    return (int)m;
 }
 
 static int parse_marks(PyObject *marks, int *kind, int *dart, int D)
@@ -1043,9 +1211,13 @@ static PyObject *first_children(PyObject *self, PyObject *args)
 {
     Py_buffer tb;
     PyObject *marks;
-    int limit, colours;
+    int limit, colours, genus = 1;
     (void)self;
-    if (!PyArg_ParseTuple(args, "y*Oii", &tb, &marks, &limit, &colours)) return NULL;
+    if (!PyArg_ParseTuple(args, "y*Oii|i", &tb, &marks, &limit, &colours, &genus)) return NULL;
+    if (genus < 1 || genus > MAXM / 2) {
+        PyBuffer_Release(&tb);
+        return PyErr_Format(PyExc_ValueError, "genus %d: the compiled search takes 1 to %d", genus, MAXM / 2);
+    }
     if (limit < 0 || limit > MAXD / 4) {
         PyBuffer_Release(&tb);
         return PyErr_Format(PyExc_ValueError, "a limit of %d crossings: the compiled search holds 0 to %d",
@@ -1060,6 +1232,7 @@ static PyObject *first_children(PyObject *self, PyObject *args)
     if (bad) return PyErr_Format(PyExc_ValueError, "not the twin array of a 4-regular map (or colours not 0 or 2)");
     w->colours = colours;
     w->limit = limit;
+    w->general = genus >= 2;
     w->nodes = w->closed = w->bounded = w->rejected = w->uncolourable = 0;
     w->failed = 0;
     w->crossed = 0;
@@ -1067,19 +1240,27 @@ static PyObject *first_children(PyObject *self, PyObject *args)
     memset(w->met, 0, sizeof(w->met));
     if (D == 0) {             /* a single loop: a point of degree 2 on it */
         long root = PyLong_AsLong(marks);
-        if (PyErr_Occurred() || (root != 0 && root != 1))
-            return PyErr_Format(PyExc_ValueError, "a single loop is 0 (essential) or 1 (bounding a disc)");
+        long roots = genus == 1 ? 2 : 2 + genus / 2;
+        if (PyErr_Occurred() || root < 0 || root >= roots)
+            return PyErr_Format(PyExc_ValueError, "a single loop is 0 to %ld (drawing.roots)", roots - 1);
         w->n = 2;
         w->rot[0] = w->irot[0] = 1; w->rot[1] = w->irot[1] = 0;
         w->twin[0] = 1; w->twin[1] = 0;
         w->loop[0] = w->loop[1] = 0;
         w->edge[0] = w->edge[1] = 0;
-        if (root == 0) { w->nmarks = 2; w->mkind[0] = w->mkind[1] = A_MARK; w->mdart[0] = 0; w->mdart[1] = 1; }
+        w->nmarks = 0;
+        if (genus >= 2) {     /* drawing.roots: not separating, then a piece of genus h cut off */
+            if (root == 0) { add_mark(w, genus - 1, 0, 0); add_mark(w, genus - 1, 0, 1); }
+            else if (root == 1) add_mark(w, genus, 0, 1);
+            else { add_mark(w, (int)root - 1, 0, 0); add_mark(w, genus - (int)root + 1, 1, 1); }
+        } else if (root == 0) { w->nmarks = 2; w->mkind[0] = w->mkind[1] = A_MARK; w->mdart[0] = 0; w->mdart[1] = 1; }
         else { w->nmarks = 1; w->mkind[0] = H_MARK; w->mdart[0] = 1; }
         w->nloops = 1; w->lcross[0] = 0; w->deletable[0] = 0; w->klass[0] = 0;
         w->pc = 0;
     } else {
-        int m = parse_marks(marks, w->mkind, w->mdart, D);
+        int m = genus >= 2 ? parse_piece_marks(marks, w, D, genus) : parse_marks(marks, w->mkind, w->mdart, D);
+        if (m < 0 && genus >= 2)
+            return PyErr_Format(PyExc_ValueError, "marks are (\"g<genus>.<piece>\", dart), at most %d", MAXM);
         if (m < 0) return PyErr_Format(PyExc_ValueError, "marks are none, one (\"H\", dart) or two (\"A\", dart)");
         w->nmarks = m;
         w->n = D;
@@ -1177,7 +1358,7 @@ static PyMethodDef methods[] = {
     {"layered_code", layered_code, METH_VARARGS,
      "layered_code(twin, layer) -> the canonical code of a layered arrangement, as bytes"},
     {"first_children", first_children, METH_VARARGS,
-     "first_children(twin, marks, limit, colours) -> (children, (paths drawn, curves closed, over\n"
+     "first_children(twin, marks, limit, colours, genus=1) -> (children, (paths drawn, curves closed, over\n"
      "the bound, not canonical, not colourable)): the children of a state of the marked search (twin\n"
      "as uint16, four darts a crossing, with marks [(kind, dart)]; an empty twin with marks 0 or 1\n"
      "for the single loop, essential or not), colours 0 or 2, each as (canonical twin array, marks,\n"

@@ -30,14 +30,73 @@ from polyloops.core import compiled
 from polyloops.core.disjoint_sets import DisjointSets
 from polyloops.core.halfedge import HalfEdgeMap, permutation_orbits
 
-__all__ = ["ANNULUS", "HANDLE", "MARK_NEED", "THIRD", "TorusArrangement", "arrangement_of_twin",
-           "axis_classes", "canonical", "irot4", "labelled_mesh", "layered_code", "regions_of_base", "rot4",
-           "twin_bytes",
-           "walk_forward", "with_layer"]
+__all__ = [
+    "ANNULUS",
+    "HANDLE",
+    "MARK_NEED",
+    "THIRD",
+    "TorusArrangement",
+    "arrangement_of_twin",
+    "axis_classes",
+    "canonical",
+    "irot4",
+    "labelled_mesh",
+    "layered_code",
+    "piece_mark",
+    "piece_of_mark",
+    "pieces_need",
+    "regions_of_base",
+    "rot4",
+    "twin_bytes",
+    "walk_forward",
+    "with_layer",
+]
 
 ANNULUS, HANDLE = "A", "H"  # an end of the annulus face; the face with the handle
 MARK_NEED = {HANDLE: 2, ANNULUS: 1}  # a holed torus is crossed twice at least, an annulus end once
 THIRD = 2  # the class of the third axis's loops in the second stage
+
+
+def piece_mark(genus: int, piece: int) -> str:
+    """The kind of a mark on a surface of genus 2 or more: the face is a boundary of the non-disc
+    piece ``piece`` (an id within the state) of genus ``genus``; each boundary of a piece carries
+    one mark.  The torus keeps :data:`ANNULUS` and :data:`HANDLE`.
+
+    >>> piece_mark(1, 0), piece_of_mark(piece_mark(1, 0)), piece_of_mark(ANNULUS), piece_of_mark(HANDLE)
+    ('g1.0', (1, '0'), (0, 'A'), (1, 'H'))
+    """
+    return f"g{genus}.{piece}"
+
+
+def piece_of_mark(kind: str) -> tuple[int, str]:
+    """The genus of the piece a mark's face bounds, and the piece's key (the two ends of the
+    torus's annulus are one piece)."""
+    if kind in (ANNULUS, HANDLE):
+        return (0 if kind == ANNULUS else 1), kind
+    genus, piece = kind[1:].split(".")
+    return int(genus), piece
+
+
+def pieces_need(kinds: Sequence[str]) -> int:
+    """Twice a lower bound on the later crossings that the pieces of these marks take (all of
+    each piece's marks given).  A piece of genus ``h`` with ``b`` boundaries cut into discs by
+    ``p`` points of its boundary and ``c`` crossings inside has ``2 - 2h - b + p/2 + c`` faces
+    (Euler's formula: each point adds an edge to the boundary and an end of an arc, each
+    crossing four ends), at least one, so ``p + 2c >= 2 (2h + b - 1)``; the torus's marks keep
+    :data:`MARK_NEED`.
+
+    >>> pieces_need(["A", "A"]), pieces_need(["H"]), pieces_need(["g1.0"]), pieces_need(["g0.3"] * 3)
+    (2, 2, 4, 4)
+    """
+    total = 0
+    pieces: dict[str, list[int]] = {}
+    for kind in kinds:
+        if kind in MARK_NEED:
+            total += MARK_NEED[kind]
+        else:
+            genus, piece = piece_of_mark(kind)
+            pieces.setdefault(piece, [genus, 0])[1] += 1
+    return total + sum(2 * (2 * genus + b - 1) for genus, b in pieces.values())
 
 
 def rot4(d: int) -> int:
@@ -152,8 +211,8 @@ class TorusArrangement:
             return t
 
         out = TorusArrangement(tuple(index[through(self.twin[d])] for d in sorted(index)))
-        if len(out.faces) != out.crossings:  # V - E + F = 0 on the torus exactly when cellular
-            raise ValueError("what is left is not cellular")
+        if len(out.faces) - out.crossings != len(self.faces) - self.crossings:
+            raise ValueError("what is left is not cellular")  # V - E + F = F - V falls unless cellular
         if out.num_loops != self.num_loops - len(loops):
             raise ValueError("a loop is left without crossings")
         return out
@@ -211,7 +270,16 @@ def _code(a: TorusArrangement, mirrored: bool, root: int, mark_sets: list[tuple[
             visit(t)
         twins.append(num[t])
     layer = tuple(a.layer[d] for d in order) if a.layer else ()
-    marks = tuple(sorted((min(num[e] for e in face), kind) for kind, face in mark_sets))
+    least = [min(num[e] for e in face) for _, face in mark_sets]
+    if all(kind in MARK_NEED for kind, _ in mark_sets):
+        marks: tuple = tuple(sorted(zip(least, (kind for kind, _ in mark_sets), strict=True)))
+    else:  # a piece is named by the least number of its boundaries
+        pieces: dict[str, int] = {}
+        for (kind, _), low in zip(mark_sets, least, strict=True):
+            key = piece_of_mark(kind)[1]
+            pieces[key] = min(pieces.get(key, low), low)
+        marks = tuple(sorted((low, piece_of_mark(kind)[0], pieces[piece_of_mark(kind)[1]])
+                             for (kind, _), low in zip(mark_sets, least, strict=True)))
     return (tuple(twins), layer, marks), order
 
 

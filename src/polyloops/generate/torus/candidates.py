@@ -42,9 +42,9 @@ def candidate_torus_arrangements(max_crossings: int, res: int = 0, mod: int = 1,
                                  on_stats: Callable[[TorusSearchStats], None] | None = None,
                                  polycubes: bool = True,
                                  bases: tuple[Sequence[bytes], TorusSearchStats] | None = None,
-                                 stage: SecondStage = SecondStage.REGIONS,
+                                 stage: SecondStage = SecondStage.REGIONS, genus: int = 1,
                                  ) -> Iterator[TorusArrangement]:
-    """Every map of genus 1 with at most ``max_crossings`` crossings that carries a polycube
+    """Every map of ``genus`` (1 or more) with at most ``max_crossings`` crossings that carries a polycube
     loop structure, once up to homeomorphism, through the two stages: each ``B`` with at most
     a third of the crossings, then its third axis by ``stage``; a map is listed from its
     canonical decomposition
@@ -60,7 +60,7 @@ def candidate_torus_arrangements(max_crossings: int, res: int = 0, mod: int = 1,
     if not polycubes and stage is not SecondStage.LOOPS:
         raise ValueError("only the loop-by-loop second stage lists maps that carry no polycube")
     stats = TorusSearchStats()
-    listed, first_stats = bases if bases is not None else first_stage(base_bound(max_crossings))
+    listed, first_stats = bases if bases is not None else first_stage(base_bound(max_crossings), genus)
     if res == 0:
         stats.add(first_stats)
     for rank, raw in enumerate(listed):

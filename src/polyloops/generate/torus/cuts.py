@@ -18,10 +18,10 @@ from dataclasses import dataclass
 from polyloops.core.disjoint_sets import DisjointSets, ParitySets
 from polyloops.core.labellings import proper_colourings
 from polyloops.generate.torus.arrangement import (
-    MARK_NEED,
     THIRD,
     TorusArrangement,
     axis_classes,
+    pieces_need,
     rot4,
     walk_forward,
 )
@@ -140,13 +140,13 @@ def facts_of(a: TorusArrangement, regions: bool, colours: int | None) -> Facts:
     """What the search knows of state ``a``: the crossings its marked faces need (and, with
     ``regions``, those its faces need to become corners of a candidate map), whether it is a
     target, and whether ``colours`` colours colour its crossing graph."""
-    needs = 0
+    needs = pieces_need([kind for kind, _ in a.marks])
     klass = axis_classes(a) if a.layer else None
+    marked = {a.face_of[d] for _, d in a.marks}
     for i, face in enumerate(a.faces):
-        kind = next((k for k, d in a.marks if a.face_of[d] == i), None)
-        if kind is not None:
-            needs += MARK_NEED[kind]
-        elif regions and klass is not None:
+        if i in marked:
+            continue
+        if regions and klass is not None:
             classes = [klass[a.loop_of[d]] for d in face]
             needs += layered_need(len(face), classes, bad_face(face, a.loop_of, a.twin))
         elif regions:

@@ -20,15 +20,46 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 from polyloops.core.halfedge import permutation_orbits
-from polyloops.generate.torus.arrangement import ANNULUS, HANDLE, MARK_NEED, THIRD, TorusArrangement
+from polyloops.generate.torus.arrangement import (
+    ANNULUS,
+    HANDLE,
+    MARK_NEED,
+    THIRD,
+    TorusArrangement,
+    piece_mark,
+    piece_of_mark,
+    pieces_need,
+)
 from polyloops.generate.torus.cuts import bad_face, face_need, layered_need
 
-__all__ = ["ROOTS", "Drawing", "connected_without", "finish_curve"]
+__all__ = ["ROOTS", "Drawing", "connected_without", "finish_curve", "roots"]
 
 ROOTS = (  # a single loop, as a point of degree 2 on it: essential, or bounding a disc
     ((1, 0), (1, 0), ((ANNULUS, 0), (ANNULUS, 1))),
     ((1, 0), (1, 0), ((HANDLE, 1),)),
 )
+
+Root = tuple[tuple[int, ...], tuple[int, ...], tuple[tuple[str, int], ...]]
+
+
+def roots(genus: int) -> tuple[Root, ...]:
+    """The single loops on a surface of ``genus``, each up to homeomorphism (a point of degree
+    2 on the loop, the faces on the left of darts 0 and 1 its two sides): one that does not
+    separate (its sides bound one piece of genus ``genus - 1``), then those that cut off a piece
+    of genus ``h`` on the side of dart 0, for ``h = 0 .. genus // 2`` (0: a disc).  On the torus,
+    :data:`ROOTS`.
+
+    >>> [marks for _, _, marks in roots(2)]
+    [(('g1.0', 0), ('g1.0', 1)), (('g2.0', 1),), (('g1.0', 0), ('g1.1', 1))]
+    """
+    if genus == 1:
+        return ROOTS
+    single = ((1, 0), (1, 0))
+    out: list[Root] = [(*single, ((piece_mark(genus - 1, 0), 0), (piece_mark(genus - 1, 0), 1)))]
+    out.append((*single, ((piece_mark(genus, 0), 1),)))
+    for h in range(1, genus // 2 + 1):
+        out.append((*single, ((piece_mark(h, 0), 0), (piece_mark(genus - h, 1), 1))))
+    return tuple(out)
 
 
 class Drawing:
@@ -94,11 +125,20 @@ class Drawing:
         regions of a candidate map."""
         marked = {d: kind for kind, d in self.marks}
         total = 0
+        pieces: dict[str, list[str]] = {}  # genus 2 or more: a piece's marks, on faces not open
+        opened: set[str] = set()  # pieces the curve is in, which it may cut yet for nothing
         for face in permutation_orbits([self.irot[t] for t in self.twin]):
-            if open_darts.intersection(face):
-                continue
             kind = next((marked[e] for e in face if e in marked), None)
-            if kind is not None:
+            general = kind is not None and kind not in MARK_NEED
+            if open_darts.intersection(face):
+                if general:
+                    assert kind is not None
+                    opened.add(piece_of_mark(kind)[1])
+                continue
+            if general:
+                assert kind is not None
+                pieces.setdefault(piece_of_mark(kind)[1], []).append(kind)
+            elif kind is not None:
                 total += MARK_NEED[kind]
             elif regions:
                 sides = [e for e in face if self.rot[self.rot[e]] != e]  # not from a point of degree 2
@@ -108,7 +148,7 @@ class Drawing:
                 else:
                     total += layered_need(len(sides), [klass[self.loop[e]] if self.loop[e] >= 0 else THIRD
                                                        for e in sides], bad)
-        return total
+        return total + sum(pieces_need(kinds) for piece, kinds in pieces.items() if piece not in opened)
 
     def snapshot(self) -> tuple:
         """The drawing as it is, for :meth:`restore`."""

@@ -16,7 +16,8 @@ final as soon as it is chosen:
 - the level graph of each axis of ``B`` is fixed by ``B`` (its zones are ``B``'s), and at genus
   1 it has at most one cycle; it can be oriented without a directed cycle exactly when the
   signs do not force every loop of the cycle to run one way round, so a region whose
-  constraints force that ends the branch;
+  constraints force that ends the branch (at genus 2 or more, a region whose constraints force
+  any cycle of it one way round);
 - the points already placed, with half the points the other regions still need, stay within
   the budget.
 
@@ -66,9 +67,53 @@ def axis_cycles(base: TorusArrangement, klass: list[int]) -> list[AxisCycle]:
             lp = base.loop_of[d]
             if klass[lp] == axis and forward[d] == 1 and lp not in arcs:
                 arcs[lp] = (zones.find(base.face_of[d]), zones.find(base.face_of[base.twin[d]]))
-        cycle = _the_cycle(arcs)
-        if cycle:
-            out.append(AxisCycle(tuple(cycle)))
+        nodes = {z for ends in arcs.values() for z in ends}
+        if len(arcs) - len(nodes) + 1 == 1:
+            cycle = _the_cycle(arcs)
+            if cycle:
+                out.append(AxisCycle(tuple(cycle)))
+        else:  # genus 2 or more: every cycle of the level graph
+            out += [AxisCycle(tuple(c)) for c in _every_cycle(arcs)]
+    return out if len(out) <= MAX_CYCLES else []
+
+
+MAX_CYCLES = 32  # the compiled search's room for cycles (_regions.c, MAXCYC); more are not cut
+
+
+def _every_cycle(arcs: dict[int, tuple[int, int]]) -> list[list[tuple[int, int]]]:
+    """Every simple cycle of a connected multigraph (an arc per loop, between its zones), each
+    walked as :func:`_the_cycle` walks the only one; found among the sums of the fundamental
+    cycles of a spanning tree (a level graph at genus ``g`` has at most ``g`` independent
+    cycles, so at most ``2^g - 1`` sums).  An empty list beyond 12 independent cycles."""
+    nodes = sorted({z for ends in arcs.values() for z in ends})
+    if len(arcs) - len(nodes) + 1 > 12:
+        return []
+    tree: dict[int, set[int]] = {nodes[0]: set()}  # zone -> the tree's arcs from the root to it
+    order = [nodes[0]]
+    for z in order:  # grows while read: breadth first
+        for lp in sorted(arcs):
+            a, b = arcs[lp]
+            other = b if z == a else a if z == b else None
+            if other is not None and other not in tree:
+                tree[other] = tree[z] | {lp}
+                order.append(other)
+    used = set().union(*tree.values())
+    fundamental = [tree[arcs[lp][0]] ^ tree[arcs[lp][1]] | {lp} for lp in sorted(arcs) if lp not in used]
+    out = []
+    for mask in range(1, 1 << len(fundamental)):
+        arcs_in: set[int] = set()
+        for i, cyc in enumerate(fundamental):
+            if mask >> i & 1:
+                arcs_in ^= cyc
+        degree: dict[int, int] = {}
+        for lp in arcs_in:
+            for z in arcs[lp]:
+                degree[z] = degree.get(z, 0) + 1
+        if any(k != 2 for k in degree.values()):
+            continue
+        walked = _walk_cycle({lp: arcs[lp] for lp in arcs_in})
+        if len(walked) == len(arcs_in):  # connected: one cycle, not several
+            out.append(walked)
     return out
 
 
@@ -89,11 +134,20 @@ def _the_cycle(arcs: dict[int, tuple[int, int]]) -> list[tuple[int, int]] | None
         if not leaves:
             break
         live = {lp: ends for lp, ends in live.items() if not (set(ends) & leaves)}
+    return _walk_cycle(live)
+
+
+def _walk_cycle(live: dict[int, tuple[int, int]]) -> list[tuple[int, int]]:
+    """The arcs of a cycle (or of the cycle through the least arc, when ``live`` holds
+    several), in order round it from the least arc's left end, each with ``+1`` when walked
+    from its left end to its right end."""
     first = min(live)
     out: list[tuple[int, int]] = []
     at, used = live[first][0], set[int]()
     while len(used) < len(live):
-        lp = next(lp for lp in sorted(live) if lp not in used and at in live[lp])
+        lp = next((lp for lp in sorted(live) if lp not in used and at in live[lp]), -1)
+        if lp < 0:
+            break  # back at the start of a cycle, with other cycles left
         left, right = live[lp]
         rho = 1 if at == left else -1
         out.append((lp, rho))

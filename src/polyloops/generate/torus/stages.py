@@ -41,6 +41,8 @@ from polyloops.generate.torus.arrangement import (
     arrangement_of_twin,
     axis_classes,
     canonical,
+    piece_mark,
+    piece_of_mark,
     regions_of_base,
     rot4,
     twin_bytes,
@@ -54,7 +56,7 @@ from polyloops.generate.torus.cuts import (
     orientable,
     zones_split_every_loop,
 )
-from polyloops.generate.torus.drawing import ROOTS, Drawing, connected_without, finish_curve
+from polyloops.generate.torus.drawing import Drawing, connected_without, finish_curve, roots
 
 __all__ = ["TorusSearchStats", "compiled_search_available", "first_stage", "forget_first_stage",
            "second_stage", "torus_arrangements", "torus_children", "two_axis_bases"]
@@ -95,7 +97,7 @@ class _ChildSearch:
     :class:`~polyloops.generate.torus.drawing.Drawing`, each step undone after its branch."""
 
     def __init__(self, parent: TorusArrangement | int, max_crossings: int, colours: int | None,
-                 regions: bool, stats: TorusSearchStats, every_start: bool = False):
+                 regions: bool, stats: TorusSearchStats, every_start: bool = False, genus: int = 1):
         self.max_crossings, self.colours, self.regions, self.stats = max_crossings, colours, regions, stats
         self.every_start = every_start  # the first stage's curves drawn from every start (a twin)
         self.layered = not isinstance(parent, int) and bool(parent.layer)
@@ -108,7 +110,7 @@ class _ChildSearch:
         twin: Sequence[int]
         marks: Sequence[tuple[str, int]]
         if isinstance(parent, int):
-            rot, twin, marks = ROOTS[parent]
+            rot, twin, marks = roots(genus)[parent]
             loop: Sequence[int] = [0, 0]
             layer: Sequence[int] = [0, 0]
             region: Sequence[int] = [0, 0]
@@ -212,6 +214,9 @@ class _ChildSearch:
         face = w.face(x)
         i = w.mark_index(face)
         kind = w.marks[i][0] if i is not None else None
+        if i is not None and kind not in (ANNULUS, HANDLE):
+            yield from self._piece_chords(x, y, i)
+            return
         snap = w.snapshot()
         if y not in set(face):  # across the annulus, from one end to the other
             assert kind == ANNULUS
@@ -230,6 +235,49 @@ class _ChildSearch:
                 w.marks[i] = (kind, a if option == "a" else b)
             yield
             w.restore(snap)
+
+    def _piece_chords(self, x: int, y: int, i: int) -> Iterator[None]:
+        """:meth:`_chords` through a piece of genus ``h`` with ``b`` boundaries (mark ``i`` on
+        the face of ``x``), on a surface of genus 2 or more.  Up to a homeomorphism of the piece
+        that keeps its boundary, an arc is fixed by what cutting along it leaves: between two
+        boundaries, one piece with one boundary fewer; from a boundary back to it, either one
+        piece of genus ``h - 1`` with one boundary more (the arc does not separate), or two
+        pieces, of genus ``h1`` and ``h - h1``, the new boundary on each side of the arc with a
+        share of the other boundaries (a piece of genus 0 with one boundary is a disc)."""
+        w = self.w
+        snap = w.snapshot()
+        h, piece = piece_of_mark(w.marks[i][0])
+        mine = [k for k, (kind, _) in enumerate(w.marks) if piece_of_mark(kind)[1] == piece]
+        rest = [m for k, m in enumerate(w.marks) if k not in mine]
+        fresh = 1 + max(int(piece_of_mark(kind)[1]) for kind, _ in w.marks)
+        if y not in set(w.face(x)):  # to another boundary of the piece: the two become one
+            j = w.mark_index(w.face(y))
+            a, _ = w.chord(x, y)
+            kept = [m for k, m in enumerate(w.marks) if k in mine and k not in (i, j)]
+            w.marks = rest + kept + ([(w.marks[i][0], a)] if h or kept else [])  # else now a disc
+            yield
+            w.restore(snap)
+            return
+        others = [k for k in mine if k != i]
+        if h >= 1:  # not separating
+            a, b = w.chord(x, y)
+            kind = piece_mark(h - 1, fresh)
+            w.marks = rest + [(kind, w.marks[k][1]) for k in others] + [(kind, a), (kind, b)]
+            yield
+            w.restore(snap)
+        for h1 in range(h + 1):
+            for mask in range(1 << len(others)):
+                a, b = w.chord(x, y)
+                sides = ([k for n, k in enumerate(others) if mask >> n & 1],
+                         [k for n, k in enumerate(others) if not mask >> n & 1])
+                marks = list(rest)
+                for genus, new, side, name in ((h1, a, sides[0], fresh), (h - h1, b, sides[1], fresh + 1)):
+                    if genus or side:  # else a disc
+                        kind = piece_mark(genus, name)
+                        marks += [(kind, w.marks[k][1]) for k in side] + [(kind, new)]
+                w.marks = marks
+                yield
+                w.restore(snap)
 
     def _keep(self, child: TorusArrangement, curve: int) -> None:
         """Keep ``child`` when it can still grow into a target and its new loop (through dart
@@ -277,6 +325,11 @@ class _ChildSearch:
         if i is not None and w.marks[i][0] == ANNULUS:
             other = next(d for k, (_, d) in enumerate(w.marks) if k != i)
             targets += w.face(other)
+        elif i is not None and w.marks[i][0] != HANDLE:  # the piece's other boundaries
+            piece = piece_of_mark(w.marks[i][0])[1]
+            for k, (kind, d) in enumerate(w.marks):
+                if k != i and piece_of_mark(kind)[1] == piece:
+                    targets += w.face(d)
         if end in targets:
             for _ in self._chords(x, end):
                 stats.closed += 1
@@ -308,11 +361,13 @@ class _ChildSearch:
 
 def torus_children(parent: TorusArrangement | int, max_crossings: int, colours: int | None = None,
                    regions: bool = False, stats: TorusSearchStats | None = None, *,
-                   every_start: bool = False) -> list[tuple[TorusArrangement, Facts]]:
+                   every_start: bool = False, genus: int = 1) -> list[tuple[TorusArrangement, Facts]]:
     """The canonical children of ``parent`` that can still grow into a target with at most
     ``max_crossings`` crossings, each once, in a fixed order.
 
-    ``parent`` is a state, or an int: the single loop, essential (0) or not (1).  A parent
+    ``parent`` is a state, or an int: the single loop, essential (0) or not (1); on a surface
+    of ``genus`` 2 or more, the single loops of :func:`~polyloops.generate.torus.drawing.roots`
+    (the Python search only).  A parent
     with a ``layer`` is in the second stage: the new loop is of the third axis, crosses no loop
     of it and each region of ``B`` at most once.  ``colours`` keeps children whose crossing
     graph is that colourable; ``regions`` counts the crossings the faces need to become corners
@@ -326,9 +381,9 @@ def torus_children(parent: TorusArrangement | int, max_crossings: int, colours: 
         if layered and regions and colours is None:
             assert not isinstance(parent, int)
             return _compiled_children(parent, max_crossings, stats)
-        if not layered and not regions and colours in (None, 2):
-            return _compiled_first_children(parent, max_crossings, colours or 0, stats)
-    return _ChildSearch(parent, max_crossings, colours, regions, stats, every_start).run()
+        if not layered and not regions and colours in (None, 2) and genus <= 4:
+            return _compiled_first_children(parent, max_crossings, colours or 0, stats, genus)
+    return _ChildSearch(parent, max_crossings, colours, regions, stats, every_start, genus).run()
 
 
 def _compiled_children(parent: TorusArrangement, max_crossings: int, stats: TorusSearchStats
@@ -362,14 +417,15 @@ def _layered_children(twin: bytes, layer: bytes, max_crossings: int, stats: Toru
 
 
 def _compiled_first_children(parent: TorusArrangement | int, max_crossings: int, colours: int,
-                             stats: TorusSearchStats) -> list[tuple[TorusArrangement, Facts]]:
+                             stats: TorusSearchStats, genus: int = 1) -> list[tuple[TorusArrangement, Facts]]:
     """:func:`torus_children` of a state of the marked search (no layer, no regions' bound), by
     the compiled search (one of each child, ordered by its code)."""
     _torus = compiled.require("torus")
     if isinstance(parent, int):
-        found, counts = _torus.first_children(b"", parent, max_crossings, colours)
+        found, counts = _torus.first_children(b"", parent, max_crossings, colours, genus)
     else:
-        found, counts = _torus.first_children(twin_bytes(parent), list(parent.marks), max_crossings, colours)
+        found, counts = _torus.first_children(twin_bytes(parent), list(parent.marks), max_crossings, colours,
+                                              genus)
     _, closed, over, rejected, uncolourable = counts
     stats.closed += closed
     stats.over_bound += over
@@ -389,37 +445,39 @@ def _compiled_first_children(parent: TorusArrangement | int, max_crossings: int,
 
 
 def torus_arrangements(max_crossings: int, colours: int | None = None, regions: bool = False,
-                       on_stats: Callable[[TorusSearchStats], None] | None = None
+                       on_stats: Callable[[TorusSearchStats], None] | None = None, genus: int = 1
                        ) -> Iterator[TorusArrangement]:
-    """Every cellular arrangement of simple loops on the torus with at most ``max_crossings``
-    crossings and a crossing graph that ``colours`` colours colour, once up to homeomorphism,
-    mirror images identified; with ``regions``, only the candidate maps (regions of 3 to 6
-    sides, none with two sides on one loop or on both sides of an edge, a simple quad mesh)."""
-    for a, _ in _targets(max_crossings, colours, regions, on_stats):
+    """Every cellular arrangement of simple loops on the torus (the surface of ``genus``) with at
+    most ``max_crossings`` crossings and a crossing graph that ``colours`` colours colour, once
+    up to homeomorphism, mirror images identified; with ``regions``, only the candidate maps
+    (regions of 3 to 6 sides, none with two sides on one loop or on both sides of an edge, a
+    simple quad mesh)."""
+    for a, _ in _targets(max_crossings, colours, regions, on_stats, genus):
         yield a
 
 
 def _targets(max_crossings: int, colours: int | None, regions: bool,
-             on_stats: Callable[[TorusSearchStats], None] | None) -> Iterator[tuple[TorusArrangement, Facts]]:
+             on_stats: Callable[[TorusSearchStats], None] | None, genus: int = 1
+             ) -> Iterator[tuple[TorusArrangement, Facts]]:
     """:func:`torus_arrangements` with what the search knows of each."""
     stats = TorusSearchStats()
-    stack: list[tuple[TorusArrangement, Facts] | int] = [1, 0]
+    stack: list[tuple[TorusArrangement, Facts] | int] = list(reversed(range(len(roots(genus)))))
     while stack:
         node = stack.pop()
         parent = node if isinstance(node, int) else node[0]
         if not isinstance(node, int) and node[1].target:
             yield node
-        stack.extend(reversed(torus_children(parent, max_crossings, colours, regions, stats)))
+        stack.extend(reversed(torus_children(parent, max_crossings, colours, regions, stats, genus=genus)))
     if on_stats:
         on_stats(stats)
 
 
-def two_axis_bases(max_crossings: int, on_stats: Callable[[TorusSearchStats], None] | None = None
-                   ) -> Iterator[TorusArrangement]:
+def two_axis_bases(max_crossings: int, on_stats: Callable[[TorusSearchStats], None] | None = None,
+                   genus: int = 1) -> Iterator[TorusArrangement]:
     """Every cellular arrangement with a bipartite crossing graph and at most ``max_crossings``
     crossings whose loops each have two different zones on their sides: the arrangements ``B``
     of the second stage."""
-    for a, facts in _targets(max_crossings, 2, False, on_stats):
+    for a, facts in _targets(max_crossings, 2, False, on_stats, genus):
         split = facts.split  # the compiled search tells; the Python one leaves it to the test here
         if split is None:
             split = zones_split_every_loop(a)
@@ -428,20 +486,20 @@ def two_axis_bases(max_crossings: int, on_stats: Callable[[TorusSearchStats], No
 
 
 @lru_cache(maxsize=4)
-def _bases(max_crossings: int, compiled: bool) -> tuple[tuple[bytes, ...], TorusSearchStats]:
+def _bases(max_crossings: int, compiled: bool, genus: int) -> tuple[tuple[bytes, ...], TorusSearchStats]:
     """:func:`two_axis_bases` (each as its ``twin`` array of uint16, compactly: 150,791 through
-    14 crossings) and the first stage's statistics, kept for the process's later shares (a
-    catalog's worker runs several)."""
+    14 crossings on the torus) and the first stage's statistics, kept for the process's later
+    shares (a catalog's worker runs several)."""
     stats = TorusSearchStats()
-    listed = two_axis_bases(max_crossings, on_stats=stats.add)
+    listed = two_axis_bases(max_crossings, on_stats=stats.add, genus=genus)
     return tuple(twin_bytes(a) for a in listed), stats
 
 
-def first_stage(max_crossings: int) -> tuple[tuple[bytes, ...], TorusSearchStats]:
-    """The arrangements ``B`` of :func:`two_axis_bases` with at most ``max_crossings``
-    crossings, each as its ``twin`` array of uint16 (bytes), and the search's statistics; kept
-    for the process's later calls (:func:`forget_first_stage` drops them)."""
-    return _bases(max_crossings, compiled_search_available())
+def first_stage(max_crossings: int, genus: int = 1) -> tuple[tuple[bytes, ...], TorusSearchStats]:
+    """The arrangements ``B`` of :func:`two_axis_bases` on the surface of ``genus`` with at most
+    ``max_crossings`` crossings, each as its ``twin`` array of uint16 (bytes), and the search's
+    statistics; kept for the process's later calls (:func:`forget_first_stage` drops them)."""
+    return _bases(max_crossings, compiled_search_available(), genus)
 
 
 def forget_first_stage() -> None:
