@@ -172,7 +172,7 @@ EDITS = {
 
 @pytest.mark.parametrize("edit", EDITS)
 def test_an_edited_genus_one_catalog_is_refused_by_every_reader(tmp_path, capsys, edit):
-    """Records cut at 40 under a summary through 44, a deleted record, a duplicated record, a
+    """Records cut at 40 under a summary through 47, a deleted record, a duplicated record, a
     record whose corners were edited: conjecture check, conjecture genus1, identify, gallery and
     query refuse the catalog (exit 1), naming what differs; no certificate is written."""
     cat = _copy(tmp_path)
