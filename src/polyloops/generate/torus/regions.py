@@ -44,9 +44,9 @@ __all__ = ["AxisCycle", "axis_cycles", "forced_one_way", "third_axis_systems"]
 
 @dataclass(frozen=True)
 class AxisCycle:
-    """The cycle of one axis's level graph in ``B``: its loops, each with ``+1`` when its
-    reference walk's right side is the next zone round the cycle (so the loop's arc runs
-    forward round the cycle exactly when ``sign * rho = +1``)."""
+    """A cycle of one axis's level graph in ``B`` (at genus 1 the only one): its loops, each
+    with ``+1`` when its reference walk's right side is the next zone round the cycle (so the
+    loop's arc runs forward round the cycle exactly when ``sign * rho = +1``)."""
 
     loops: tuple[tuple[int, int], ...]
 

@@ -367,7 +367,7 @@ def torus_children(parent: TorusArrangement | int, max_crossings: int, colours: 
 
     ``parent`` is a state, or an int: the single loop, essential (0) or not (1); on a surface
     of ``genus`` 2 or more, the single loops of :func:`~polyloops.generate.torus.drawing.roots`
-    (the Python search only).  A parent
+    (the first stage only; compiled through genus 4).  A parent
     with a ``layer`` is in the second stage: the new loop is of the third axis, crosses no loop
     of it and each region of ``B`` at most once.  ``colours`` keeps children whose crossing
     graph is that colourable; ``regions`` counts the crossings the faces need to become corners
