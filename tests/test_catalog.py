@@ -757,7 +757,7 @@ def test_a_genus_two_generator_plugs_in_by_registering_itself(tmp_path, capsys):
     register(ToyGenus2())
     try:
         top = load_example("two-axis-holes").map.num_corners
-        built = build_catalog(tmp_path / "g2", top, genus=2)
+        built = build_catalog(tmp_path / "g2", top, generator="toy-genus2", genus=2)  # beside handles
         census = read_catalog(tmp_path / "g2")
         assert built.summary["genus"] == 2 and census.genus == 2
         assert [e.name for e in census.entries] == [f"G2-{top}.1"]
