@@ -637,11 +637,15 @@ class Certificate:
 
     def check(self, catalog: Path | Census | None = None) -> CertificateCheck:
         """:func:`check_certificate` against ``catalog`` (default: the shipped catalog of the
-        certificate's genus).
+        certificate's genus).  It replays every record: for the shipped genus-1 certificate
+        (2,403 classes) about 10 s, so the example checks a catalog cut to 36 corners, which the
+        certificate claims more than, and is refused; the plain-install test checks the whole.
 
-        >>> check = read_certificate(genus=1).check()
-        >>> check.valid, check.genus, check.checked_corners >= 44
-        (True, 1, True)
+        >>> from polyloops.catalog.census import read_catalog
+        >>> small = read_catalog(genus=1).through(36)
+        >>> check = read_certificate(genus=1).check(small)
+        >>> check.valid, check.genus
+        (False, 1)
         """
         return check_certificate(self.lines, read_catalog(genus=self.genus) if catalog is None else catalog)
 
