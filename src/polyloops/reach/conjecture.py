@@ -639,7 +639,7 @@ class Certificate:
         """:func:`check_certificate` against ``catalog`` (default: the shipped catalog of the
         certificate's genus).  It replays every record: for the shipped genus-1 certificate
         (2,403 classes) about 10 s, so the example checks a catalog cut to 36 corners, which the
-        certificate claims more than, and is refused; the plain-install test checks the whole.
+        certificate claims more than, and is refused; a slow plain-install test checks the whole.
 
         >>> from polyloops.catalog.census import read_catalog
         >>> small = read_catalog(genus=1).through(36)
