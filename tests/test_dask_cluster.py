@@ -31,6 +31,9 @@ def _dies_once(item: tuple[str, int]) -> int:
     return n * n
 
 
+# Slow: in a loaded test run its restart has waited out a 30 s timeout (the catalog test below
+# kills a worker too, and runs by default).
+@pytest.mark.slow
 def test_a_worker_that_dies_mid_job_has_its_job_run_again(scheduler, tmp_path):
     from polyloops.parallel import run_jobs
 
