@@ -737,8 +737,8 @@ static int in_face(Draw *w, int d, int x)
 }
 
 /* Twice the crossings the pieces of the marks still need (cuts.pieces_need): a piece of genus h
- * with b boundaries, 2 (2h + b - 1); with ``open`` (a mark per piece, or -1), a piece with a
- * face marked open is left aside. */
+ * with b boundaries, 2 (2h + b - 1); a piece with a face marked in ``open`` (one flag a mark, or
+ * NULL for none) is left aside. */
 static int pieces_need1(int nmarks, const int *gen, const int *piece, const int *open)
 {
     int total = 0;
