@@ -53,8 +53,8 @@ class AxisCycle:
 
 def axis_cycles(base: TorusArrangement, klass: list[int]) -> list[AxisCycle]:
     """The cycles of the two level graphs of ``B`` (zones: the regions joined across the
-    other axis's edges; an arc per loop).  A level graph with more than one independent cycle
-    gets none here (nothing is cut for it)."""
+    other axis's edges; an arc per loop): every simple cycle, at most one an axis at genus 1;
+    none when there are more than :data:`MAX_CYCLES` (nothing is cut for them)."""
     forward = walk_forward(base)
     out = []
     for axis in (0, 1):
@@ -67,13 +67,7 @@ def axis_cycles(base: TorusArrangement, klass: list[int]) -> list[AxisCycle]:
             lp = base.loop_of[d]
             if klass[lp] == axis and forward[d] == 1 and lp not in arcs:
                 arcs[lp] = (zones.find(base.face_of[d]), zones.find(base.face_of[base.twin[d]]))
-        nodes = {z for ends in arcs.values() for z in ends}
-        if len(arcs) - len(nodes) + 1 == 1:
-            cycle = _the_cycle(arcs)
-            if cycle:
-                out.append(AxisCycle(tuple(cycle)))
-        else:  # genus 2 or more: every cycle of the level graph
-            out += [AxisCycle(tuple(c)) for c in _every_cycle(arcs)]
+        out += [AxisCycle(tuple(c)) for c in _every_cycle(arcs)]  # at genus 1, one at most
     return out if len(out) <= MAX_CYCLES else []
 
 
@@ -82,11 +76,11 @@ MAX_CYCLES = 32  # the compiled search's room for cycles (_regions.c, MAXCYC); m
 
 def _every_cycle(arcs: dict[int, tuple[int, int]]) -> list[list[tuple[int, int]]]:
     """Every simple cycle of a connected multigraph (an arc per loop, between its zones), each
-    walked as :func:`_the_cycle` walks the only one; found among the sums of the fundamental
-    cycles of a spanning tree (a level graph at genus ``g`` has at most ``g`` independent
+    walked by :func:`_walk_cycle`; found among the sums of the fundamental cycles of a spanning
+    tree (a level graph at genus ``g`` has at most ``g`` independent
     cycles, so at most ``2^g - 1`` sums).  An empty list beyond 12 independent cycles."""
     nodes = sorted({z for ends in arcs.values() for z in ends})
-    if len(arcs) - len(nodes) + 1 > 12:
+    if not arcs or len(arcs) - len(nodes) + 1 > 12:
         return []
     tree: dict[int, set[int]] = {nodes[0]: set()}  # zone -> the tree's arcs from the root to it
     order = [nodes[0]]
@@ -115,26 +109,6 @@ def _every_cycle(arcs: dict[int, tuple[int, int]]) -> list[list[tuple[int, int]]
         if len(walked) == len(arcs_in):  # connected: one cycle, not several
             out.append(walked)
     return out
-
-
-def _the_cycle(arcs: dict[int, tuple[int, int]]) -> list[tuple[int, int]] | None:
-    """The arcs of the only cycle of a connected multigraph with one independent cycle, each
-    with ``+1`` when it is walked from its left end to its right end; ``None`` for a tree or
-    a graph with more cycles."""
-    nodes = {z for ends in arcs.values() for z in ends}
-    if len(arcs) - len(nodes) + 1 != 1:
-        return None
-    live = dict(arcs)
-    while True:  # strip the leaves: what is left is the cycle
-        degree: dict[int, int] = {}
-        for a, b in live.values():
-            degree[a] = degree.get(a, 0) + 1
-            degree[b] = degree.get(b, 0) + 1
-        leaves = {z for z, k in degree.items() if k == 1}
-        if not leaves:
-            break
-        live = {lp: ends for lp, ends in live.items() if not (set(ends) & leaves)}
-    return _walk_cycle(live)
 
 
 def _walk_cycle(live: dict[int, tuple[int, int]]) -> list[tuple[int, int]]:
