@@ -422,7 +422,8 @@ def test_real_polycubes_are_orientable_with_any_axis_third():
     assert checked > 700
 
 
-@pytest.mark.parametrize(("n", "colours"), [(6, None), (6, 2), pytest.param(7, 2, marks=pytest.mark.slow),
+@pytest.mark.parametrize(("n", "colours"), [(5, None), (6, 2), pytest.param(6, None, marks=pytest.mark.slow),
+                                             pytest.param(7, 2, marks=pytest.mark.slow),
                                              pytest.param(8, 2, marks=pytest.mark.slow)])
 def test_each_curve_drawn_from_one_start_keeps_every_state(n, colours):
     """The first stage draws a new curve from one dart of each edge, from the least edge it
