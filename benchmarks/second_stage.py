@@ -2,8 +2,10 @@
 arrangement B, for a sample of the B of each number of crossings, at several corner budgets.
 
     python benchmarks/second_stage.py --crossings 10 12 14 --budgets 44 47
+    python benchmarks/second_stage.py --crossings 14 16 --budgets 48 --bases RUN/parts/torus-bases-16.bin
 
-The B come from the first stage through the largest of ``--crossings`` (90 s through 14), a
+The B come from the first stage through the largest of ``--crossings`` (90 s through 14), or
+from a run's spilled first stage (``--bases``: a catalog run's ``parts/torus-bases-K.bin``), a
 sample of ``--sample`` of each size drawn with ``--seed``; every B of the sample is searched at
 every budget, one process.  Prints a Markdown table: per size and budget, the mean CPU per B,
 the regions whose chords were chosen, and the third axes found
@@ -19,6 +21,7 @@ from collections import defaultdict
 
 from _common import markdown_table
 
+from polyloops.generate.torus import read_bases
 from polyloops.generate.torus.arrangement import arrangement_of_twin
 from polyloops.generate.torus.regions import third_axis_systems
 from polyloops.generate.torus.stages import TorusSearchStats, first_stage
@@ -30,8 +33,12 @@ def main() -> None:
     parser.add_argument("--budgets", type=int, nargs="+", default=[44, 47])
     parser.add_argument("--sample", type=int, default=40)
     parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--bases", help="a spilled first stage (torus-bases-K.bin, K at least the largest)")
     args = parser.parse_args()
-    bases, _ = first_stage(max(args.crossings))
+    if args.bases:
+        bases, _ = read_bases(args.bases, int(args.bases.rsplit("-", 1)[1].split(".")[0]))
+    else:
+        bases, _ = first_stage(max(args.crossings))
     by_size: dict[int, list[bytes]] = defaultdict(list)
     for raw in bases:
         by_size[len(raw) // 8].append(raw)  # four darts a crossing, two bytes a dart

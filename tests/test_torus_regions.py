@@ -188,3 +188,26 @@ def test_the_first_stage_is_spilled_once_and_read_back(tmp_path):
     spill_bases(8, tmp_path)
     read_bases.cache_clear()
     assert read_bases(str(path), 8)[0] == bases
+
+
+@needs_compiled
+@pytest.mark.parametrize(("genus", "n"), [(1, 32), pytest.param(2, 27, marks=pytest.mark.slow)])
+def test_listed_options_and_direct_walks_give_the_same_search(genus, n, monkeypatch):
+    """The compiled search lists a region's options once for each numbering of its sides and
+    reuses them (``_regions.c``); walking every region directly instead (no option listed), or
+    listing only short lists, gives the same third axes in the same order and the same regions
+    cut (only the counts of options cut by the signs may differ)."""
+    from polyloops.core import compiled
+
+    module = compiled.require("regions")
+    systems = module.systems
+    bases = list(two_axis_bases(base_bound(n), genus=genus))
+    seen = []
+    for most in (regions.LISTED_OPTIONS, 0, 3):
+        monkeypatch.setattr(module, "systems", lambda spec, _=0, most=most: systems(spec, most))
+        stats = TorusSearchStats()
+        out = [(rank, *found) for rank, base in enumerate(bases)
+               for found in regions.third_axis_systems(base, n, stats)]
+        seen.append((out, stats.region_choices, stats.over_bound, stats.third_axes))
+    assert seen[0] == seen[1] == seen[2]
+    assert seen[0][1] > 0 and (genus == 2 or seen[0][0])  # regions chosen; genus-1 polycubes found

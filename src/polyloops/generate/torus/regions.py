@@ -72,6 +72,7 @@ def axis_cycles(base: TorusArrangement, klass: list[int]) -> list[AxisCycle]:
 
 
 MAX_CYCLES = 32  # the compiled search's room for cycles (_regions.c, MAXCYC); more are not cut
+LISTED_OPTIONS = 50_000  # the compiled search lists a region's options for a numbering up to this many
 
 
 def _every_cycle(arcs: dict[int, tuple[int, int]]) -> list[list[tuple[int, int]]]:
@@ -191,7 +192,8 @@ def third_axis_systems(base: TorusArrangement, max_crossings: int, stats: TorusS
     ``(twin, layer)`` of the whole arrangement (``B``'s darts first, then four darts a new
     crossing), before the final test.  With ``cut_one_way`` false the level-graph cut is left
     out (for the tests).  Runs in C when the compiled part ``regions`` is in use
-    (:mod:`polyloops.core.compiled`)."""
+    (:mod:`polyloops.core.compiled`), which lists a region's options once for each numbering of
+    its sides (the same third axes and regions chosen; ``docs/searches.md``)."""
     stats = stats if stats is not None else TorusSearchStats()
     if max_crossings < base.crossings:
         return
@@ -224,7 +226,11 @@ def _compiled_systems(base: TorusArrangement, max_crossings: int, setup: _Setup,
         spec.append(len(cycle.loops))
         for lp, rho in cycle.loops:
             spec += [lp, rho]
-    found, counts = _regions.systems(array.array("i", spec).tobytes())
+    # Each numbering of a region met again reuses its listed options (_regions.c); at genus 2
+    # the level graphs' cycles cut most options early and numberings seldom recur, so walking
+    # directly is faster there (measured: a quarter of the time or less with 32 and 34 crossings).
+    genus = (2 + base.crossings - len(base.faces)) // 2
+    found, counts = _regions.systems(array.array("i", spec).tobytes(), LISTED_OPTIONS if genus == 1 else 0)
     for name, value in zip(("region_choices", "over_bound", "inconsistent_sides", "one_way", "closed",
                             "third_axes"), counts, strict=True):
         setattr(stats, name, getattr(stats, name) + value)
