@@ -220,13 +220,22 @@ def test_special_files_do_not_hang(tmp_path):
         assert done.returncode == 2 and "not a regular file" in done.stderr
 
 
+def _children(pid: int) -> list[str]:
+    ps = subprocess.run(["ps", "-o", "pid=", "--ppid", str(pid)], capture_output=True, text=True).stdout
+    return ps.split()
+
+
 def test_terminated_write_leaves_no_temporary_file(tmp_path):
     """SIGTERM during a long catalog run: workers stop and no temporary file is left."""
     out = tmp_path / "c"
     proc = subprocess.Popen([sys.executable, "-m", "polyloops", "catalog", "--max-corners", "32",
                              "--workers", "2", "-o", str(out)], stdout=subprocess.DEVNULL,
                             stderr=subprocess.PIPE, stdin=subprocess.DEVNULL)
-    time.sleep(2)  # the run is under way: its workers started
+    deadline = time.monotonic() + 30
+    while time.monotonic() < deadline and not _children(proc.pid):  # its workers started
+        time.sleep(0.1)
+    assert _children(proc.pid), "the run started no workers"
+    time.sleep(0.5)  # and are at work
     proc.terminate()
     proc.wait(timeout=30)
     assert proc.returncode == 130
