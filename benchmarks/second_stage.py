@@ -16,11 +16,14 @@ from __future__ import annotations
 
 import argparse
 import random
+import re
 import time
 from collections import defaultdict
+from pathlib import Path
 
 from _common import markdown_table
 
+from polyloops.generate.spill import SpillMismatch
 from polyloops.generate.torus import read_bases
 from polyloops.generate.torus.arrangement import arrangement_of_twin
 from polyloops.generate.torus.regions import third_axis_systems
@@ -36,7 +39,13 @@ def main() -> None:
     parser.add_argument("--bases", help="a spilled first stage (torus-bases-K.bin, K at least the largest)")
     args = parser.parse_args()
     if args.bases:
-        bases, _ = read_bases(args.bases, int(args.bases.rsplit("-", 1)[1].split(".")[0]))
+        size = re.fullmatch(r"torus-bases-(\d+)\.bin", Path(args.bases).name)
+        if size is None:
+            parser.error(f"{args.bases}: not a spilled first stage (torus-bases-K.bin)")
+        try:
+            bases, _ = read_bases(args.bases, int(size[1]))
+        except SpillMismatch as exc:
+            parser.error(str(exc))
     else:
         bases, _ = first_stage(max(args.crossings))
     by_size: dict[int, list[bytes]] = defaultdict(list)
