@@ -166,6 +166,12 @@ class TorusArrangement:
         """The number of loops."""
         return max(self.loop_of, default=-1) + 1
 
+    @property
+    def genus(self) -> int:
+        """The genus of the surface a cellular arrangement lies on (``V - E + F = 2 - 2g``, with
+        ``E = 2V``), without building its quad mesh."""
+        return (2 + self.crossings - len(self.faces)) // 2
+
     def loop_crossings(self) -> list[int]:
         """Per loop, its number of crossings."""
         out = [0] * self.num_loops

@@ -229,8 +229,8 @@ def _compiled_systems(base: TorusArrangement, max_crossings: int, setup: _Setup,
     # Each numbering of a region met again reuses its listed options (_regions.c); at genus 2
     # the level graphs' cycles cut most options early and numberings seldom recur, so walking
     # directly is faster there (measured: a quarter of the time or less with 32 and 34 crossings).
-    genus = (2 + base.crossings - len(base.faces)) // 2
-    found, counts = _regions.systems(array.array("i", spec).tobytes(), LISTED_OPTIONS if genus == 1 else 0)
+    listed = LISTED_OPTIONS if base.genus == 1 else 0
+    found, counts = _regions.systems(array.array("i", spec).tobytes(), listed)
     for name, value in zip(("region_choices", "over_bound", "inconsistent_sides", "one_way", "closed",
                             "third_axes"), counts, strict=True):
         setattr(stats, name, getattr(stats, name) + value)
