@@ -92,7 +92,11 @@ def ship(run: Path, into: Path = SHIPPED, slack: int = 10, workers: int = 1) -> 
     (into / "catalog.sqlite").unlink(missing_ok=True)
     write_atomic(into / "summary.json", json.dumps(shipped_summary(summary, into), indent=1) + "\n")
     top = max(int(n) for n in summary["counts"])
-    result = settle_catalog(into, top, slack, workers)
+    from tqdm import tqdm
+
+    total = sum(int(row["full"]) for row in summary["counts"].values())
+    with tqdm(total=total, desc="certificate", unit="class", disable=None, file=sys.stderr) as bar:
+        result = settle_catalog(into, top, slack, workers, progress=lambda _: bar.update(1))
     lines = list(certificate_lines(result))
     check = check_certificate(lines, into)
     if not check.valid:
