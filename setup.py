@@ -19,6 +19,8 @@ INSTEAD = {
                "the genus-1 search runs in Python (the same records, much slower)"),
     "_regions": ("the compiled region search of the torus",
                  "the genus-1 second stage runs in Python (the same records, much slower)"),
+    "_squares": ("the compiled first stage of the torus search",
+                 "the two-axis arrangements are listed in Python (the same records, much slower)"),
     "_canonical": ("the compiled canonical form",
                    "canonical forms of small structures are computed in Python (the same forms, slower)"),
     "_cycles": ("the compiled count of additions",
@@ -52,7 +54,8 @@ setup(
     ext_modules=[Extension(f"polyloops.{name.replace('/', '.')}", [f"src/polyloops/{name}.c"],
                            extra_compile_args=["-O2"], optional=True)
                  for name in ("generate/plantri/_strips", "generate/loops/_arrangements",
-                              "generate/torus/_torus", "generate/torus/_regions", "core/_canonical",
+                              "generate/torus/_torus", "generate/torus/_regions", "generate/torus/_squares",
+                              "core/_canonical",
                               "core/_cycles", "render/_raster")],
     cmdclass={"build_ext": OptionalBuildExt},
 )

@@ -1,4 +1,4 @@
-"""The switchboard of the compiled parts: one table of the seven C extensions, whether each was
+"""The switchboard of the compiled parts: one table of the eight C extensions, whether each was
 built, whether it is in use, and one way to run their Python twins instead.
 
 Each part is optional (``pip install`` builds it when a C compiler and the Python headers are
@@ -9,7 +9,7 @@ separated by commas: ``POLYLOOPS_PURE_PYTHON=canonical,torus``), or inside
 the catalog runs plantri's generator (the same records).
 
 >>> [part.name for part in PARTS.values()]
-['canonical', 'cycles', 'raster', 'strips', 'arrangements', 'torus', 'regions']
+['canonical', 'cycles', 'raster', 'strips', 'arrangements', 'torus', 'regions', 'squares']
 >>> with pure_python("canonical"):
 ...     in_use("canonical")
 False
@@ -63,6 +63,8 @@ PARTS: dict[str, CompiledPart] = {part.name: part for part in (
                  "the Python torus search (polyloops.generate.torus.stages)"),
     CompiledPart("regions", "polyloops.generate.torus._regions", "the torus search's region search",
                  "the Python region search (polyloops.generate.torus.regions)"),
+    CompiledPart("squares", "polyloops.generate.torus._squares", "the torus search's first stage",
+                 "the Python listing of square-tiled surfaces (polyloops.generate.torus.squares)"),
 )}
 
 _forced: list[frozenset[str]] = []  # the names pure_python() blocks force, innermost last

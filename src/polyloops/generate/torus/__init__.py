@@ -123,7 +123,9 @@ def bases_tag(max_crossings: int, genus: int = 1) -> Any:
     """What a spilled first stage must be to serve a run of ``genus`` to ``max_crossings``."""
     from polyloops.generate.spill import SpillTag
 
-    return SpillTag(_bases_name(genus), {"schema": SPILL_VERSION}, max_crossings)
+    # "listing": the first stage as square-tiled surfaces (the same B as the marked search that
+    # listed the files before it, in another order and with other statistics: listed again)
+    return SpillTag(_bases_name(genus), {"schema": SPILL_VERSION, "listing": "squares"}, max_crossings)
 
 
 def spill_bases(max_crossings: int, where: Path, genus: int = 1) -> Path:

@@ -487,19 +487,30 @@ def two_axis_bases(max_crossings: int, on_stats: Callable[[TorusSearchStats], No
 
 @lru_cache(maxsize=4)
 def _bases(max_crossings: int, compiled: bool, genus: int) -> tuple[tuple[bytes, ...], TorusSearchStats]:
-    """:func:`two_axis_bases` (each as its ``twin`` array of uint16, compactly: 150,791 through
-    14 crossings on the torus) and the first stage's statistics, kept for the process's later
-    shares (a catalog's worker runs several)."""
+    """:func:`first_stage` (each ``B`` as its ``twin`` array of uint16, compactly: 2,755,639 through
+    16 crossings on the torus), kept for the process's later shares (a catalog's worker runs
+    several).  ``compiled`` only keys the cache: the part in use lists the same ``B``."""
+    from polyloops.generate.torus.squares import square_bases
+
     stats = TorusSearchStats()
-    listed = two_axis_bases(max_crossings, on_stats=stats.add, genus=genus)
-    return tuple(twin_bytes(a) for a in listed), stats
+    listed: list[bytes] = []
+    for n in range(1, max_crossings + 1):
+        twins, counts = square_bases(n, genus)
+        listed.extend(twins)
+        stats.add(TorusSearchStats(closed=counts.leaves, not_canonical=counts.not_canonical,
+                                   states=counts.nodes, targets=len(twins)))
+    return tuple(listed), stats
 
 
 def first_stage(max_crossings: int, genus: int = 1) -> tuple[tuple[bytes, ...], TorusSearchStats]:
     """The arrangements ``B`` of :func:`two_axis_bases` on the surface of ``genus`` with at most
-    ``max_crossings`` crossings, each as its ``twin`` array of uint16 (bytes), and the search's
-    statistics; kept for the process's later calls (:func:`forget_first_stage` drops them)."""
-    return _bases(max_crossings, compiled_search_available(), genus)
+    ``max_crossings`` crossings, by crossings, each as its ``twin`` array of uint16 (bytes), and
+    the search's statistics (``states``: its nodes, ``closed``: its closed surfaces,
+    ``targets``: the ``B``); kept for the process's later calls (:func:`forget_first_stage` drops
+    them).  They are listed directly as square-tiled surfaces
+    (:func:`~polyloops.generate.torus.squares.square_bases`), not by the marked search of
+    :func:`two_axis_bases`, which lists the same arrangements (tested) far more slowly."""
+    return _bases(max_crossings, compiled.in_use("squares"), genus)
 
 
 def forget_first_stage() -> None:
