@@ -97,6 +97,7 @@ def test_each_listed_arrangement_is_a_base(genus, n):
         assert all((d ^ a.twin[d]) & 1 == 0 for d in range(4 * n))
         assert len(a.faces) == n + 2 - 2 * genus
         assert zones_split_every_loop(a) and bipartite(a)
+    assert stats.kept == len(twins)
     assert square_bases(n, genus, keep=False) == ([], stats)
 
 

@@ -59,10 +59,11 @@ __all__ = ["SquareStats", "square_bases"]
 
 @dataclass(frozen=True)
 class SquareStats:
-    """What a listing did: nodes of the search, leaves (closed surfaces with every square),
-    leaves of a lower genus than the target, branches ended as not canonical, and (in a share)
-    the subtrees split among the shares."""
+    """What a listing did: the ``B`` it found, nodes of the search, leaves (closed surfaces with
+    every square), leaves of a lower genus than the target, branches ended as not canonical,
+    and (in a share) the subtrees split among the shares."""
 
+    kept: int = 0
     nodes: int = 0
     leaves: int = 0
     lower_genus: int = 0
@@ -76,11 +77,13 @@ def square_bases(crossings: int, genus: int, res: int = 0, mod: int = 1, split: 
     ``twin`` array of uint16 (bytes), and the search's statistics.  With ``mod > 1``, share
     ``res``: the subtrees met when ``split`` edges are joined (6 unless given; all of them
     when there are fewer) are dealt round the shares.  Without ``keep`` the list is empty and
-    only the statistics are counted (``leaves - lower_genus - kept``: see :class:`SquareStats`).
+    only the statistics are counted (:class:`SquareStats`, ``kept`` among them).
 
     >>> twins, stats = square_bases(4, 1)
-    >>> [list(array.array("H", t)) for t in twins]  # the torus cut by one loop of each class
-    [[2, 7, 0, 9, 14, 11, 12, 1, 10, 3, 8, 5, 6, 15, 4, 13]]
+    >>> [list(array.array("H", t)) for t in twins]  # two loops of each class, crossing twice each
+    [[6, 11, 4, 9, 2, 15, 0, 13, 14, 3, 12, 1, 10, 7, 8, 5]]
+    >>> stats.kept, stats.nodes
+    (1, 36)
     """
     if not 1 <= crossings <= 24 or genus < 0 or not 0 <= res < mod:
         raise ValueError("crossings 1..24, genus >= 0, 0 <= res < mod")
@@ -89,12 +92,13 @@ def square_bases(crossings: int, genus: int, res: int = 0, mod: int = 1, split: 
     part = compiled.load("squares")
     if part is not None:
         found, counts = part.bases(crossings, genus, res, mod, split, keep)
-        twins = found if keep else []
-        return twins, SquareStats(*counts)
+        if keep:
+            return found, SquareStats(len(found), *counts)
+        return [], SquareStats(found, *counts)
     search = _Search(crossings, genus, res, mod, split, keep)
     search.run()
-    return search.out, SquareStats(search.nodes, search.leaves, search.lower_genus, search.not_canonical,
-                                   search.seen)
+    return search.out, SquareStats(search.kept, search.nodes, search.leaves, search.lower_genus,
+                                   search.not_canonical, search.seen)
 
 
 def _rot(d: int) -> int:
@@ -122,7 +126,7 @@ class _Search:
         # zones as unions of corners, per class (see _squares.c): parents, undone by history
         self.up: list[list[int]] = [[], []]
         self.history: list[tuple[int, int, int]] = []
-        self.nodes = self.leaves = self.lower_genus = self.not_canonical = self.seen = 0
+        self.kept = self.nodes = self.leaves = self.lower_genus = self.not_canonical = self.seen = 0
         self.out: list[bytes] = []
 
     @property
@@ -265,8 +269,10 @@ class _Search:
             self.lower_genus += 1
         elif not self._canonical_so_far(4 * self.n):
             self.not_canonical += 1
-        elif self.keep:
-            self.out.append(array.array("H", self.tw).tobytes())
+        else:
+            self.kept += 1
+            if self.keep:
+                self.out.append(array.array("H", self.tw).tobytes())
 
     def _search(self, d: int) -> None:
         self.nodes += 1

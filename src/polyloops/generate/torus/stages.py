@@ -498,7 +498,7 @@ def _bases(max_crossings: int, compiled: bool, genus: int) -> tuple[tuple[bytes,
         twins, counts = square_bases(n, genus)
         listed.extend(twins)
         stats.add(TorusSearchStats(closed=counts.leaves, not_canonical=counts.not_canonical,
-                                   states=counts.nodes, targets=len(twins)))
+                                   states=counts.nodes, targets=counts.kept))
     return tuple(listed), stats
 
 
