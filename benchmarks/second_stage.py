@@ -1,13 +1,18 @@
-"""The genus-1 second stage by budget: the CPU the region search spends on a two-axis
-arrangement B, for a sample of the B of each number of crossings, at several corner budgets.
+"""The second stage by budget: the CPU the region search spends on a two-axis arrangement B,
+for a sample of the B of each number of crossings, at several corner budgets.
 
     python benchmarks/second_stage.py --crossings 10 12 14 --budgets 44 47
     python benchmarks/second_stage.py --crossings 14 16 --budgets 48 --bases RUN/parts/torus-bases-16.bin
+    python benchmarks/second_stage.py --genus 2 --crossings 12 14 16 --budgets 42 47 48 --sample 60 --thin 500
 
-The B come from the first stage through the largest of ``--crossings`` (90 s through 14), or
-from a run's spilled first stage (``--bases``: a catalog run's ``parts/torus-bases-K.bin``), a
-sample of ``--sample`` of each size drawn with ``--seed``; every B of the sample is searched at
-every budget, one process.  Prints a Markdown table: per size and budget, the mean CPU per B,
+The B (of ``--genus``, 1 unless given) come from the first stage (seconds through 14
+crossings), or from a run's spilled first stage (``--bases``: a catalog run's
+``parts/torus-bases-K.bin``, or ``genusG-bases-K.bin``), a sample of ``--sample`` of each size
+drawn with ``--seed``; with ``--thin K`` the sample of each size is drawn from one share in K
+of the listing (share ``seed`` mod K: 13.9 million B of 16 crossings at genus 2 need not all be
+held).  Every B of the sample is searched at every budget (in corners: a map of genus g with N
+corners has N + 2g - 2 crossings), one process.  Prints a Markdown table: per size and budget,
+the mean CPU per B,
 the regions whose chords were chosen, and the third axes found
 (:func:`~polyloops.generate.torus.regions.third_axis_systems`).
 """
@@ -27,7 +32,8 @@ from polyloops.generate.spill import SpillMismatch
 from polyloops.generate.torus import read_bases
 from polyloops.generate.torus.arrangement import arrangement_of_twin
 from polyloops.generate.torus.regions import third_axis_systems
-from polyloops.generate.torus.stages import TorusSearchStats, first_stage
+from polyloops.generate.torus.squares import square_bases
+from polyloops.generate.torus.stages import TorusSearchStats
 
 
 def main() -> None:
@@ -36,32 +42,41 @@ def main() -> None:
     parser.add_argument("--budgets", type=int, nargs="+", default=[44, 47])
     parser.add_argument("--sample", type=int, default=40)
     parser.add_argument("--seed", type=int, default=1)
-    parser.add_argument("--bases", help="a spilled first stage (torus-bases-K.bin, K at least the largest)")
+    parser.add_argument("--genus", type=int, default=1)
+    parser.add_argument("--thin", type=int, default=1, metavar="K", help="sample from one share in K")
+    parser.add_argument("--bases", help="a spilled first stage (torus-bases-K.bin or genusG-bases-K.bin, "
+                                        "K at least the largest)")
     args = parser.parse_args()
+    if args.genus < 1 or args.thin < 1:
+        parser.error("--genus and --thin must be 1 or more")
+    extra = 2 * (args.genus - 1)  # crossings beyond the corners
     if args.bases:
-        size = re.fullmatch(r"torus-bases-(\d+)\.bin", Path(args.bases).name)
+        name = "torus-bases" if args.genus == 1 else f"genus{args.genus}-bases"
+        size = re.fullmatch(name + r"-(\d+)\.bin", Path(args.bases).name)
         if size is None:
-            parser.error(f"{args.bases}: not a spilled first stage (torus-bases-K.bin)")
+            parser.error(f"{args.bases}: not a spilled first stage of genus {args.genus} ({name}-K.bin)")
         try:
-            bases, _ = read_bases(args.bases, int(size[1]))
+            bases, _ = read_bases(args.bases, int(size[1]), args.genus)
         except SpillMismatch as exc:
             parser.error(str(exc))
-    else:
-        bases, _ = first_stage(max(args.crossings))
     by_size: dict[int, list[bytes]] = defaultdict(list)
-    for raw in bases:
-        by_size[len(raw) // 8].append(raw)  # four darts a crossing, two bytes a dart
+    if args.bases:
+        for raw in bases:
+            by_size[len(raw) // 8].append(raw)  # four darts a crossing, two bytes a dart
+    else:
+        for c in args.crossings:
+            by_size[c] = square_bases(c, args.genus, args.seed % args.thin, args.thin)[0]
     rng = random.Random(args.seed)
     rows: list[list[object]] = []
     for c in args.crossings:
         pick = rng.sample(by_size[c], min(args.sample, len(by_size[c])))
         for budget in args.budgets:
-            if 3 * c > budget:
+            if 3 * c > budget + extra:
                 continue
             stats, found = TorusSearchStats(), 0
             start = time.process_time()
             for raw in pick:
-                found += sum(1 for _ in third_axis_systems(arrangement_of_twin(raw), budget, stats))
+                found += sum(1 for _ in third_axis_systems(arrangement_of_twin(raw), budget + extra, stats))
             cpu = time.process_time() - start
             rows.append([c, budget, len(pick), f"{1000 * cpu / max(len(pick), 1):.1f}",
                          stats.region_choices // max(len(pick), 1), found])
