@@ -189,3 +189,42 @@ def test_a_summary_cut_short_over_all_the_records_is_no_catalog(tmp_path, capsys
     (cat / "summary.json").write_text(json.dumps(summary))
     status, _, err = run(capsys, "conjecture", "check", str(CERT), "--catalog", str(cat))
     assert status == 1 and "records with 26 corners, which the summary does not count" in err
+
+
+def test_a_journal_resumes_a_stopped_certificate(tmp_path, monkeypatch):
+    """With a journal, the records already settled are taken from it (a line cut short is
+    settled again), the result is the one without it, and another run's journal is replaced."""
+    from polyloops.reach import conjecture
+
+    cat = small_catalog(22)
+    plain = list(certificate_lines(settle_catalog(cat, 22, 6)))
+    journal = tmp_path / "journal.jsonl"
+    assert list(certificate_lines(settle_catalog(cat, 22, 6, journal=journal))) == plain
+    lines = journal.read_text().splitlines()
+    assert len(lines) == len(plain)  # the header and one line a class
+    journal.write_text("\n".join(lines[:4]) + "\n" + lines[4][:20])  # stopped mid-line
+    calls = []
+    real = conjecture.settle
+    monkeypatch.setattr(conjecture, "settle", lambda *a, **k: calls.append(a[0]) or real(*a, **k))
+    assert list(certificate_lines(settle_catalog(cat, 22, 6, journal=journal))) == plain
+    assert len(calls) == len(plain) - 4  # three taken from the journal
+    calls.clear()
+    settle_catalog(cat, 22, 4, journal=journal)  # another slack: the journal is not this run's
+    assert len(calls) == len(plain) - 1
+    assert json.loads(journal.read_text().splitlines()[0])["slack"] == 4
+
+
+def test_the_command_keeps_its_journal_only_while_it_runs(tmp_path, capsys):
+    cert = tmp_path / "c.jsonl"
+    status, _, _ = run(capsys, "conjecture", "genus0", "--catalog", str(small_catalog(22)), "--max-corners",
+                       "16", "--slack", "4", "-o", str(cert))
+    assert status == 0 and cert.exists() and not (tmp_path / "c.jsonl.journal").exists()
+
+
+def test_records_read_back_as_written():
+    from polyloops.reach.conjecture import ClassRecord
+
+    for path in (CERT, REAL.parent / "genus1" / "reachability-certificate.jsonl"):
+        for line in path.read_text().splitlines()[1:]:
+            data = json.loads(line)
+            assert ClassRecord.from_json(data).to_json() == data

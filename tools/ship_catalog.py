@@ -96,7 +96,9 @@ def ship(run: Path, into: Path = SHIPPED, slack: int = 10, workers: int = 1) -> 
 
     total = sum(int(row["full"]) for row in summary["counts"].values())
     with tqdm(total=total, desc="certificate", unit="class", disable=None, file=sys.stderr) as bar:
-        result = settle_catalog(into, top, slack, workers, progress=lambda _: bar.update(1))
+        # the classes settled so far, kept in the run's parts: a stopped ship resumes
+        result = settle_catalog(into, top, slack, workers, progress=lambda _: bar.update(1),
+                                journal=run / "parts" / "settle-journal.jsonl")
     lines = list(certificate_lines(result))
     check = check_certificate(lines, into)
     if not check.valid:

@@ -170,15 +170,22 @@ def cmd_conjecture_settle(args: argparse.Namespace) -> int:
                        f"only through {covered} corners; extend it first (polyloops catalog)")
     if args.slack < 2:
         raise CliError("--slack must be at least 2")
+    # Each class settled goes to CERT.journal as it is settled: a stopped run, started again
+    # with the same catalog, range and slack, resumes from it; it goes once CERT is written.
+    journal = None if args.output == "-" else Path(args.output).with_name(Path(args.output).name + ".journal")
     bar = tqdm(total=total, desc=args.which, unit="class", disable=None, file=sys.stderr)
     try:
         result = settle_catalog(census.directory, args.max_corners, args.slack, args.workers, args.dask,
-                                progress=lambda _: bar.update(1))
+                                progress=lambda _: bar.update(1), journal=journal)
     except (CatalogError, ConjectureError) as err:
         raise CliError(str(err), getattr(err, "status", 2)) from None
+    except OSError as err:
+        raise CliError(f"{journal}: cannot keep the journal there ({err.strerror or err})") from None
     finally:
         bar.close()
     write_text(args.output, "\n".join(certificate_lines(result)) + "\n")
+    if journal is not None:
+        journal.unlink(missing_ok=True)
     data = result.to_json()
     lines = ["corners  classes  irreducible  settled  largest detour (extra corners, moves)"]
     orientation = None
@@ -289,7 +296,9 @@ def add_commands(command: AddCommand) -> None:
         g.add_argument("--max-corners", type=count_arg(8), required=True, metavar="N")
         g.add_argument("--slack", type=count_arg(2), default=10, metavar="K",
                        help="detours may go up to K corners above the class (tried 2, 4, ..., K; default 10)")
-        g.add_argument("-o", "--output", required=True, metavar="CERT", help="the certificate (JSON lines)")
+        g.add_argument("-o", "--output", required=True, metavar="CERT",
+                       help="the certificate (JSON lines); CERT.journal keeps the classes settled so far, "
+                       "so that a stopped run started again resumes")
         g.add_argument("--workers", type=count_arg(1, MAX_WORKERS), default=1, metavar="K",
                        help="local worker processes")
         g.add_argument("--dask", metavar="ADDRESS", help="a Dask cluster (an address, or local)")

@@ -149,6 +149,17 @@ class ClassRecord:
             out["unsettled"] = True
         return out
 
+    @classmethod
+    def from_json(cls, data: dict[str, Any]) -> ClassRecord:
+        """The record :meth:`to_json` wrote (not checked: :func:`check_certificate` checks)."""
+        detour = data.get("detour")
+        return cls(data["signature"], data["corners"], base=bool(data.get("base")),
+                   removable=data.get("removable"),
+                   detour=[Move.from_json(m) for m in detour["moves"]] if detour else None,
+                   slack=detour["slack"] if detour else None,
+                   max_corners=detour["max_corners"] if detour else None,
+                   orientation=data.get("orientation"))
+
 
 def settle(signature: str, slack: int, *, base: bool = False, target: str | None = None,
            orientation: str | None = None) -> ClassRecord:
@@ -295,8 +306,14 @@ def catalog_signatures(directory: Path | Census, max_corners: int) -> list[tuple
 
 def settle_catalog(directory: Path, max_corners: int, slack: int, workers: int = 1,
                    dask: str | None = None,
-                   progress: Callable[[ClassRecord], None] | None = None) -> ConjectureResult:
+                   progress: Callable[[ClassRecord], None] | None = None,
+                   journal: Path | None = None) -> ConjectureResult:
     """Settle every class of the catalog with at most ``max_corners`` corners.
+
+    With a ``journal`` (a file), each class's record is appended there as it is settled, and
+    a later call with the same catalog, range and slack takes the records it holds instead of
+    settling those classes again (a stopped run resumes; the journal's first line names the
+    catalog by its digest, so another run's journal is started afresh).
 
     Raises
     ------
@@ -325,11 +342,53 @@ def settle_catalog(directory: Path, max_corners: int, slack: int, workers: int =
                        target=bases[types[sig]] if n == lowest[types[sig]] else None, orientation=types[sig])
                  for sig, n in classes]
     result = ConjectureResult(max_corners, slack, genus=genus)
-    for record in run_jobs(_settle_job, tasks, workers, dask):
-        result.records.append(record)
+    done = _Journal(journal, census, max_corners, slack) if journal is not None else None
+    known = done.records if done is not None else {}
+    for record in known.values():
         if progress:
             progress(record)
+    fresh = iter(run_jobs(_settle_job, [t for t in tasks if t.signature not in known], workers, dask))
+    for task in tasks:
+        record = known.get(task.signature) or next(fresh)
+        if task.signature not in known:
+            if done is not None:
+                done.add(record)
+            if progress:
+                progress(record)
+        result.records.append(record)
+    next(fresh, None)  # lets the pool close
     return result
+
+
+class _Journal:
+    """The records :func:`settle_catalog` has settled so far, one JSON line each after a
+    header naming the catalog (its records' digest), the range and the slack."""
+
+    def __init__(self, path: Path, census: Census, max_corners: int, slack: int):
+        from polyloops.catalog.run import file_digest
+
+        self.path = path
+        self.header = json.dumps({"polyloops": 1, "kind": "settle-journal", "genus": census.genus,
+                                  "catalog": file_digest(census.directory / "catalog.jsonl"),
+                                  "max_corners": max_corners, "slack": slack})
+        self.records: dict[str, ClassRecord] = {}
+        lines = path.read_text().splitlines() if path.is_file() else []
+        if lines and lines[0] == self.header:
+            for line in lines[1:]:
+                try:
+                    record = ClassRecord.from_json(json.loads(line))
+                except (ValueError, KeyError, TypeError):
+                    break  # a line cut short when the run stopped: settled again
+                self.records[record.signature] = record
+        from polyloops.io.files import write_atomic
+
+        # what was read back, whole lines only, then each new record appended
+        write_atomic(path, "\n".join([self.header, *(json.dumps(r.to_json()) for r in self.records.values())])
+                     + "\n")
+
+    def add(self, record: ClassRecord) -> None:
+        with self.path.open("a") as out:
+            out.write(json.dumps(record.to_json()) + "\n")
 
 
 def certificate_lines(result: ConjectureResult) -> Iterator[str]:
