@@ -279,7 +279,7 @@ static PyObject *bases(PyObject *self, PyObject *args) {
     if (!s) return PyErr_NoMemory();
     s->n = n; s->genus = genus; s->faces = n + 2 - 2 * genus;
     s->res = res; s->mod = mod;
-    s->split = mod > 1 ? 2 * (split >= 0 ? split : (n < 6 ? n : 6)) : -1;
+    s->split = mod > 1 ? 2 * (split >= 0 ? split : n) : -1;
     if (keep && !(s->out = PyList_New(0))) { free(s); return NULL; }
     if (s->faces >= 1) {
         add_square(s);
@@ -298,7 +298,7 @@ static PyMethodDef methods[] = {
      "bases(crossings, genus, res=0, mod=1, split=-1, keep=True) -> (twins, (nodes, leaves, lower genus,\n"
      "not canonical, subtrees)): every two-axis arrangement B of that genus with that many crossings, each\n"
      "once (its twin array as uint16 bytes; their number when not keep); with mod > 1, the share res of\n"
-     "the subtrees met with `split` edges joined (6 unless given)"},
+     "the subtrees met with `split` edges joined (as many as the crossings unless given)"},
     {NULL, NULL, 0, NULL},
 };
 

@@ -75,8 +75,8 @@ def square_bases(crossings: int, genus: int, res: int = 0, mod: int = 1, split: 
                  keep: bool = True) -> tuple[list[bytes], SquareStats]:
     """Every ``B`` with ``crossings`` crossings on the surface of ``genus``, once each, as its
     ``twin`` array of uint16 (bytes), and the search's statistics.  With ``mod > 1``, share
-    ``res``: the subtrees met when ``split`` edges are joined (6 unless given; all of them
-    when there are fewer) are dealt round the shares.  Without ``keep`` the list is empty and
+    ``res``: the subtrees met when ``split`` edges are joined (as many as the crossings unless
+    given: tens of thousands of subtrees with 12 to 16 crossings) are dealt round the shares.  Without ``keep`` the list is empty and
     only the statistics are counted (:class:`SquareStats`, ``kept`` among them).
 
     >>> twins, stats = square_bases(4, 1)
@@ -88,7 +88,7 @@ def square_bases(crossings: int, genus: int, res: int = 0, mod: int = 1, split: 
     if not 1 <= crossings <= 24 or genus < 0 or not 0 <= res < mod:
         raise ValueError("crossings 1..24, genus >= 0, 0 <= res < mod")
     if split is None:
-        split = min(crossings, 6)
+        split = crossings
     part = compiled.load("squares")
     if part is not None:
         found, counts = part.bases(crossings, genus, res, mod, split, keep)
