@@ -196,7 +196,7 @@ def test_the_gallery_walks_to_the_base_of_each_orientation(tmp_path):
     assert "base of its hole orientation" in (tmp_path / "site" / "index.html").read_text()
 
 
-@pytest.mark.slow  # about 90 s with two workers
+@pytest.mark.slow  # about 30 s with two workers
 def test_the_shipped_genus_one_catalog_rebuilds_byte_for_byte_through_38(tmp_path):
     """A run of the torus generator through 38 corners writes the shipped records of 32 to 38
     corners line for line, byte for byte, and the same counts (of every mode)."""
