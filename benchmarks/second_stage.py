@@ -8,12 +8,12 @@ for a sample of the B of each number of crossings, at several corner budgets.
 The B (of ``--genus``, 1 unless given) come from the first stage (seconds through 14
 crossings), or from a run's spilled first stage (``--bases``: a catalog run's
 ``parts/torus-bases-K.bin``, or ``genusG-bases-K.bin``), a sample of ``--sample`` of each size
-drawn with ``--seed``; with ``--thin K`` the sample of each size is drawn from one share in K
-of the listing (share ``seed`` mod K: 13.9 million B of 16 crossings at genus 2 need not all be
-held).  Every B of the sample is searched at every budget (in corners: a map of genus g with N
-corners has N + 2g - 2 crossings), one process.  Prints a Markdown table: per size and budget,
-the mean CPU per B,
-the regions whose chords were chosen, and the third axes found
+drawn with ``--seed``; with ``--thin K`` each B of the sample is drawn from a share of the
+listing cut into K, the share drawn at random (13.9 million B of 16 crossings at genus 2 need
+not all be held; B in small shares are drawn more often than in a uniform sample).  Every B of
+the sample is searched at every budget (in corners: a map of genus g with N corners has
+N + 2g - 2 crossings), one process.  Prints a Markdown table: per size and budget, the mean CPU
+per B, the regions whose chords were chosen, and the third axes found
 (:func:`~polyloops.generate.torus.regions.third_axis_systems`).
 """
 
@@ -43,7 +43,8 @@ def main() -> None:
     parser.add_argument("--sample", type=int, default=40)
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--genus", type=int, default=1)
-    parser.add_argument("--thin", type=int, default=1, metavar="K", help="sample from one share in K")
+    parser.add_argument("--thin", type=int, default=1, metavar="K",
+                        help="draw each B from a random share of the listing cut into K")
     parser.add_argument("--bases", help="a spilled first stage (torus-bases-K.bin or genusG-bases-K.bin, "
                                         "K at least the largest)")
     args = parser.parse_args()
@@ -63,13 +64,16 @@ def main() -> None:
     if args.bases:
         for raw in bases:
             by_size[len(raw) // 8].append(raw)  # four darts a crossing, two bytes a dart
-    else:
+    elif args.thin == 1:
         for c in args.crossings:
-            by_size[c] = square_bases(c, args.genus, args.seed % args.thin, args.thin)[0]
+            by_size[c] = square_bases(c, args.genus)[0]
     rng = random.Random(args.seed)
     rows: list[list[object]] = []
     for c in args.crossings:
-        pick = rng.sample(by_size[c], min(args.sample, len(by_size[c])))
+        if by_size[c] or args.thin == 1:
+            pick = rng.sample(by_size[c], min(args.sample, len(by_size[c])))
+        else:
+            pick = _thinned(c, args.genus, args.sample, args.thin, rng)
         for budget in args.budgets:
             if 3 * c > budget + extra:
                 continue
@@ -82,6 +86,19 @@ def main() -> None:
                          stats.region_choices // max(len(pick), 1), found])
     print(markdown_table(["B crossings", "corners budget", "B sampled", "ms a B", "regions cut a B",
                           "third axes"], rows))
+
+
+def _thinned(crossings: int, genus: int, sample: int, thin: int, rng: random.Random) -> list[bytes]:
+    """``sample`` B, each from a share of the listing drawn at random (empty shares drawn again,
+    at most ``20 * sample`` draws)."""
+    pick: list[bytes] = []
+    for _ in range(20 * sample):
+        if len(pick) == sample:
+            break
+        share = square_bases(crossings, genus, rng.randrange(thin), thin)[0]
+        if share:
+            pick.append(rng.choice(share))
+    return pick
 
 
 if __name__ == "__main__":
