@@ -2,13 +2,11 @@
 for a sample of the B of each number of crossings, at several corner budgets.
 
     python benchmarks/second_stage.py --crossings 10 12 14 --budgets 44 47
-    python benchmarks/second_stage.py --crossings 14 16 --budgets 48 --bases RUN/parts/torus-bases-16.bin
     python benchmarks/second_stage.py --genus 2 --crossings 12 14 16 --budgets 42 47 48 --sample 60 --thin 500
 
 The B (of ``--genus``, 1 unless given) come from the first stage (seconds through 14
-crossings), or from a run's spilled first stage (``--bases``: a catalog run's
-``parts/torus-bases-K.bin``, or ``genusG-bases-K.bin``), a sample of ``--sample`` of each size
-drawn with ``--seed``; with ``--thin K`` each B of the sample is drawn from a share of the
+crossings, about 2 minutes for the 2.6 million of 16 at genus 1), a sample of ``--sample`` of
+each size drawn with ``--seed``; with ``--thin K`` each B of the sample is drawn from a share of the
 listing cut into K, the share drawn at random (13.9 million B of 16 crossings at genus 2 need
 not all be held; B in small shares are drawn more often than in a uniform sample).  Every B of
 the sample is searched at every budget (in corners: a map of genus g with N corners has
@@ -21,15 +19,11 @@ from __future__ import annotations
 
 import argparse
 import random
-import re
 import time
 from collections import defaultdict
-from pathlib import Path
 
 from _common import markdown_table
 
-from polyloops.generate.spill import SpillMismatch
-from polyloops.generate.torus import read_bases
 from polyloops.generate.torus.arrangement import arrangement_of_twin
 from polyloops.generate.torus.regions import third_axis_systems
 from polyloops.generate.torus.squares import square_bases
@@ -45,26 +39,12 @@ def main() -> None:
     parser.add_argument("--genus", type=int, default=1)
     parser.add_argument("--thin", type=int, default=1, metavar="K",
                         help="draw each B from a random share of the listing cut into K")
-    parser.add_argument("--bases", help="a spilled first stage (torus-bases-K.bin or genusG-bases-K.bin, "
-                                        "K at least the largest)")
     args = parser.parse_args()
     if args.genus < 1 or args.thin < 1:
         parser.error("--genus and --thin must be 1 or more")
     extra = 2 * (args.genus - 1)  # crossings beyond the corners
-    if args.bases:
-        name = "torus-bases" if args.genus == 1 else f"genus{args.genus}-bases"
-        size = re.fullmatch(name + r"-(\d+)\.bin", Path(args.bases).name)
-        if size is None:
-            parser.error(f"{args.bases}: not a spilled first stage of genus {args.genus} ({name}-K.bin)")
-        try:
-            bases, _ = read_bases(args.bases, int(size[1]), args.genus)
-        except SpillMismatch as exc:
-            parser.error(str(exc))
     by_size: dict[int, list[bytes]] = defaultdict(list)
-    if args.bases:
-        for raw in bases:
-            by_size[len(raw) // 8].append(raw)  # four darts a crossing, two bytes a dart
-    elif args.thin == 1:
+    if args.thin == 1:
         for c in args.crossings:
             by_size[c] = square_bases(c, args.genus)[0]
     rng = random.Random(args.seed)

@@ -223,25 +223,3 @@ def test_a_genus_2_catalog_runs_through_the_pipeline(tmp_path):
     assert (out / "catalog.jsonl").read_text() == ""
 
 
-def test_the_genus_2_first_stage_is_spilled_as_its_own(tmp_path):
-    """The genus-2 first stage goes to ``genus2-bases-K.bin``, holds what the search lists, and
-    proves which genus it belongs to: read as a torus run's first stage (or renamed to one),
-    it is refused."""
-    import shutil
-
-    from polyloops.generate.spill import SpillMismatch
-    from polyloops.generate.torus import read_bases, spill_bases
-    from polyloops.generate.torus.stages import first_stage
-
-    path = spill_bases(6, tmp_path, genus=2)
-    assert path.name == "genus2-bases-6.bin"
-    bases, _ = read_bases(str(path), 6, 2)
-    assert bases == first_stage(6, genus=2)[0] and len(bases) == 2
-    read_bases.cache_clear()
-    with pytest.raises(SpillMismatch):
-        read_bases(str(path), 6, 1)
-    torus = tmp_path / "torus-bases-6.bin"
-    shutil.copy(path, torus)
-    assert spill_bases(6, tmp_path, genus=1) == torus  # refused, listed again for the torus
-    read_bases.cache_clear()
-    assert read_bases(str(torus), 6, 1)[0] == first_stage(6)[0] != bases

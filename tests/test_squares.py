@@ -11,7 +11,7 @@ from hypothesis import strategies as st
 from polyloops.generate.torus.arrangement import arrangement_of_twin
 from polyloops.generate.torus.cuts import zones_split_every_loop
 from polyloops.generate.torus.squares import square_bases
-from polyloops.generate.torus.stages import first_stage, two_axis_bases
+from polyloops.generate.torus.stages import first_stage, share_of_first_stage, two_axis_bases
 from reference.torus_brute import _least_code, surface_maps_by_brute_force
 from switch import running
 
@@ -106,3 +106,11 @@ def test_bad_arguments_are_refused():
         square_bases(0, 1)
     with pytest.raises(ValueError, match="res"):
         square_bases(4, 1, 3, 3)
+
+
+@pytest.mark.parametrize(("genus", "top"), [(1, 12), (2, 10)])
+def test_the_shares_of_the_first_stage_list_it_once(genus, top):
+    """A catalog run's shares each list their own B: together, the first stage, each B once."""
+    shares = [share_of_first_stage(top, genus, res, 16)[0] for res in range(16)]
+    assert Counter(t for share in shares for t in share) == Counter(first_stage(top, genus)[0])
+    assert sum(1 for share in shares if share) > 8  # dealt round, not all in a few

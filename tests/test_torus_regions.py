@@ -22,7 +22,7 @@ from polyloops.generate.torus.arrangement import (
 from polyloops.generate.torus.candidates import SecondStage, candidate_torus_arrangements
 from polyloops.generate.torus.cuts import base_bound
 from polyloops.generate.torus.decompositions import carries_polycube, decomposes
-from polyloops.generate.torus.stages import TorusSearchStats, first_stage, second_stage, two_axis_bases
+from polyloops.generate.torus.stages import TorusSearchStats, second_stage, two_axis_bases
 from polyloops.io.examples import load_example
 from switch import needs, running
 from test_torus import genus_one_polycubes
@@ -166,28 +166,6 @@ def test_admits_polycube_agrees_with_the_structures_a_map_carries(monkeypatch):
             assert admitted == (tuple(Axis(c) for c in colouring) in carried)
             seen.add(admitted)
     assert seen == {True, False}
-
-
-def test_the_first_stage_is_spilled_once_and_read_back(tmp_path):
-    """A catalog run lists the first stage once, in its ``parts/``: the file holds the same
-    arrangements and statistics, a rerun reads it instead of listing them again, and a damaged
-    file is refused and written again."""
-    from polyloops.generate.spill import SpillMismatch
-    from polyloops.generate.torus import read_bases, spill_bases
-
-    path = spill_bases(8, tmp_path)
-    bases, stats = read_bases(str(path), 8)
-    listed, listed_stats = first_stage(8)
-    assert bases == listed and len(bases) > 10 and stats == listed_stats
-    stamp = path.stat().st_mtime_ns
-    assert spill_bases(8, tmp_path) == path and path.stat().st_mtime_ns == stamp
-    path.write_bytes(path.read_bytes()[:-3])
-    read_bases.cache_clear()
-    with pytest.raises(SpillMismatch, match=r"truncated"):
-        read_bases(str(path), 8)
-    spill_bases(8, tmp_path)
-    read_bases.cache_clear()
-    assert read_bases(str(path), 8)[0] == bases
 
 
 @needs_compiled

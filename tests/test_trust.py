@@ -19,9 +19,7 @@ from polyloops.catalog.census import Census, read_catalog
 from polyloops.catalog.records import CatalogEntry, CatalogError, CatalogMismatchError
 from polyloops.catalog.run import build_catalog, write_census
 from polyloops.cli import main
-from polyloops.generate.spill import SpillMismatch, SpillRefused, SpillTag, read_spill, write_spill
-from polyloops.generate.torus import read_bases, spill_bases
-from polyloops.generate.torus.stages import first_stage
+from polyloops.generate.spill import SpillRefused, SpillTag, read_spill, write_spill
 from switch import needs
 
 
@@ -80,30 +78,6 @@ def test_a_damaged_top_is_recomputed(tmp_path, damage):
     assert (tmp_path / "cat" / "catalog.jsonl").read_bytes() == (good / "catalog.jsonl").read_bytes()
 
 
-def test_another_bound_of_the_first_stage_is_listed_again(tmp_path):
-    """The torus search's first stage for 6 crossings, put where the file for 8 goes, is not
-    read as it: it is listed again, and the file holds the arrangements of 8."""
-    spill_bases(6, tmp_path)
-    (tmp_path / "torus-bases-6.bin").rename(tmp_path / "torus-bases-8.bin")
-    read_bases.cache_clear()
-    with pytest.raises(SpillMismatch, match="bound 6, not 8"):
-        read_bases(str(tmp_path / "torus-bases-8.bin"), 8)
-    spill_bases(8, tmp_path)
-    read_bases.cache_clear()
-    assert read_bases(str(tmp_path / "torus-bases-8.bin"), 8)[0] == first_stage(8)[0]
-
-
-@pytest.mark.slow
-def test_a_genus_one_run_given_a_smaller_runs_first_stage_finds_the_ring(tmp_path, capsys):
-    """The case as a user met it: a 32-corner genus-1 run whose parts hold a 20-corner run's
-    first stage under its name still finds the square ring."""
-    small = tmp_path / "small"
-    build_catalog(small, 20, genus=1)
-    cat = tmp_path / "cat"
-    (cat / "parts").mkdir(parents=True)
-    shutil.copy(small / "parts" / "torus-bases-6.bin", cat / "parts" / "torus-bases-10.bin")
-    status, _, _ = run(capsys, "catalog", "--genus", "1", "--max-corners", "32", "-o", str(cat))
-    assert status == 0 and [r["name"] for r in records(cat)] == ["T32.1"]
 @needs("arrangements")  # the loops generator: its compiled search
 def test_a_link_in_parts_is_neither_read_nor_written_through(tmp_path, capsys):
     """A spilled file's name that is a link (to a device, or to a file elsewhere) is refused in

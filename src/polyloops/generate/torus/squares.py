@@ -76,8 +76,9 @@ def square_bases(crossings: int, genus: int, res: int = 0, mod: int = 1, split: 
     """Every ``B`` with ``crossings`` crossings on the surface of ``genus``, once each, as its
     ``twin`` array of uint16 (bytes), and the search's statistics.  With ``mod > 1``, share
     ``res``: the subtrees met when ``split`` edges are joined (as many as the crossings unless
-    given: tens of thousands of subtrees with 12 to 16 crossings) are dealt round the shares.  Without ``keep`` the list is empty and
-    only the statistics are counted (:class:`SquareStats`, ``kept`` among them).
+    given: tens of thousands of subtrees with 12 to 16 crossings) are dealt round the shares.
+    Without ``keep`` the list is empty and only the statistics are counted
+    (:class:`SquareStats`, ``kept`` among them).
 
     >>> twins, stats = square_bases(4, 1)
     >>> [list(array.array("H", t)) for t in twins]  # two loops of each class, crossing twice each

@@ -59,7 +59,7 @@ from polyloops.generate.torus.cuts import (
 from polyloops.generate.torus.drawing import Drawing, connected_without, finish_curve, roots
 
 __all__ = ["TorusSearchStats", "compiled_search_available", "first_stage", "forget_first_stage",
-           "second_stage", "torus_arrangements", "torus_children", "two_axis_bases"]
+           "second_stage", "share_of_first_stage", "torus_arrangements", "torus_children", "two_axis_bases"]
 
 
 @dataclass
@@ -486,16 +486,17 @@ def two_axis_bases(max_crossings: int, on_stats: Callable[[TorusSearchStats], No
 
 
 @lru_cache(maxsize=4)
-def _bases(max_crossings: int, compiled: bool, genus: int) -> tuple[tuple[bytes, ...], TorusSearchStats]:
-    """:func:`first_stage` (each ``B`` as its ``twin`` array of uint16, compactly: 2,755,639 through
-    16 crossings on the torus), kept for the process's later shares (a catalog's worker runs
-    several).  ``compiled`` only keys the cache: the part in use lists the same ``B``."""
+def _bases(max_crossings: int, compiled: bool, genus: int, res: int = 0, mod: int = 1,
+           ) -> tuple[tuple[bytes, ...], TorusSearchStats]:
+    """:func:`share_of_first_stage` (each ``B`` as its ``twin`` array of uint16, compactly:
+    2,755,639 through 16 crossings on the torus), kept for the process's later calls.
+    ``compiled`` only keys the cache: the part in use lists the same ``B``."""
     from polyloops.generate.torus.squares import square_bases
 
     stats = TorusSearchStats()
     listed: list[bytes] = []
     for n in range(1, max_crossings + 1):
-        twins, counts = square_bases(n, genus)
+        twins, counts = square_bases(n, genus, res, mod)
         listed.extend(twins)
         stats.add(TorusSearchStats(closed=counts.leaves, not_canonical=counts.not_canonical,
                                    states=counts.nodes, targets=counts.kept))
@@ -511,6 +512,15 @@ def first_stage(max_crossings: int, genus: int = 1) -> tuple[tuple[bytes, ...], 
     (:func:`~polyloops.generate.torus.squares.square_bases`), not by the marked search of
     :func:`two_axis_bases`, which lists the same arrangements (tested) far more slowly."""
     return _bases(max_crossings, compiled.in_use("squares"), genus)
+
+
+def share_of_first_stage(max_crossings: int, genus: int, res: int, mod: int
+                         ) -> tuple[tuple[bytes, ...], TorusSearchStats]:
+    """Share ``res`` of ``mod`` of :func:`first_stage`: the ``B`` of the listing's subtrees dealt
+    to it (:func:`~polyloops.generate.torus.squares.square_bases`; the shares together list
+    every ``B`` once), and the share's statistics (the listing above the split is walked by
+    every share and counted in each)."""
+    return _bases(max_crossings, compiled.in_use("squares"), genus, res, mod)
 
 
 def forget_first_stage() -> None:
