@@ -177,7 +177,7 @@ def genus1_section(summary: dict, types: dict[str, dict[int, int]]) -> list[str]
     return lines
 
 
-# No genus-2 catalog ships (a run through 36 corners finds none), so this section is what the
+# No genus-2 catalog ships (a run through 42 corners finds none), so this section is what the
 # runs it names found, kept here beside the tables it follows.
 GENUS2 = """## Genus 2
 
@@ -186,24 +186,25 @@ Computed by `polyloops catalog --genus 2` (the `handles` generator:
 with `N` corners has `N + 2` crossings, and the search is complete through `N` corners when its
 first stage lists every two-axis arrangement `B` with up to `(N + 2) / 3` crossings.
 
-- **No genus-2 polycube has 36 corners or fewer.** `polyloops catalog --genus 2 --max-corners
-  36 --workers 1 -o g2-36`: the first stage through 12 crossings (16,177 `B`: 2 with 6
-  crossings, 23 with 8, 522 with 10, 1 with 11, 15,629 with 12), then the third axis of each;
-  no map carries a polycube. 506 s of user CPU, 8.7 minutes of wall time, 1.28 GB at the peak
-  (the first stage, in the client; `/usr/bin/time -v`). Through 30 corners the same in 18 s.
+- **No genus-2 polycube has 42 corners or fewer.** `polyloops catalog --genus 2 --max-corners
+  42 --workers 2 -o g2-42`: the first stage through 14 crossings (490,874 `B`: 2 with 6
+  crossings, 23 with 8, 522 with 10, 1 with 11, 15,629 with 12, 21 with 13, 474,676 with 14,
+  listed as square-tiled surfaces), then the third axis of each; no map carries a polycube.
+  2,576 s of user CPU, 53 minutes of wall time beside other runs, 218 MB at the peak
+  (`/usr/bin/time -v`).
 - **The smallest known have 48 corners**: the slab with two holes along one axis
   (`example:slab-2-holes`, its sparsest pair of axes crossing 10 times, the others 14 and 26)
   and the bar with holes along two axes (`example:two-axis-holes`, pairs 14, 18 and 18). Every
   genus-2 polycube with at most 48 corners whose sparsest pair crosses at most 10 times is the
   slab: the second stage from the 547 `B` with up to 10 crossings, at 50 crossings, built one
-  map with a polycube, the slab's (`python benchmarks/genus2.py --bases 10 --corners 48`: 17 s
-  of CPU for the first stage, 119 s for the second, one process).
-- Between 37 and 47 corners the question is open: a genus-2 polycube with `N <= 47` corners
+  map with a polycube, the slab's (`python benchmarks/genus2.py --bases 10 --corners 48`).
+- Between 43 and 47 corners the question is open: a genus-2 polycube with `N <= 47` corners
   has a pair crossing at most 16 times (`(47 + 2) / 3`), and `two-axis-holes` shows that the
-  sparsest pair of a 48-corner one can cross 14 times. The first stage grows about 5 times per
-  crossing at genus 2 (12.4 million states through 12 crossings), so 16 crossings is out of
-  reach of this search on one machine; a generator of the cellular `B` that does not pass
-  through the non-cellular states is the lead.
+  sparsest pair of a 48-corner one can cross 14 times. Every `B` through 16 crossings is now
+  listed (14,362,363, 13,870,784 of them with 16), and the third axes of all of them cost
+  about 40 hours of CPU through 47 corners and 65 through 48 (measured on samples:
+  [searches.md](searches.md#genus-2-the-same-two-stages-with-pieces)): the run is a cluster's
+  ([cluster.md](cluster.md#genus-2-through-48-corners)).
 - Moves from the slab (`polyloops reach example:slab-2-holes --max-corners 60 --symmetry full`):
   4,872 classes, none with fewer than 48 corners. The two known 48-corner polycubes have
   different hole orientations (the slab `XY: rank 0; XZ: rank 2; YZ: rank 2`, the bar with holes
