@@ -347,16 +347,16 @@ def settle_catalog(directory: Path, max_corners: int, slack: int, workers: int =
     for record in known.values():
         if progress:
             progress(record)
-    fresh = iter(run_jobs(_settle_job, [t for t in tasks if t.signature not in known], workers, dask))
-    for task in tasks:
-        record = known.get(task.signature) or next(fresh)
-        if task.signature not in known:
-            if done is not None:
-                done.add(record)
-            if progress:
-                progress(record)
-        result.records.append(record)
-    next(fresh, None)  # lets the pool close
+    # as they finish (a class that takes hours holds back no other's record), in catalog order after
+    by_signature = dict(known)
+    for record in run_jobs(_settle_job, [t for t in tasks if t.signature not in known], workers, dask,
+                           ordered=False):
+        by_signature[record.signature] = record
+        if done is not None:
+            done.add(record)
+        if progress:
+            progress(record)
+    result.records.extend(by_signature[t.signature] for t in tasks)
     return result
 
 
