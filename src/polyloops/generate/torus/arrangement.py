@@ -235,7 +235,7 @@ class TorusArrangement:
 # -- the canonical form of a marked map -----------------------------------------------------------
 
 def twin_bytes(a: TorusArrangement) -> bytes:
-    """``a.twin`` as an array of uint16, the form the compiled search and the spill files use."""
+    """``a.twin`` as an array of uint16, the form the compiled searches and the first stage use."""
     return array.array("H", a.twin).tobytes()
 
 

@@ -524,7 +524,7 @@ def share_of_first_stage(max_crossings: int, genus: int, res: int, mod: int
 
 
 def forget_first_stage() -> None:
-    """Drop the first stages :func:`first_stage` kept (a run that spilled them reads the file)."""
+    """Drop the first stages :func:`first_stage` and :func:`share_of_first_stage` kept."""
     _bases.cache_clear()
 
 
