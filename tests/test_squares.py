@@ -76,7 +76,7 @@ def test_the_python_twin_takes_the_same_steps(genus, n):
 
 
 @settings(max_examples=25, deadline=None)
-@given(genus=st.integers(1, 2), n=st.integers(4, 10), mod=st.integers(2, 7), split=st.integers(1, 8))
+@given(genus=st.integers(1, 2), n=st.integers(4, 10), mod=st.integers(2, 7), split=st.integers(0, 30))
 def test_the_shares_deal_out_the_listing(genus, n, mod, split):
     """Shares split the search's subtrees: together they list each B once, whatever the
     number of shares and the depth of the split."""

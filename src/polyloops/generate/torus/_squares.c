@@ -279,7 +279,10 @@ static PyObject *bases(PyObject *self, PyObject *args) {
     if (!s) return PyErr_NoMemory();
     s->n = n; s->genus = genus; s->faces = n + 2 - 2 * genus;
     s->res = res; s->mod = mod;
-    s->split = mod > 1 ? 2 * (split >= 0 ? split : n) : -1;
+    /* every branch to a B passes an open node with 2 split darts joined when split < 2n */
+    if (split < 0) split = n;
+    if (split > 2 * n - 1) split = 2 * n - 1;
+    s->split = mod > 1 ? 2 * split : -1;
     if (keep && !(s->out = PyList_New(0))) { free(s); return NULL; }
     if (s->faces >= 1) {
         add_square(s);

@@ -88,8 +88,8 @@ def square_bases(crossings: int, genus: int, res: int = 0, mod: int = 1, split: 
     """
     if not 1 <= crossings <= 24 or genus < 0 or not 0 <= res < mod:
         raise ValueError("crossings 1..24, genus >= 0, 0 <= res < mod")
-    if split is None:
-        split = crossings
+    # every branch to a B passes an open node with `split` edges joined when split < 2n
+    split = min(crossings if split is None else max(split, 0), 2 * crossings - 1)
     part = compiled.load("squares")
     if part is not None:
         found, counts = part.bases(crossings, genus, res, mod, split, keep)
