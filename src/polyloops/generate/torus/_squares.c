@@ -238,7 +238,8 @@ static void leaf(S *s) {
 
 static void search(S *s, int d) {
     if (s->failed) return;
-    s->nodes++;
+    /* a listing of minutes answers Ctrl-C: the KeyboardInterrupt is raised on return */
+    if ((++s->nodes & 0xFFFFF) == 0 && PyErr_CheckSignals() < 0) { s->failed = 1; return; }
     while (d < 4 * s->m && s->tw[d] >= 0) d++;
     if (d == 4 * s->m) {  /* every dart of every square joined: closed */
         if (s->m == s->n) leaf(s);
