@@ -221,6 +221,16 @@ def test_the_command_keeps_its_journal_only_while_it_runs(tmp_path, capsys):
     assert status == 0 and cert.exists() and not (tmp_path / "c.jsonl.journal").exists()
 
 
+def test_a_file_that_is_no_journal_is_not_overwritten(tmp_path, capsys):
+    cert = tmp_path / "c.jsonl"
+    mine = tmp_path / "c.jsonl.journal"
+    mine.write_bytes(b"my notes\n\xff")
+    status, _, err = run(capsys, "conjecture", "genus0", "--catalog", str(small_catalog(22)), "--max-corners",
+                         "16", "--slack", "4", "-o", str(cert))
+    assert status == 2 and err.count("\n") == 1 and "no journal" in err
+    assert mine.read_bytes() == b"my notes\n\xff" and not cert.exists()
+
+
 def test_records_read_back_as_written():
     from polyloops.reach.conjecture import ClassRecord
 

@@ -372,7 +372,9 @@ class _Journal:
                                   "catalog": file_digest(census.directory / "catalog.jsonl"),
                                   "max_corners": max_corners, "slack": slack})
         self.records: dict[str, ClassRecord] = {}
-        lines = path.read_text().splitlines() if path.is_file() else []
+        lines = path.read_bytes().decode("utf-8", "replace").splitlines() if path.is_file() else []
+        if lines and not _is_journal_header(lines[0]):
+            raise ConjectureError(f"{path}: exists and is no journal of settled classes; move it away")
         if lines and lines[0] == self.header:
             for line in lines[1:]:
                 try:
@@ -389,6 +391,14 @@ class _Journal:
     def add(self, record: ClassRecord) -> None:
         with self.path.open("a") as out:
             out.write(json.dumps(record.to_json()) + "\n")
+
+
+def _is_journal_header(line: str) -> bool:
+    try:
+        data = json.loads(line)
+    except ValueError:
+        return False
+    return isinstance(data, dict) and data.get("kind") == "settle-journal"
 
 
 def certificate_lines(result: ConjectureResult) -> Iterator[str]:
