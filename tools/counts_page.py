@@ -195,9 +195,11 @@ first stage lists every two-axis arrangement `B` with up to `(N + 2) / 3` crossi
 - **The smallest known have 48 corners**: the slab with two holes along one axis
   (`example:slab-2-holes`, its sparsest pair of axes crossing 10 times, the others 14 and 26)
   and the bar with holes along two axes (`example:two-axis-holes`, pairs 14, 18 and 18). Every
-  genus-2 polycube with at most 48 corners whose sparsest pair crosses at most 10 times is the
-  slab: the second stage from the 547 `B` with up to 10 crossings, at 50 crossings, built one
-  map with a polycube, the slab's (`python benchmarks/genus2.py --bases 10 --corners 48`).
+  genus-2 polycube with at most 48 corners whose sparsest pair crosses at most 12 times is the
+  slab: the second stage from the 16,177 `B` with up to 12 crossings, at 50 crossings, built
+  one map with a polycube, the slab's (`python benchmarks/genus2.py --bases 12 --corners 48`:
+  0.5 s of CPU for the first stage, 2,762 s for the second, 2,576 of them on the 15,629 `B` of
+  12 crossings; one process).
 - Between 43 and 47 corners the question is open: a genus-2 polycube with `N <= 47` corners
   has a pair crossing at most 16 times (`(47 + 2) / 3`), and `two-axis-holes` shows that the
   sparsest pair of a 48-corner one can cross 14 times. Every `B` through 16 crossings is now
