@@ -17,13 +17,11 @@ listing its own, then the third axis region by region, compiled in ``_squares.c`
 
 from __future__ import annotations
 
-from collections.abc import Iterator, Sequence
-from pathlib import Path
+from collections.abc import Iterator
 from typing import Any
 
 from polyloops.core.halfedge import HalfEdgeMap
 from polyloops.generate.base import Generator, Job, Tally, register
-from polyloops.generate.torus.cuts import base_bound
 
 
 class TorusGenerator(Generator):
@@ -83,12 +81,6 @@ class TorusGenerator(Generator):
         mod = 16 * -(-max(workers, 1) // 16)
         return [Job(self.name, high, low, r, mod) for r in range(mod)]
 
-    def prepare(self, jobs: Sequence[Job], workers: int = 1, dask: str | None = None,
-                where: Path | None = None) -> list[Any]:
-        """Nothing: each share lists its own ``B`` (:func:`share_of_first_stage`), so the client
-        lists none and a worker holds only its share's."""
-        return [None] * len(jobs)
-
     def crossings(self, corners: int) -> int:
         """The crossings of a map of this genus with ``corners`` corners (quads: V - F = 2 - 2g)."""
         return corners + 2 * (self.genus - 1)
@@ -97,12 +89,11 @@ class TorusGenerator(Generator):
         """The share's candidate maps, from the share's ``B``; the search's statistics (the
         share's listing of ``B`` and its second stage) go to ``tally``."""
         from polyloops.generate.torus.candidates import SecondStage, candidate_torus_arrangements
-        from polyloops.generate.torus.stages import TorusSearchStats, share_of_first_stage
+        from polyloops.generate.torus.stages import TorusSearchStats
 
         stats: list[TorusSearchStats] = []
         top = self.crossings(job.n)
-        bases = share_of_first_stage(base_bound(top), self.genus, job.res, job.mod)
-        for a in candidate_torus_arrangements(top, on_stats=stats.append, bases=bases,
+        for a in candidate_torus_arrangements(top, job.res, job.mod, on_stats=stats.append,
                                               stage=SecondStage(self.stage), genus=self.genus):
             if a.crossings >= self.crossings(job.low):
                 yield a.quad_mesh()

@@ -19,14 +19,14 @@ level graphs of ``B`` cut early), or, as the twin kept for the tests, one loop a
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Iterator
 from enum import StrEnum
 
 from polyloops.generate.torus.arrangement import TorusArrangement, arrangement_of_twin, layered_code
 from polyloops.generate.torus.cuts import base_bound
 from polyloops.generate.torus.decompositions import canonical_decomposition, carries_polycube, decomposes
 from polyloops.generate.torus.regions import third_axis_systems
-from polyloops.generate.torus.stages import TorusSearchStats, first_stage, second_stage
+from polyloops.generate.torus.stages import TorusSearchStats, second_stage, share_of_first_stage
 
 __all__ = ["SecondStage", "candidate_torus_arrangements"]
 
@@ -41,7 +41,6 @@ class SecondStage(StrEnum):
 def candidate_torus_arrangements(max_crossings: int, res: int = 0, mod: int = 1,
                                  on_stats: Callable[[TorusSearchStats], None] | None = None,
                                  polycubes: bool = True,
-                                 bases: tuple[Sequence[bytes], TorusSearchStats] | None = None,
                                  stage: SecondStage = SecondStage.REGIONS, genus: int = 1,
                                  ) -> Iterator[TorusArrangement]:
     """Every map of ``genus`` (1 or more) with at most ``max_crossings`` crossings that carries a polycube
@@ -49,23 +48,20 @@ def candidate_torus_arrangements(max_crossings: int, res: int = 0, mod: int = 1,
     a third of the crossings, then its third axis by ``stage``; a map is listed from its
     canonical decomposition
     (:func:`~polyloops.generate.torus.decompositions.polycube_decompositions`).  ``res``/``mod``
-    keeps the ``B`` whose rank is ``res`` modulo ``mod`` (independent shares).  With
+    takes share ``res`` of ``mod`` of the first stage
+    (:func:`~polyloops.generate.torus.stages.share_of_first_stage`: independent shares).  With
     ``polycubes`` false (the loop-by-loop stage only) every map with a decomposition is listed,
     from its canonical one among
-    :func:`~polyloops.generate.torus.decompositions.two_stage_decompositions`.  ``bases`` gives
-    the first stage's arrangements (:func:`~polyloops.generate.torus.stages.first_stage`) when
-    they were listed already.  The maps come without a ``code``
+    :func:`~polyloops.generate.torus.decompositions.two_stage_decompositions`.  The maps come
+    without a ``code``
     (:func:`~polyloops.generate.torus.arrangement.canonical` gives it)."""
     stage = SecondStage(stage)
     if not polycubes and stage is not SecondStage.LOOPS:
         raise ValueError("only the loop-by-loop second stage lists maps that carry no polycube")
     stats = TorusSearchStats()
-    listed, first_stats = bases if bases is not None else first_stage(base_bound(max_crossings), genus)
-    if res == 0:
-        stats.add(first_stats)
-    for rank, raw in enumerate(listed):
-        if rank % mod != res:
-            continue
+    listed, first_stats = share_of_first_stage(base_bound(max_crossings), genus, res, mod)
+    stats.add(first_stats)
+    for raw in listed:
         for kid in _third_axes(arrangement_of_twin(raw), max_crossings, stats, stage):
             if (not polycubes or carries_polycube(kid)) and canonical_decomposition(kid, polycubes):
                 yield TorusArrangement(kid.twin)
