@@ -289,6 +289,45 @@ def test_corrupted_certificates_are_rejected():
     assert [p.name for p in problems if "missing" in p.message] == ["P26.20"]  # the last class
 
 
+def _open(lines: list[str], signatures: set[str]) -> list[str]:
+    """The certificate with the records of ``signatures`` made unsettled, the header saying so."""
+    records = [json.loads(line) for line in lines[1:]]
+    for r in records:
+        if r["signature"] in signatures:
+            for kind in ("removable", "detour"):
+                r.pop(kind, None)
+            r["unsettled"] = True
+    header = {**json.loads(lines[0]), "unsettled": len(signatures)}
+    return [json.dumps(header), *map(json.dumps, records)]
+
+
+def test_open_classes_bound_what_a_certificate_proves():
+    """Every class below the smallest open one is reachable, and every other class of its size;
+    a header that states fewer (or more) open classes than the records, or a record that states
+    no way of being settled, is refused."""
+    lines, catalog = certificate(), small_catalog(26)
+    records = [json.loads(line) for line in lines[1:]]
+    at = {n: [r["signature"] for r in records if r["corners"] == n and "removable" in r] for n in (22, 26)}
+    check = check_certificate(_open(lines, {at[26][0]}), catalog)
+    assert check.valid and not check.complete and check.proven_corners == 25
+    assert [c.signature for c in check.open] == [at[26][0]]
+    assert check.statement() == ("every genus-0 class through 25 corners is reachable from the cube; with "
+                                 f"26, every class but 1 (open within slack 10: {check.open[0].name})")
+    check = check_certificate(_open(lines, {at[22][0], at[26][0]}), catalog)
+    assert check.valid and check.proven_corners == 21 and "1 more open" in check.statement()
+    full = check_certificate(lines, catalog)
+    assert full.complete and full.proven_corners == 26 and "but" not in full.statement()
+    understated = [json.dumps({**json.loads(lines[0]), "unsettled": 0}), *_open(lines, {at[22][0]})[1:]]
+    check = check_certificate(understated, catalog)
+    assert not check.valid and check.proven_corners is None and check.statement() == ""
+    assert "the header states 0 unsettled classes; the certificate has 1" in str(check.problems[0])
+    overstated = [json.dumps({**json.loads(lines[0]), "unsettled": 1}), *lines[1:]]
+    assert not check_certificate(overstated, catalog).valid
+    bare = {k: v for k, v in records[-1].items() if k in ("signature", "corners")}
+    check = check_certificate([*lines[:-1], json.dumps(bare)], catalog)
+    assert "states no way of being settled" in str(check.problems[0])
+
+
 def test_cli_conjecture(tmp_path, capsys):
     cert = tmp_path / "c.jsonl"
     assert main(["conjecture", "genus0", "--catalog", str(small_catalog(26)), "--max-corners", "26", "--json",
@@ -297,7 +336,14 @@ def test_cli_conjecture(tmp_path, capsys):
     assert data["settled"] == data["classes"] == 55 and data["unsettled"] == []
     assert main(["conjecture", "check", str(cert), "--catalog", str(small_catalog(26))]) == 0
     assert main(["conjecture", "genus0", "--catalog", str(small_catalog(26)), "--max-corners", "26",
-                 "--slack", "6", "-o", str(cert)]) == 1
+                 "--slack", "6", "-o", str(cert)]) == 1  # the non-incremental class stays open
+    capsys.readouterr()
+    # The certificate states its open class, so it holds, and proves the range below it.
+    assert main(["conjecture", "check", str(cert), "--catalog", str(small_catalog(26)), "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["valid"] and not data["complete"] and data["proven_corners"] == 25 and len(data["open"]) == 1
+    lines = cert.read_text().splitlines()
+    cert.write_text("\n".join([json.dumps({**json.loads(lines[0]), "unsettled": 0}), *lines[1:]]) + "\n")
     assert main(["conjecture", "check", str(cert), "--catalog", str(small_catalog(26))]) == 1
     assert main(["conjecture", "check", str(cert), "--catalog", str(tmp_path)]) == 2
 

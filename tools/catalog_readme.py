@@ -77,19 +77,11 @@ def render(template: str, summary: dict, reach_rows: list[dict] | None = None,
 def certificate_rows(path: Path) -> list[dict]:
     """The per-corner table of a certificate, recomputed from its records."""
     from polyloops.reach.conjecture import ClassRecord, ConjectureResult
-    from polyloops.reach.search import Move
 
     lines = path.read_text().splitlines()
     header = json.loads(lines[0])
     result = ConjectureResult(header["max_corners"], header["slack"])
-    for line in lines[1:]:
-        r = json.loads(line)
-        detour = r.get("detour")
-        result.records.append(ClassRecord(
-            r["signature"], r["corners"], base=r.get("base", False), removable=r.get("removable"),
-            detour=None if detour is None else [Move.from_json(m) for m in detour["moves"]],
-            slack=None if detour is None else detour["slack"],
-            max_corners=None if detour is None else detour["max_corners"], orientation=r.get("orientation")))
+    result.records.extend(ClassRecord.from_json(json.loads(line)) for line in lines[1:])
     return [row.to_json() for row in result.table()]
 
 

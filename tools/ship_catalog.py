@@ -104,8 +104,8 @@ def ship(run: Path, into: Path = SHIPPED, slack: int = 10, workers: int = 1) -> 
     if not check.valid:
         raise ShipError(f"the certificate does not check: {check.problems[0]}")
     write_atomic(into / "reachability-certificate.jsonl", "\n".join(lines) + "\n")
-    return {"max_corners": top, "classes": check.records,
-            "unsettled": [r.signature for r in result.unsettled],
+    return {"max_corners": top, "classes": check.records, "proves": check.statement(),
+            "unsettled": [c.name for c in check.open],
             "by_corners": [row.to_json() for row in result.table()]}
 
 

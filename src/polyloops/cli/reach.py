@@ -229,7 +229,9 @@ def cmd_conjecture_check(args: argparse.Namespace) -> int:
     problems = check.problems
     data = {"valid": check.valid, "genus": check.genus, "max_corners": check.header["max_corners"],
             "checked_corners": check.checked_corners, "catalog_corners": check.catalog_corners,
-            "records": check.records, "problems": [str(p) for p in problems]}
+            "records": check.records, "problems": [str(p) for p in problems],
+            "complete": check.complete, "proven_corners": check.proven_corners,
+            "open": [c.name or c.signature for c in check.open]}
     checked = (f"checked every class of {args.catalog} through {check.checked_corners} corners "
                f"(the header claims {check.header['max_corners']}, the catalog is complete through "
                f"{check.catalog_corners})")
@@ -237,11 +239,8 @@ def cmd_conjecture_check(args: argparse.Namespace) -> int:
         text = (f"{args.certificate}: INVALID: {plural(len(problems), 'problem')}; first: {problems[0]}\n"
                 f"  {checked}")
     else:
-        start = ("from the cube" if check.genus == 0
-                 else "from the base class of its hole-orientation type")
-        text = (f"{args.certificate}: valid: every genus-{check.genus} class through {check.checked_corners} "
-                f"corners is reachable {start}\n  {checked}; each record replayed with the Definition-4 "
-                "checker")
+        text = (f"{args.certificate}: valid: {check.statement()}\n  {checked}; each record replayed "
+                "with the Definition-4 checker")
     emit(args, data, text)
     return EXIT_INVALID if problems else EXIT_OK
 

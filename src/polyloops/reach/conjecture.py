@@ -15,6 +15,13 @@ A certificate is JSON lines: a header, then one record per catalog class:
 or ``{"signature", "corners", "unsettled": true}``.  :func:`check_certificate` replays every
 record with the Definition-4 checker and trusts nothing else.
 
+**Open classes.**  A class the search leaves unsettled is *open*, and the header says how many
+there are (``"unsettled": k``, absent when none).  A certificate with open classes still checks
+when everything it states holds, and it proves what the induction gives: every class with fewer
+corners than the smallest open one is reachable, and so is every other class with exactly that
+many (its move or detour ends below, or at a base).  Larger classes may lean on an open one, so
+their records prove nothing more (:meth:`CertificateCheck.statement`).
+
 **Genus 1.**  Moves never change the hole orientation (:mod:`polyloops.core.holes`), so the
 question is asked within each *orientation type* (the invariant up to the symmetries of the
 axes, :meth:`~polyloops.core.holes.HoleOrientation.up_to_axes`): is every class reachable from a
@@ -402,10 +409,13 @@ def _is_journal_header(line: str) -> bool:
 
 
 def certificate_lines(result: ConjectureResult) -> Iterator[str]:
-    """The certificate as JSON lines: a header, then one line per class."""
-    yield json.dumps({"polyloops": 1, "kind": certificate_kind(result.genus),
-                      "max_corners": result.max_corners, "slack": result.slack,
-                      "classes": len(result.records)})
+    """The certificate as JSON lines: a header (with the number of open classes, when there
+    are any), then one line per class."""
+    header = {"polyloops": 1, "kind": certificate_kind(result.genus),
+              "max_corners": result.max_corners, "slack": result.slack, "classes": len(result.records)}
+    if result.unsettled:
+        header["unsettled"] = len(result.unsettled)
+    yield json.dumps(header)
     for r in result.records:
         yield json.dumps(r.to_json(), separators=(",", ":"))
 
@@ -452,7 +462,8 @@ class Bases:
 def check_record(data: Any, corners_bound: int, slack_bound: int | None = None,
                  bases: Bases | None = None, structure: LoopStructure | None = None) -> str | None:
     """Replay one record with the Definition-4 checker, and check every field it states
-    against what the replay shows; the problem, or ``None``.  ``bases`` (genus 1) gives each
+    against what the replay shows; the problem, :data:`UNSETTLED` for a well-formed record of
+    an open class, or ``None`` when the record settles its class.  ``bases`` (genus 1) gives each
     orientation type's fewest corners and base class; ``structure``, the class its signature
     names when the caller has decoded it already."""
     if not isinstance(data, dict):
@@ -475,6 +486,10 @@ def check_record(data: Any, corners_bound: int, slack_bound: int | None = None,
     kinds = [k for k in ("base", "removable", "detour", "unsettled") if k in data]
     if len(kinds) > 1:
         return f"states more than one way of being settled ({', '.join(kinds)})"
+    if not kinds:
+        return "states no way of being settled (base, removable, detour, or unsettled)"
+    if "unsettled" in data and data["unsettled"] is not True:
+        return f"unsettled {data['unsettled']!r} is not true"
     target = None
     if bases is not None:
         kind = orientation_type(ls)
@@ -506,7 +521,10 @@ def check_record(data: Any, corners_bound: int, slack_bound: int | None = None,
         return None
     if "detour" in data:
         return _check_detour(ls, n, data["detour"], slack_bound)
-    return "unsettled"
+    return UNSETTLED
+
+
+UNSETTLED = "unsettled"  # what check_record says of a well-formed record of an open class
 
 
 def _check_detour(ls: LoopStructure, n: int, detour: Any, slack_bound: int | None,
@@ -558,10 +576,22 @@ def _certificate_bases(parsed: list[tuple[int, Any]], wanted: dict[str, int],
 
 
 @dataclass(frozen=True)
+class OpenClass:
+    """A class the certificate records as unsettled: its line, signature, catalog name and
+    corners."""
+
+    line: int
+    signature: str
+    name: str
+    corners: int
+
+
+@dataclass(frozen=True)
 class CertificateCheck:
     """What :func:`check_certificate` found: the header, the range it checked (every class of
-    the catalog through ``checked_corners``), the catalog's own complete range, and the
-    problems (none when the certificate holds)."""
+    the catalog through ``checked_corners``), the catalog's own complete range, the problems
+    (none when the certificate holds), and the open classes it records (as many as its header
+    states, when it holds)."""
 
     header: dict[str, Any]
     checked_corners: int
@@ -569,12 +599,50 @@ class CertificateCheck:
     records: int
     problems: tuple[CertificateProblem, ...]
     genus: int = 0
+    open: tuple[OpenClass, ...] = ()
 
     @property
     def valid(self) -> bool:
-        """Whether every class through the header's range is settled, and that range is
-        within the catalog's."""
+        """Whether every record checks, a record stands for every class through the header's
+        range, that range is within the catalog's, and the header's counts (classes, open
+        classes) are the certificate's: everything it states holds."""
         return not self.problems
+
+    @property
+    def complete(self) -> bool:
+        """Whether it holds and settles every class of its range (no open class)."""
+        return self.valid and not self.open
+
+    @property
+    def proven_corners(self) -> int | None:
+        """The largest ``N`` such that, when the certificate holds, every class with at most
+        ``N`` corners is reachable: one below the smallest open class (``None`` when it does
+        not hold)."""
+        if not self.valid:
+            return None
+        return min(c.corners for c in self.open) - 1 if self.open else self.checked_corners
+
+    def statement(self) -> str:
+        """What the certificate proves, in words (empty when it does not hold).
+
+        A class with ``proven_corners + 1`` corners that is not open reaches a smaller class
+        (or a base) in one move or detour, so it is reachable too; above that, a class may
+        lean on an open one.
+        """
+        top = self.proven_corners
+        if top is None:
+            return ""
+        start = "the cube" if self.genus == 0 else "the base class of its hole-orientation type"
+        text = f"every genus-{self.genus} class through {top} corners is reachable from {start}"
+        if not self.open:
+            return text
+        at = [c for c in self.open if c.corners == top + 1]
+        text += (f"; with {top + 1}, every class but {len(at)} (open within slack "
+                 f"{self.header['slack']}: {', '.join(c.name or c.signature for c in at)})")
+        if len(at) < len(self.open):
+            text += (f"; {len(self.open) - len(at)} more open with more corners, on which the "
+                     f"records above {top + 1} corners may lean")
+        return text
 
 
 def read_header(first: str) -> dict[str, Any]:
@@ -595,8 +663,9 @@ def read_header(first: str) -> dict[str, Any]:
     for key in ("max_corners", "slack"):
         if not _is_count(header.get(key)) or header[key] < 1:
             raise ConjectureError(f"the header's {key} {header.get(key)!r} is not a positive integer")
-    if "classes" in header and (not _is_count(header["classes"]) or header["classes"] < 0):
-        raise ConjectureError(f"the header's classes {header['classes']!r} is not a count")
+    for key in ("classes", "unsettled"):
+        if key in header and (not _is_count(header[key]) or header[key] < 0):
+            raise ConjectureError(f"the header's {key} {header[key]!r} is not a count")
     return header
 
 
@@ -606,7 +675,8 @@ def check_certificate(lines: Iterable[str], directory: Path | Census) -> Certifi
     header's counts.  A certificate proves, when it checks, that every genus-0 polycube class
     with at most ``checked_corners`` corners is reachable from the cube (by the induction of the
     module docstring), given that the catalog is complete through that range; at genus 1, that
-    every class is reachable from the base of its orientation type.
+    every class is reachable from the base of its orientation type.  With open classes it
+    proves less: :meth:`CertificateCheck.statement`.
 
     Raises
     ------
@@ -630,6 +700,7 @@ def check_certificate(lines: Iterable[str], directory: Path | Census) -> Certifi
     names = {e.signature: e.name for e in census.entries}
     wanted = dict(catalog_signatures(census, checked))
     covered_sigs: set[str] = set()
+    open_: list[OpenClass] = []
     records = 0
     parsed: list[tuple[int, Any]] = []
     for number, line in it:
@@ -657,16 +728,22 @@ def check_certificate(lines: Iterable[str], directory: Path | Census) -> Certifi
             continue
         covered_sigs.add(sig)
         why = check_record(data, checked, header["slack"], bases, structures.get(sig))
-        if why is not None:
+        if why == UNSETTLED:
+            open_.append(OpenClass(number, sig, names[sig], data["corners"]))
+        elif why is not None:
             problems.append(CertificateProblem(number, sig, why, names[sig]))
     if "classes" in header and header["classes"] != records:
         problems.append(CertificateProblem(1, "", f"the header counts {header['classes']} classes; "
                                            f"the certificate has {records} records"))
+    if header.get("unsettled", 0) != len(open_):
+        first = f" ({open_[0].name or open_[0].signature[:24] + '...'} first)" if open_ else ""
+        problems.append(CertificateProblem(1, "", f"the header states {header.get('unsettled', 0)} "
+                                           f"unsettled classes; the certificate has {len(open_)}{first}"))
     for sig in wanted:
         if sig not in covered_sigs:
             problems.append(CertificateProblem(0, sig, "catalog class missing from the certificate",
                                                names[sig]))
-    return CertificateCheck(header, checked, covered, records, tuple(problems), genus)
+    return CertificateCheck(header, checked, covered, records, tuple(problems), genus, tuple(open_))
 
 
 CERTIFICATE_NAME = "reachability-certificate.jsonl"
