@@ -81,17 +81,19 @@ class TorusGenerator(Generator):
         return [Job(self.name, high, low, r, mod) for r in range(mod)]
 
     def shares(self, corners: int, workers: int = 1) -> int:
-        """How many shares a search through ``corners`` is cut into: 16 (more with more than 16
-        workers) while the map has at most 44 crossings, then 4 times as many every two
-        crossings, as the second stage grows about that fast, so that a share stays minutes of
-        CPU (genus 2 through 47 corners: 1,024 shares of about 2.5 minutes).
+        """How many shares a search through ``corners`` is cut into: 16 while the map has at
+        most 44 crossings, then 4 times as many every two crossings, as the second stage grows
+        about that fast, so that a share stays minutes of CPU (genus 2 through 47 corners: 1,024
+        shares of about 2.5 minutes); at least one a worker, in sixteens.
 
         >>> from polyloops.generate.base import generators
         >>> [generators()["handles"].shares(n) for n in (42, 44, 46, 47)]
         [16, 64, 256, 1024]
+        >>> generators()["handles"].shares(42, workers=40)
+        48
         """
         grow = max(0, (self.crossings(corners) - 43) // 2)
-        return 16 * -(-max(workers, 1) // 16) * 4 ** grow
+        return max(16 * -(-max(workers, 1) // 16), 16 * 4 ** grow)
 
     def crossings(self, corners: int) -> int:
         """The crossings of a map of this genus with ``corners`` corners (quads: V - F = 2 - 2g)."""
