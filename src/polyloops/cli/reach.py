@@ -199,8 +199,9 @@ def cmd_conjecture_settle(args: argparse.Namespace) -> int:
                         if row.settled_irreducible else "-"))
     lines.append(f"wrote {args.output}")
     if result.unsettled:
-        lines.append("unsettled within slack " + str(args.slack) + ": "
-                     + ", ".join(r.signature for r in result.unsettled))
+        names = {e.signature: e.name for e in census.entries}
+        lines.append(f"open (unsettled within slack {args.slack}, the certificate says so): "
+                     + ", ".join(names.get(r.signature, r.signature) for r in result.unsettled))
     emit(args, data, "\n".join(lines))
     return EXIT_INVALID if result.unsettled else EXIT_OK
 
