@@ -311,8 +311,9 @@ def test_open_classes_bound_what_a_certificate_proves():
     check = check_certificate(_open(lines, {at[26][0]}), catalog)
     assert check.valid and not check.complete and check.proven_corners == 25
     assert [c.signature for c in check.open] == [at[26][0]]
-    assert check.statement() == ("every genus-0 class through 25 corners is reachable from the cube; with "
-                                 f"26, every class but 1 (open within slack 10: {check.open[0].name})")
+    assert check.statement() == ("every genus-0 class through 25 corners is reachable from the cube; "
+                                 "with 26, every class but 1 (recorded as open at slack 10: "
+                                 f"{check.open[0].name})")
     check = check_certificate(_open(lines, {at[22][0], at[26][0]}), catalog)
     assert check.valid and check.proven_corners == 21 and "1 more open" in check.statement()
     full = check_certificate(lines, catalog)

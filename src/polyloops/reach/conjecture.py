@@ -637,7 +637,7 @@ class CertificateCheck:
         if not self.open:
             return text
         at = [c for c in self.open if c.corners == top + 1]
-        text += (f"; with {top + 1}, every class but {len(at)} (open within slack "
+        text += (f"; with {top + 1}, every class but {len(at)} (recorded as open at slack "
                  f"{self.header['slack']}: {', '.join(c.name or c.signature for c in at)})")
         if len(at) < len(self.open):
             text += (f"; {len(self.open) - len(at)} more open with more corners, on which the "
