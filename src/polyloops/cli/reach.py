@@ -290,7 +290,8 @@ def add_commands(command: AddCommand) -> None:
         what = sphere if genus == 0 else handles
         g = sub.add_parser(f"genus{genus}", help=f"settle every class of a genus-{genus} catalog up to N "
                            "corners", description=f"settle every class of a genus-{genus} catalog up to N "
-                           f"corners: {what}; exit 1 if some class is not settled")
+                           f"corners: {what}; exit 1 if some class is not settled (the certificate then "
+                           "records it as open, and says how many in its header)")
         g.add_argument("--catalog", metavar="DIR",
                        help=f"a catalog directory (default: the shipped catalogs/genus{genus})")
         g.add_argument("--max-corners", type=count_arg(8), required=True, metavar="N")
@@ -306,7 +307,9 @@ def add_commands(command: AddCommand) -> None:
         g.set_defaults(func=cmd_conjecture_settle)
     c = sub.add_parser("check", help="re-check a certificate without trusting the search",
                        description="re-check a certificate against a catalog: every class present, "
-                       "every removal and detour replayed with the Definition-4 checker")
+                       "every removal and detour replayed with the Definition-4 checker, and as many open "
+                       "classes as its header states; exit 0 when it holds, saying what it proves (with "
+                       "open classes, every class below the smallest one, and the others of its size)")
     c.add_argument("certificate", metavar="CERT", nargs="?",
                    help="a certificate (default: the shipped one of --genus)")
     c.add_argument("--catalog", metavar="DIR", help="the catalog it settles (default: the shipped one of "
