@@ -177,7 +177,7 @@ def genus1_section(summary: dict, types: dict[str, dict[int, int]]) -> list[str]
     return lines
 
 
-# No genus-2 catalog ships (a run through 42 corners finds none), so this section is what the
+# No genus-2 catalog ships (a run through 44 corners finds none), so this section is what the
 # runs it names found, kept here beside the tables it follows.
 GENUS2 = """## Genus 2
 
@@ -186,12 +186,13 @@ Computed by `polyloops catalog --genus 2` (the `handles` generator:
 with `N` corners has `N + 2` crossings, and the search is complete through `N` corners when its
 first stage lists every two-axis arrangement `B` with up to `(N + 2) / 3` crossings.
 
-- **No genus-2 polycube has 42 corners or fewer.** `polyloops catalog --genus 2 --max-corners
-  42 --workers 2 -o g2-42`: the first stage through 14 crossings (490,874 `B`: 2 with 6
+- **No genus-2 polycube has 44 corners or fewer.** `polyloops catalog --genus 2 --max-corners
+  44 --workers 2 -o g2-44`: the first stage through 15 crossings (491,579 `B`: 2 with 6
   crossings, 23 with 8, 522 with 10, 1 with 11, 15,629 with 12, 21 with 13, 474,676 with 14,
-  listed as square-tiled surfaces), then the third axis of each; no map carries a polycube.
-  2,576 s of user CPU, 53 minutes of wall time beside other runs, 218 MB at the peak
-  (`/usr/bin/time -v`).
+  705 with 15, listed as square-tiled surfaces), then the third axis of each within 46
+  crossings; four third axes passed the region search and none of their maps carries a
+  polycube. 7,160 s of user CPU in 64 shares, 1 h 31 min of wall time (two workers, beside
+  another run), 89 MB at the peak (`/usr/bin/time -v`). Through 42 corners: 2,576 s.
 - **The smallest known have 48 corners**: the slab with two holes along one axis
   (`example:slab-2-holes`, its sparsest pair of axes crossing 10 times, the others 14 and 26)
   and the bar with holes along two axes (`example:two-axis-holes`, pairs 14, 18 and 18). Every
@@ -200,7 +201,7 @@ first stage lists every two-axis arrangement `B` with up to `(N + 2) / 3` crossi
   one map with a polycube, the slab's (`python benchmarks/genus2.py --bases 12 --corners 48`:
   0.5 s of CPU for the first stage, 2,762 s for the second, 2,576 of them on the 15,629 `B` of
   12 crossings; one process).
-- Between 43 and 47 corners the question is open: a genus-2 polycube with `N <= 47` corners
+- Between 45 and 47 corners the question is open: a genus-2 polycube with `N <= 47` corners
   has a pair crossing at most 16 times (`(47 + 2) / 3`), and `two-axis-holes` shows that the
   sparsest pair of a 48-corner one can cross 14 times. Every `B` through 16 crossings is now
   listed (14,362,363, 13,870,784 of them with 16), and the third axes of all of them cost
