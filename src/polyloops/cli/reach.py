@@ -199,9 +199,8 @@ def cmd_conjecture_settle(args: argparse.Namespace) -> int:
                         if row.settled_irreducible else "-"))
     lines.append(f"wrote {args.output}")
     if result.unsettled:
-        names = {e.signature: e.name for e in census.entries}
         lines.append(f"open (unsettled within slack {args.slack}, the certificate says so): "
-                     + ", ".join(names.get(r.signature, r.signature) for r in result.unsettled))
+                     + ", ".join(census.by_signature[r.signature].name for r in result.unsettled))
     emit(args, data, "\n".join(lines))
     return EXIT_INVALID if result.unsettled else EXIT_OK
 

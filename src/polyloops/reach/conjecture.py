@@ -459,6 +459,9 @@ class Bases:
     base: dict[str, str]
 
 
+UNSETTLED = "unsettled"  # what check_record says of a well-formed record of an open class
+
+
 def check_record(data: Any, corners_bound: int, slack_bound: int | None = None,
                  bases: Bases | None = None, structure: LoopStructure | None = None) -> str | None:
     """Replay one record with the Definition-4 checker, and check every field it states
@@ -522,9 +525,6 @@ def check_record(data: Any, corners_bound: int, slack_bound: int | None = None,
     if "detour" in data:
         return _check_detour(ls, n, data["detour"], slack_bound)
     return UNSETTLED
-
-
-UNSETTLED = "unsettled"  # what check_record says of a well-formed record of an open class
 
 
 def _check_detour(ls: LoopStructure, n: int, detour: Any, slack_bound: int | None,
