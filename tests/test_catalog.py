@@ -699,7 +699,7 @@ def test_shipping_a_larger_run_keeps_the_old_counts_and_checks_everything(tmp_pa
     build_catalog(run, 24, generator="loops")
     report = tool.ship(run, into, slack=10)
     summary = json.loads((into / "summary.json").read_text())
-    assert report["max_corners"] == 24 and report["unsettled"] == []
+    assert report["max_corners"] == 24 and report["unsettled"] == {}
     assert summary["quadrangulations"]["20"] == old["quadrangulations"]["20"]
     assert summary["quadrangulations"]["24"] is None
     assert summary["counts"]["24"] == old["counts"]["24"]

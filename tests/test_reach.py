@@ -16,7 +16,13 @@ from polyloops.core.canonical import from_signature, signature
 from polyloops.core.directions import Axis
 from polyloops.core.moves import Addition, add_loop, canonical_cycle, try_remove
 from polyloops.io.examples import load_example
-from polyloops.reach.conjecture import certificate_lines, check_certificate, settle_catalog
+from polyloops.reach.conjecture import (
+    ConjectureError,
+    certificate_lines,
+    check_certificate,
+    read_records,
+    settle_catalog,
+)
 from polyloops.reach.search import MoveKind, check_path, explore, neighbours, path_steps, shortest_path
 from polyloops.verify import check_polycube_loop_structure
 from shipped import small_catalog  # the shipped catalog cut short: the certificate tests settle through 26
@@ -312,7 +318,7 @@ def test_open_classes_bound_what_a_certificate_proves():
     assert check.valid and not check.complete and check.proven_corners == 25
     assert [c.signature for c in check.open] == [at[26][0]]
     assert check.statement() == ("every genus-0 class through 25 corners is reachable from the cube; "
-                                 "with 26, every class but 1 (recorded as open at slack 10: "
+                                 "with 26, every class but 1 (recorded as open, no detour within +10: "
                                  f"{check.open[0].name})")
     check = check_certificate(_open(lines, {at[22][0], at[26][0]}), catalog)
     assert check.valid and check.proven_corners == 21 and "1 more open" in check.statement()
@@ -329,6 +335,48 @@ def test_open_classes_bound_what_a_certificate_proves():
     assert "states no way of being settled" in str(check.problems[0])
 
 
+def test_an_open_class_is_searched_again_from_where_it_stopped(monkeypatch):
+    """A run at slack 6 leaves the non-incremental class open, searched to +6; a run at slack 8
+    from its records searches that class alone, from +8 on, takes every other record as it is,
+    and writes the certificate a run at slack 8 from nothing writes. Its open record's search is
+    checked for form and bound."""
+    from polyloops.reach import conjecture
+
+    catalog = small_catalog(26)
+    low = settle_catalog(catalog, 26, 6)
+    [open_] = low.unsettled
+    assert open_.searched == 6 and json.loads(list(certificate_lines(low))[-1]).get("searched") in (None, 6)
+    lines = list(certificate_lines(low))
+    records = read_records(lines)
+    assert [r for r in records if not r.settled] == [open_]
+    calls = []
+    real = conjecture.find_detour
+
+    def counted(ls, bound, target=None):
+        calls.append(bound - ls.map.num_corners)
+        return real(ls, bound, target)
+
+    monkeypatch.setattr(conjecture, "find_detour", counted)
+    again = settle_catalog(catalog, 26, 8, earlier=records)
+    assert calls == [8] and again.slack == 8 and not again.unsettled
+    assert list(certificate_lines(again)) == list(certificate_lines(settle_catalog(catalog, 26, 8)))
+    # an open record searched no further than asked is taken as it is
+    calls.clear()
+    assert settle_catalog(catalog, 26, 6, earlier=records).unsettled == [open_] and calls == []
+    check = check_certificate(lines, catalog)
+    assert check.valid and check.open[0].searched == 6
+    at = next(i for i, line in enumerate(lines) if i and "unsettled" in line)
+    for searched, why in ((7, "searched 7 is not a slack from 0 to the header's 6"),
+                          ("6", "searched '6' is not a slack")):
+        bad = [*lines[:at], json.dumps({**json.loads(lines[at]), "searched": searched}), *lines[at + 1:]]
+        assert why in str(check_certificate(bad, catalog).problems[0])
+    settled = next(i for i, line in enumerate(lines) if "removable" in line)
+    bad = [*lines[:settled], json.dumps({**json.loads(lines[settled]), "searched": 2}), *lines[settled + 1:]]
+    assert "is not open" in str(check_certificate(bad, catalog).problems[0])
+    with pytest.raises(ConjectureError, match="line 3 is not a certificate record"):
+        read_records([lines[0], lines[1], "[]"])
+
+
 def test_cli_conjecture(tmp_path, capsys):
     cert = tmp_path / "c.jsonl"
     assert main(["conjecture", "genus0", "--catalog", str(small_catalog(26)), "--max-corners", "26", "--json",
@@ -343,6 +391,16 @@ def test_cli_conjecture(tmp_path, capsys):
     assert main(["conjecture", "check", str(cert), "--catalog", str(small_catalog(26)), "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert data["valid"] and not data["complete"] and data["proven_corners"] == 25 and len(data["open"]) == 1
+    # deepened from it: the open class is searched again at +8 and settled
+    deeper = tmp_path / "deeper.jsonl"
+    assert main(["conjecture", "genus0", "--catalog", str(small_catalog(26)), "--max-corners", "26",
+                 "--slack", "8", "--from", str(cert), "-o", str(deeper), "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["unsettled"] == []
+    (tmp_path / "not.jsonl").write_text('{"polyloops": 1}\n')
+    assert main(["conjecture", "genus0", "--catalog", str(small_catalog(26)), "--max-corners", "26",
+                 "--from", str(tmp_path / "not.jsonl"), "-o", str(deeper)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "not.jsonl: not a reachability certificate" in err
     lines = cert.read_text().splitlines()
     cert.write_text("\n".join([json.dumps({**json.loads(lines[0]), "unsettled": 0}), *lines[1:]]) + "\n")
     assert main(["conjecture", "check", str(cert), "--catalog", str(small_catalog(26))]) == 1

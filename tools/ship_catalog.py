@@ -8,7 +8,10 @@ over the shipped range, record for record and count for count. The run's summary
 numbers of plantri's maps the shipped catalog counted (the loops generator does not visit
 them: larger corner counts stay ``null``). Then the reachability certificate is made for the
 whole range and checked with ``conjecture check``'s checker, and the docs' tables
-(docs/counts.md, the b-files, catalogs/README.md) are written again.
+(docs/counts.md, the b-files, catalogs/README.md) are written again. The shipped certificate's
+records are taken for the classes they settle, and its open classes are searched again from
+the slack they were searched to: shipping the same run again with a larger ``--slack`` deepens
+the search of the open classes alone.
 """
 
 from __future__ import annotations
@@ -72,9 +75,17 @@ def ship(run: Path, into: Path = SHIPPED, slack: int = 10, workers: int = 1) -> 
     """Check ``run`` against ``into`` and replace ``into``'s catalog with it; returns the
     certificate check's summary."""
     from polyloops.io.files import write_atomic
-    from polyloops.reach.conjecture import certificate_lines, check_certificate, settle_catalog
+    from polyloops.reach.conjecture import (
+        CERTIFICATE_NAME,
+        certificate_lines,
+        check_certificate,
+        read_records,
+        settle_catalog,
+    )
 
     new = json.loads((run / "summary.json").read_text())
+    certificate = into / CERTIFICATE_NAME
+    earlier = read_records(certificate.read_text().splitlines()) if certificate.exists() else []
     if (into / "summary.json").exists():
         old = json.loads((into / "summary.json").read_text())
         if old.get("genus", 0) != new.get("genus", 0):
@@ -98,14 +109,14 @@ def ship(run: Path, into: Path = SHIPPED, slack: int = 10, workers: int = 1) -> 
     with tqdm(total=total, desc="certificate", unit="class", disable=None, file=sys.stderr) as bar:
         # the classes settled so far, kept in the run's parts: a stopped ship resumes
         result = settle_catalog(into, top, slack, workers, progress=lambda _: bar.update(1),
-                                journal=run / "parts" / "settle-journal.jsonl")
+                                journal=run / "parts" / "settle-journal.jsonl", earlier=earlier)
     lines = list(certificate_lines(result))
     check = check_certificate(lines, into)
     if not check.valid:
         raise ShipError(f"the certificate does not check: {check.problems[0]}")
-    write_atomic(into / "reachability-certificate.jsonl", "\n".join(lines) + "\n")
+    write_atomic(certificate, "\n".join(lines) + "\n")
     return {"max_corners": top, "classes": check.records, "proves": check.statement(),
-            "unsettled": [c.name for c in check.open],
+            "unsettled": {c.name: c.searched for c in check.open},
             "by_corners": [row.to_json() for row in result.table()]}
 
 

@@ -154,11 +154,18 @@ def cmd_conjecture_settle(args: argparse.Namespace) -> int:
         catalog_signatures,
         certificate_lines,
         complete_range,
+        read_records,
         settle_catalog,
     )
 
     genus = int(args.which.removeprefix("genus"))
     check_output(args.output)
+    earlier = []
+    if args.earlier:
+        try:
+            earlier = read_records(read_text_file(args.earlier).splitlines())
+        except ConjectureError as err:
+            raise CliError(f"{args.earlier}: {err}") from None
     try:
         census = read_catalog(catalog_dir(args.catalog, genus))
         covered = complete_range(census, genus)
@@ -176,7 +183,7 @@ def cmd_conjecture_settle(args: argparse.Namespace) -> int:
     bar = tqdm(total=total, desc=args.which, unit="class", disable=None, file=sys.stderr)
     try:
         result = settle_catalog(census.directory, args.max_corners, args.slack, args.workers, args.dask,
-                                progress=lambda _: bar.update(1), journal=journal)
+                                progress=lambda _: bar.update(1), journal=journal, earlier=earlier)
     except (CatalogError, ConjectureError) as err:
         raise CliError(str(err), getattr(err, "status", 2)) from None
     except OSError as err:
@@ -199,8 +206,9 @@ def cmd_conjecture_settle(args: argparse.Namespace) -> int:
                         if row.settled_irreducible else "-"))
     lines.append(f"wrote {args.output}")
     if result.unsettled:
-        lines.append(f"open (unsettled within slack {args.slack}, the certificate says so): "
-                     + ", ".join(census.by_signature[r.signature].name for r in result.unsettled))
+        lines.append("open (no detour within the slack searched, the certificate says so): "
+                     + ", ".join(f"{census.by_signature[r.signature].name} (+{r.searched})"
+                                 for r in result.unsettled))
     emit(args, data, "\n".join(lines))
     return EXIT_INVALID if result.unsettled else EXIT_OK
 
@@ -299,6 +307,9 @@ def add_commands(command: AddCommand) -> None:
         g.add_argument("-o", "--output", required=True, metavar="CERT",
                        help="the certificate (JSON lines); CERT.journal keeps the classes settled so far, "
                        "so that a stopped run started again resumes")
+        g.add_argument("--from", dest="earlier", metavar="CERT",
+                       help="an earlier certificate of the catalog: its records are taken, and its open "
+                       "classes searched again from the slack they were searched to (when below K)")
         g.add_argument("--workers", type=count_arg(1, MAX_WORKERS), default=1, metavar="K",
                        help="local worker processes")
         g.add_argument("--dask", metavar="ADDRESS", help="a Dask cluster (an address, or local)")

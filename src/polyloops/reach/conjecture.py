@@ -12,11 +12,13 @@ A certificate is JSON lines: a header, then one record per catalog class:
 ``{"signature", "corners", "base": true}`` for the cube, ``{"signature", "corners",
 "removable": LOOP}`` or ``{"signature", "corners", "detour":
 {"slack", "max_corners", "moves": [...]}}`` (moves replayed from ``from_signature(signature)``),
-or ``{"signature", "corners", "unsettled": true}``.  :func:`check_certificate` replays every
-record with the Definition-4 checker and trusts nothing else.
+or ``{"signature", "corners", "unsettled": true, "searched": K}``.  :func:`check_certificate`
+replays every record with the Definition-4 checker and trusts nothing else.
 
 **Open classes.**  A class the search leaves unsettled is *open*, and the header says how many
-there are (``"unsettled": k``, absent when none).  A certificate with open classes still checks
+there are (``"unsettled": k``, absent when none).  Its record says how far its detours were
+searched in vain (``"searched": K``: every slack up to ``K``; without it, the header's slack), a
+claim of the search that nothing replays.  A certificate with open classes still checks
 when everything it states holds, and it proves what the induction gives: every class with fewer
 corners than the smallest open one is reachable, and so is every other class with exactly that
 many (its move or detour ends below, or at a base).  Larger classes may lean on an open one, so
@@ -37,7 +39,7 @@ from __future__ import annotations
 import json
 import re
 from collections.abc import Callable, Iterable, Iterator
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any, TypeGuard
 
@@ -119,6 +121,7 @@ class ClassRecord:
     slack: int | None = None
     max_corners: int | None = None
     orientation: str | None = None  # genus 1: the orientation type (orientation_type)
+    searched: int | None = None  # an open class: detours searched in vain up to this slack
 
     @property
     def settled(self) -> bool:
@@ -154,6 +157,8 @@ class ClassRecord:
                              "moves": [m.to_json() for m in self.detour]}
         else:
             out["unsettled"] = True
+            if self.searched is not None:
+                out["searched"] = self.searched
         return out
 
     @classmethod
@@ -165,15 +170,24 @@ class ClassRecord:
                    detour=[Move.from_json(m) for m in detour["moves"]] if detour else None,
                    slack=detour["slack"] if detour else None,
                    max_corners=detour["max_corners"] if detour else None,
-                   orientation=data.get("orientation"))
+                   orientation=data.get("orientation"),
+                   searched=data.get("searched") if data.get("unsettled") else None)
 
 
 def settle(signature: str, slack: int, *, base: bool = False, target: str | None = None,
-           orientation: str | None = None) -> ClassRecord:
+           orientation: str | None = None, searched: int = 0) -> ClassRecord:
     """Settle one class: its lowest removable loop, or the shortest detour with the least
     slack ``K = 2, 4, ...`` up to ``slack`` (to fewer corners, or to the class ``target``).
     At genus 0 the cube is the base; at genus 1 the caller says which class is (``base``) and
-    gives each class its ``orientation`` type."""
+    gives each class its ``orientation`` type.  A class whose detours were ``searched`` in vain
+    up to some slack already (an earlier run) is searched from the next one on; an open class's
+    record says how far the search went.
+
+    >>> from polyloops.catalog.census import read_catalog
+    >>> p12 = read_catalog()["P12.1"].signature
+    >>> settle(p12, 4).removable is not None
+    True
+    """
     ls = from_signature(signature)
     n = ls.map.num_corners
     if base or (orientation is None and n == CUBE_CORNERS):
@@ -181,12 +195,12 @@ def settle(signature: str, slack: int, *, base: bool = False, target: str | None
     loop = removable_loop(ls)
     if loop is not None:
         return ClassRecord(signature, n, removable=loop, orientation=orientation)
-    for k in range(2, slack + 1, 2):
+    for k in range(searched + 2, slack + 1, 2):
         moves = find_detour(ls, n + k, target)
         if moves is not None:
             return ClassRecord(signature, n, detour=moves, slack=k, max_corners=n + k,
                                orientation=orientation)
-    return ClassRecord(signature, n, orientation=orientation)
+    return ClassRecord(signature, n, orientation=orientation, searched=max(slack, searched))
 
 
 @dataclass(frozen=True)
@@ -196,11 +210,12 @@ class _Task:
     base: bool = False
     target: str | None = None
     orientation: str | None = None
+    searched: int = 0
 
 
 def _settle_job(task: _Task) -> ClassRecord:
     return settle(task.signature, task.slack, base=task.base, target=task.target,
-                  orientation=task.orientation)
+                  orientation=task.orientation, searched=task.searched)
 
 
 def _orientation_job(signature: str) -> str:
@@ -314,13 +329,19 @@ def catalog_signatures(directory: Path | Census, max_corners: int) -> list[tuple
 def settle_catalog(directory: Path, max_corners: int, slack: int, workers: int = 1,
                    dask: str | None = None,
                    progress: Callable[[ClassRecord], None] | None = None,
-                   journal: Path | None = None) -> ConjectureResult:
+                   journal: Path | None = None, earlier: Iterable[ClassRecord] = ()) -> ConjectureResult:
     """Settle every class of the catalog with at most ``max_corners`` corners.
 
     With a ``journal`` (a file), each class's record is appended there as it is settled, and
     a later call with the same catalog, range and slack takes the records it holds instead of
     settling those classes again (a stopped run resumes; the journal's first line names the
     catalog by its digest, so another run's journal is started afresh).
+
+    ``earlier`` records (an earlier certificate's, :func:`read_records`) are taken for the classes
+    they settle, whatever their slack; an open one is searched again from the slack it was
+    searched to, when that is below ``slack``.  The result's slack is the largest of ``slack``
+    and the detours taken, so that its certificate's header bounds them all; as for any
+    certificate, :func:`check_certificate` replays whatever was taken.
 
     Raises
     ------
@@ -348,15 +369,17 @@ def settle_catalog(directory: Path, max_corners: int, slack: int, workers: int =
         tasks = [_Task(sig, slack, base=bases[types[sig]] == sig,
                        target=bases[types[sig]] if n == lowest[types[sig]] else None, orientation=types[sig])
                  for sig, n in classes]
-    result = ConjectureResult(max_corners, slack, genus=genus)
+    todo, taken = _resume(tasks, earlier, slack)
+    bound = max([slack, *(r.slack or 0 for r in taken.values())])
+    result = ConjectureResult(max_corners, bound, genus=genus)
     done = _Journal(journal, census, max_corners, slack) if journal is not None else None
-    known = done.records if done is not None else {}
+    known = {**taken, **(done.records if done is not None else {})}
     for record in known.values():
         if progress:
             progress(record)
     # as they finish (a class that takes hours holds back no other's record), in catalog order after
     by_signature = dict(known)
-    for record in run_jobs(_settle_job, [t for t in tasks if t.signature not in known], workers, dask,
+    for record in run_jobs(_settle_job, [t for t in todo if t.signature not in known], workers, dask,
                            ordered=False):
         by_signature[record.signature] = record
         if done is not None:
@@ -365,6 +388,51 @@ def settle_catalog(directory: Path, max_corners: int, slack: int, workers: int =
             progress(record)
     result.records.extend(by_signature[t.signature] for t in tasks)
     return result
+
+
+def _resume(tasks: list[_Task], earlier: Iterable[ClassRecord],
+            slack: int) -> tuple[list[_Task], dict[str, ClassRecord]]:
+    """The tasks with the earlier records applied: the records to take as they are (settled
+    the way the task would be, or open and searched as far as ``slack``), and the tasks left,
+    open classes searched from where they stopped."""
+    wanted = {t.signature: t for t in tasks}
+    taken: dict[str, ClassRecord] = {}
+    resumed: dict[str, _Task] = {}
+    for r in earlier:
+        task = wanted.get(r.signature)
+        if task is None or r.base != task.base or r.orientation != task.orientation:
+            continue  # not a class of this range, or one settled another way: settled afresh
+        if r.settled or (r.searched or 0) >= slack:
+            taken[r.signature] = r
+        else:
+            resumed[r.signature] = replace(task, searched=r.searched or 0)
+    return [resumed.get(t.signature, t) for t in tasks if t.signature not in taken], taken
+
+
+def read_records(lines: Iterable[str]) -> list[ClassRecord]:
+    """The records of a certificate (its lines, the header first), an open one's search taken
+    to be the header's slack when the record does not say; not checked (``settle_catalog``'s
+    result is, when its certificate is).
+
+    Raises
+    ------
+    ConjectureError
+        When the header is no certificate's, or a line is no record.
+    """
+    it = iter(lines)
+    header = read_header(next(it, ""))
+    out = []
+    for number, line in enumerate(it, 2):
+        if not line.strip():
+            continue
+        try:
+            record = ClassRecord.from_json(json.loads(line))
+        except (ValueError, KeyError, TypeError, AttributeError) as err:
+            raise ConjectureError(f"line {number} is not a certificate record ({err})") from None
+        if not record.settled and record.searched is None:
+            record = replace(record, searched=header["slack"])
+        out.append(record)
+    return out
 
 
 class _Journal:
@@ -493,6 +561,12 @@ def check_record(data: Any, corners_bound: int, slack_bound: int | None = None,
         return "states no way of being settled (base, removable, detour, or unsettled)"
     if "unsettled" in data and data["unsettled"] is not True:
         return f"unsettled {data['unsettled']!r} is not true"
+    if "searched" in data:
+        searched = data["searched"]
+        if "unsettled" not in data:
+            return "states how far its detours were searched, but is not open (unsettled)"
+        if not _is_count(searched) or searched < 0 or (slack_bound is not None and searched > slack_bound):
+            return f"searched {searched!r} is not a slack from 0 to the header's {slack_bound}"
     target = None
     if bases is not None:
         kind = orientation_type(ls)
@@ -584,6 +658,7 @@ class OpenClass:
     signature: str
     name: str
     corners: int
+    searched: int  # detours searched in vain up to this slack
 
 
 @dataclass(frozen=True)
@@ -637,8 +712,10 @@ class CertificateCheck:
         if not self.open:
             return text
         at = [c for c in self.open if c.corners == top + 1]
-        text += (f"; with {top + 1}, every class but {len(at)} (recorded as open at slack "
-                 f"{self.header['slack']}: {', '.join(c.name or c.signature for c in at)})")
+        searches = "; ".join(f"no detour within +{k}: " + ", ".join(c.name or c.signature for c in at
+                                                                  if c.searched == k)
+                             for k in sorted({c.searched for c in at}, reverse=True))
+        text += f"; with {top + 1}, every class but {len(at)} (recorded as open, {searches})"
         if len(at) < len(self.open):
             text += (f"; {len(self.open) - len(at)} more open with more corners, on which the "
                      f"records above {top + 1} corners may lean")
@@ -729,7 +806,8 @@ def check_certificate(lines: Iterable[str], directory: Path | Census) -> Certifi
         covered_sigs.add(sig)
         why = check_record(data, checked, header["slack"], bases, structures.get(sig))
         if why == UNSETTLED:
-            open_.append(OpenClass(number, sig, names[sig], data["corners"]))
+            open_.append(OpenClass(number, sig, names[sig], data["corners"],
+                                   data.get("searched", header["slack"])))
         elif why is not None:
             problems.append(CertificateProblem(number, sig, why, names[sig]))
     if "classes" in header and header["classes"] != records:
