@@ -10,6 +10,8 @@ from pathlib import Path
 
 import networkx as nx
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from polyloops.cli import main
 from polyloops.core.canonical import from_signature, signature
@@ -501,3 +503,57 @@ def test_the_search_finds_what_the_naive_reference_finds():
         mp.setattr(moves, "VERIFY_CHILDREN", True)
         checked = explore(cube, 20)
     assert checked.by_corners == fast.by_corners and checked.by_distance == fast.by_distance
+
+
+@cache
+def _detour_cases() -> list[tuple[str, str | None]]:
+    """Classes to search detours from: the genus-0 classes through 22 corners and the genus-1
+    classes through 36, each with no target and with another class of its size as target."""
+    from polyloops.catalog.census import default_catalog, read_catalog
+
+    entries = [e for e in read_catalog().entries if e.corners <= 22]
+    entries += [e for e in read_catalog(default_catalog(1)).entries if e.corners <= 36]
+    out: list[tuple[str, str | None]] = []
+    for e in entries:
+        out.append((e.signature, None))
+        other = next((f.signature for f in entries if f.corners == e.corners and f is not e), None)
+        out.append((e.signature, other))
+    return out
+
+
+@settings(max_examples=25)
+@given(st.data())
+def test_the_detour_search_meets_the_plain_searchs_first_detour(data):
+    """Trying each level's removals before its additions (and the array test of removals)
+    returns the very detour the plain breadth-first search returns, target or not, found or
+    not; the irreducible classes of the certificate are always among the cases."""
+    from polyloops.reach.conjecture import find_detour
+    from reference.detour_reference import plain_detour
+
+    cases = _detour_cases()
+    sig, target = data.draw(st.sampled_from(cases))
+    slack = data.draw(st.sampled_from([2, 4, 6]))
+    ls = from_signature(sig)
+    bound = ls.map.num_corners + slack
+    assert find_detour(ls, bound, target) == plain_detour(ls, bound, target)
+
+
+def test_the_detour_search_agrees_on_the_irreducible_classes():
+    """The irreducible classes the shipped certificates settle by short detours (the
+    non-incremental genus-0 class at +8, the genus-1 classes through 44 corners at +4): at
+    their detour's slack and just below it, where the search is exhaustive."""
+    from polyloops.catalog.census import default_catalog
+    from polyloops.reach.conjecture import find_detour
+    from reference.detour_reference import plain_detour
+
+    lines = (default_catalog(1) / "reachability-certificate.jsonl").read_text().splitlines()[1:]
+    records = [r for r in map(json.loads, lines) if "detour" in r and r["corners"] <= 44
+               and r["detour"]["slack"] <= 4]
+    cases = [(signature(load_example("non-incremental"), "full"), 8),
+             *((r["signature"], r["detour"]["slack"]) for r in records)]
+    assert len(cases) >= 6
+    for sig, slack in cases:
+        ls = from_signature(sig)
+        for bound in (ls.map.num_corners + slack - 2, ls.map.num_corners + slack):
+            assert find_detour(ls, bound) == plain_detour(ls, bound)
+        assert find_detour(ls, bound) is not None

@@ -48,7 +48,7 @@ from polyloops.core.canonical import canonical_form, from_signature
 from polyloops.core.errors import PolyloopsError
 from polyloops.core.moves import check_removal
 from polyloops.core.structure import LoopStructure
-from polyloops.reach.search import Move, neighbours
+from polyloops.reach.search import Move
 
 
 def certificate_kind(genus: int) -> str:
@@ -88,16 +88,38 @@ def find_detour(ls: LoopStructure, max_corners: int, target: str | None = None) 
     """A shortest sequence of moves from ``ls`` to a structure with fewer corners (or, given a
     ``target`` signature up to all 48 symmetries, to that class), every structure on the way
     within ``max_corners`` (breadth-first, states up to all 48 symmetries); the moves apply one
-    after the other starting from ``ls`` itself."""
+    after the other starting from ``ls`` itself.
+
+    Only a removal goes below the class's corners, so, without a ``target``, each level's
+    removals are tried before any of its additions is built: the level that holds a detour's
+    last move is not expanded. The detour is the one a plain breadth-first search (additions,
+    then removals, node by node) meets first: the first node of the level with a removal below,
+    and its first such removal. With a ``target`` (which an addition may reach) the level is
+    searched in the plain order.
+    """
+    from polyloops.core.moves import add_loop, additions, removals, remove_loop
+
     n = ls.map.num_corners
-    start = canonical_form(ls, "full").signature
-    seen = {start}
+    seen = {canonical_form(ls, "full").signature}
     level: list[tuple[LoopStructure, list[Move]]] = [(ls, [])]
     while level:
-        nxt = []
+        removed: list[list[tuple[Move, LoopStructure]]] = []
         for current, moves in level:
-            for move, child in neighbours(current, max_corners):
-                if child.map.num_corners < n:
+            children = [(Move.remove(loop), remove_loop(current, loop, checked=False))
+                        for loop in removals(current)]
+            below = next((move for move, child in children if child.map.num_corners < n), None)
+            if below is not None and target is None:
+                return [*moves, below]
+            removed.append(children)
+        nxt = []
+        for (current, moves), children in zip(level, removed, strict=True):
+            room = max_corners - current.map.num_corners
+            grown = ((Move.add(mv), add_loop(current, mv, checked=False))
+                     for mv in additions(current, max_length=room)) if room >= 3 else iter(())
+            for move, child in [*grown, *children]:
+                if child.map.num_corners > max_corners:
+                    continue
+                if child.map.num_corners < n:  # with a target, met in the plain search's order
                     return [*moves, move]
                 s = canonical_form(child, "full").signature
                 if s == target:

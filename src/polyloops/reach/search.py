@@ -38,7 +38,7 @@ from polyloops.core.moves import (
     _AdditionGraph,
     add_loop,
     additions,
-    check_removal,
+    removals,
     remove_loop,
     try_remove,
 )
@@ -121,9 +121,8 @@ def neighbours(ls: LoopStructure, max_corners: int,
             if child.map.num_corners <= max_corners:
                 yield Move.add(mv), child
     if MoveKind.REMOVE in kinds:
-        for lp in ls.loops:
-            if check_removal(ls, lp.id).valid:
-                yield Move.remove(lp.id), remove_loop(ls, lp.id, checked=False)
+        for loop in removals(ls):
+            yield Move.remove(loop), remove_loop(ls, loop, checked=False)
 
 
 def parse_kinds(text: str) -> tuple[MoveKind, ...]:
