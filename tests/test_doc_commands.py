@@ -1,7 +1,8 @@
 """Every command line the README and the docs show in a shell block is a real command: each one
 parses (the default run, in a second), and each one runs with the exit status its comment
 promises, in order, in a folder laid out like a clone (the quick ones in the default run, the
-ones that draw, build or replay with ``--run-slow``).  The few that reproduce a shipped catalog
+ones that draw, build or replay, and those that read what such a one wrote, with
+``--run-slow``).  The few that reproduce a shipped catalog
 (hours of CPU, or writing into the shipped catalog itself) are parsed, not run: they are listed
 in REPRODUCTIONS with the reason."""
 
@@ -109,6 +110,24 @@ def clone_like(tmp: Path) -> Path:
     return tmp
 
 
+def _outputs(line: str) -> list[str]:
+    """The files a command may write: its file-like words but the first (its input)."""
+    words = [w for w in shlex.split(line) if "." in w and not w.startswith("-")]
+    return words[1:] or words[-1:]
+
+
+def weights(commands: list[Shown]) -> list[bool]:
+    """Whether each command is heavy: a heavy command, or one that reads what a heavy one wrote
+    (so that the default run does not draw or search only to feed a quick check)."""
+    out, written = [], set()
+    for shown in commands:
+        heavy = shown.heavy or bool(written & set(shlex.split(shown.line)))
+        if heavy:
+            written |= set(_outputs(shown.line))
+        out.append(heavy)
+    return out
+
+
 def run_page(page: str, tmp: Path, heavy: bool) -> int:
     """Run a page's commands in order (the README's from its scratch folder, as it says; the
     other pages' from the clone's top); those of the other weight only when a later command may
@@ -118,11 +137,13 @@ def run_page(page: str, tmp: Path, heavy: bool) -> int:
     exe = shutil.which("polyloops") or f"{sys.executable} -m polyloops"
     ran = 0
     commands = [s for s in ALL if s.page == page and not s.reproduction]
+    weight = weights(commands)
+    run = [w == heavy for w in weight]
+    for k in reversed(range(len(commands))):  # and whatever a command run reads, first
+        reads = {w for j in range(k + 1, len(commands)) if run[j] for w in shlex.split(commands[j].line)}
+        run[k] = run[k] or bool(reads & set(_outputs(commands[k].line)))
     for k, shown in enumerate(commands):
-        later = " ".join(s.line for s in commands[k + 1:])
-        outputs = [w for w in shlex.split(shown.line) if "." in w and not w.startswith("-")]
-        needed = any(out in later.split() for out in outputs[1:] or outputs[-1:])
-        if shown.heavy != heavy and not needed:
+        if not run[k]:
             continue
         line = shown.line.replace("polyloops ", f"{exe} ", 1) if shown.line.startswith("polyloops ") \
             else f"{sys.executable} {shown.line.removeprefix('python ')}"
@@ -130,7 +151,7 @@ def run_page(page: str, tmp: Path, heavy: bool) -> int:
         assert res.returncode == shown.status, \
             f"{page}: {shown.line}: exit {res.returncode}: {res.stderr[-600:]}"
         assert "Traceback" not in res.stderr, f"{page}: {shown.line}: {res.stderr[-600:]}"
-        ran += shown.heavy == heavy
+        ran += weight[k] == heavy
     return ran
 
 
