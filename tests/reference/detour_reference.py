@@ -5,6 +5,8 @@ removals before building its additions."""
 
 from __future__ import annotations
 
+from collections import deque
+
 from polyloops.core.canonical import canonical_form
 from polyloops.core.moves import check_removal, remove_loop
 from polyloops.core.structure import LoopStructure
@@ -21,20 +23,18 @@ def plain_neighbours(ls: LoopStructure, max_corners: int):
 
 
 def plain_detour(ls: LoopStructure, max_corners: int, target: str | None = None) -> list[Move] | None:
+    """Breadth first with one FIFO queue; a child is the goal when it has fewer corners than
+    ``ls`` or is the ``target`` class, tested as it is generated."""
     n = ls.map.num_corners
+    queue = deque([(ls, ())])
     seen = {canonical_form(ls, "full").signature}
-    level: list[tuple[LoopStructure, list[Move]]] = [(ls, [])]
-    while level:
-        nxt = []
-        for current, moves in level:
-            for move, child in plain_neighbours(current, max_corners):
-                if child.map.num_corners < n:
-                    return [*moves, move]
-                s = canonical_form(child, "full").signature
-                if s == target:
-                    return [*moves, move]
-                if s not in seen:
-                    seen.add(s)
-                    nxt.append((child, [*moves, move]))
-        level = nxt
+    while queue:
+        current, path = queue.popleft()
+        for move, child in plain_neighbours(current, max_corners):
+            key = canonical_form(child, "full").signature
+            if child.map.num_corners < n or key == target:
+                return [*path, move]
+            if key not in seen:
+                seen.add(key)
+                queue.append((child, (*path, move)))
     return None
