@@ -7,7 +7,6 @@ from pathlib import Path
 import pytest
 
 from polyloops.catalog.census import default_catalog, read_catalog
-from polyloops.catalog.classes import map_classes
 from polyloops.cli import main
 from polyloops.core.canonical import canonical_form, from_signature
 from polyloops.io.examples import load_example
@@ -19,6 +18,7 @@ from polyloops.reach.conjecture import (
     orientation_type,
 )
 from polyloops.reach.search import explore, stored_signatures
+from shipped import small_catalog
 
 G1 = default_catalog(1)
 CERT = G1 / "reachability-certificate.jsonl"
@@ -88,34 +88,7 @@ def test_conjecture_genus1_writes_the_shipped_certificate(top, tmp_path, capsys)
     assert "genus 0, not 1" in capsys.readouterr().err
 
 
-def _extended_catalog(tmp: Path, extra: list[str], top: int) -> Path:
-    """The shipped genus-1 catalog with more classes and a summary that claims every class
-    through ``top`` (made up: the checker trusts a catalog's range, which is not under test
-    here)."""
-    out = tmp / "g1"
-    out.mkdir()
-    records = [json.loads(line) for line in (G1 / "catalog.jsonl").read_text().splitlines()]
-    shipped = {r["signature"] for r in records}
-    for i, sig in enumerate(s for s in extra if s not in shipped):
-        ls = from_signature(sig)
-        record = next(r for r in map_classes(ls.map)["full"] if r.signature == sig).to_json()
-        records.append({**record, "name": f"T{ls.map.num_corners}.{90 + i}"})
-    (out / "catalog.jsonl").write_text("".join(json.dumps(r) + "\n" for r in records))
-    summary = json.loads((G1 / "summary.json").read_text())
-    summary["counts"] = {str(n): {"labelled": 0, "rotation": 0, "full": 0} for n in range(8, top + 1)}
-    (out / "summary.json").write_text(json.dumps(summary))
-    return out
-
-
 ZERO = "XY: rank 0; XZ: rank 0; YZ: rank 0"
-
-
-def certificate_through(top: int) -> list[str]:
-    """The shipped certificate, claiming (and holding records) only through ``top`` corners."""
-    lines = CERT.read_text().splitlines()
-    kept = [line for line in lines[1:] if json.loads(line)["corners"] <= top]
-    header = {**json.loads(lines[0]), "max_corners": top, "classes": len(kept)}
-    return [json.dumps(header), *kept]
 
 
 @pytest.fixture(scope="module", params=[40, pytest.param(44, marks=pytest.mark.slow)],
@@ -126,13 +99,14 @@ def extended(request):
     addition above the ring, and the base of the type whose invariants are all zero (no loop
     runs round the hole, as in the bridged ring) with another class of that type, settled by a
     detour."""
-    lines = certificate_through(request.param)
+    catalog = small_catalog(request.param, genus=1)
+    lines = (catalog / "reachability-certificate.jsonl").read_text().splitlines()
     records = [json.loads(line) for line in lines[1:]]
     above = [r["signature"] for r in records if r["corners"] == 36][:2]
     zero = [r for r in records if r["orientation"] == ZERO]
     base = next(r["signature"] for r in zero if r.get("base"))
     other = next(r["signature"] for r in zero if "detour" in r)
-    return G1, lines, above, base, other
+    return catalog, lines, above, base, other
 
 
 def _edit(lines: list[str], signature: str, **changes) -> list[str]:
