@@ -56,37 +56,33 @@ def run_installed(installed: Path, cwd: Path, *argv: str) -> subprocess.Complete
 
 
 def test_plain_install_has_the_census(installed, tmp_path):
-    where = run_installed(installed, tmp_path, "-c", "import polyloops; print(polyloops.__file__)")
-    assert where.stdout.strip().startswith(str(installed)), where  # the wheel, not the source tree
-    code = ("import polyloops as pl; "
-            "print(pl.identify(pl.load_example('l-shape')).name, len(pl.read_catalog().entries))")
+    # the library, in one process: the wheel (not the source tree), both catalogs and both
+    # certificates (whose whole checks run in test_certificates and below, with --run-slow)
+    code = ("import polyloops as pl; print(pl.__file__); "
+            "print(pl.identify(pl.load_example('l-shape')).name, len(pl.read_catalog().entries)); "
+            "c = pl.read_certificate(); print(c.header['max_corners'], c.genus); "
+            "c = pl.read_certificate(genus=1); print(c.header['max_corners'], c.genus); "
+            "print(len(pl.read_catalog(genus=1)))")
     done = run_installed(installed, tmp_path, "-c", code)
-    assert done.returncode == 0 and done.stdout.split()[0] == "P16.2", done.stderr
+    assert done.returncode == 0, done.stderr
+    where, named, genus0, genus1, classes = done.stdout.splitlines()
+    assert where.startswith(str(installed))
+    assert named.split()[0] == "P16.2" and genus0.split() == ["40", "0"]
+    source = json.loads((ROOT / "catalogs" / "genus1" / "summary.json").read_text())
+    top = max(int(n) for n in source["counts"])
+    assert genus1.split() == [str(top), "1"]
+    assert classes == str(sum(row["full"] for row in source["counts"].values()))  # the source's copy
+    # the command, from any directory
     done = run_installed(installed, tmp_path, "-m", "polyloops", "identify", "example:l-shape")
     assert done.returncode == 0 and "P16.2" in done.stdout, done.stderr
     done = run_installed(installed, tmp_path, "-m", "polyloops", "gallery", "-o", "site", "--limit", "3")
     assert done.returncode == 0 and (tmp_path / "site" / "index.html").is_file(), done.stderr
-    # the genus-0 certificate ships too (its whole check runs in test_certificates, with --run-slow)
-    code = "import polyloops as pl; c = pl.read_certificate(); print(c.header['max_corners'], c.genus)"
-    done = run_installed(installed, tmp_path, "-c", code)
-    assert done.returncode == 0 and done.stdout.split() == ["40", "0"], done.stdout + done.stderr
-    # the genus-1 catalog ships beside it: identify finds the ring, its certificate checks
+    # the genus-1 catalog ships beside it: identify finds the ring, query reads it
     done = run_installed(installed, tmp_path, "-m", "polyloops", "identify", "example:ring-x")
     assert done.returncode == 0 and "T32.1" in done.stdout, done.stderr
-    # its certificate ships too (its whole check, about 10 s, in the slow test below)
-    code = "import polyloops as pl; c = pl.read_certificate(genus=1); print(c.header['max_corners'], c.genus)"
-    done = run_installed(installed, tmp_path, "-c", code)
-    summary = json.loads((ROOT / "catalogs" / "genus1" / "summary.json").read_text())
-    top = max(int(n) for n in summary["counts"])
-    assert done.returncode == 0 and done.stdout.split() == [str(top), "1"], done.stdout + done.stderr
     done = run_installed(installed, tmp_path, "-m", "polyloops", "catalog", "query", "--genus", "1",
                          "corners = 40")
     assert done.returncode == 0 and done.stdout.count("T40.") == 73, done.stdout + done.stderr
-    code = "import polyloops as pl; print(len(pl.read_catalog(genus=1)))"
-    done = run_installed(installed, tmp_path, "-c", code)
-    source = json.loads((ROOT / "catalogs" / "genus1" / "summary.json").read_text())
-    classes = sum(row["full"] for row in source["counts"].values())  # the installed copy is the source's
-    assert done.returncode == 0 and done.stdout.strip() == str(classes), done.stderr
 
 
 @pytest.mark.slow
