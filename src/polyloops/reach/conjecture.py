@@ -205,10 +205,9 @@ def settle(signature: str, slack: int, *, base: bool = False, target: str | None
     up to some slack already (an earlier run) is searched from the next one on; an open class's
     record says how far the search went.
 
-    >>> from polyloops.catalog.census import read_catalog
-    >>> p12 = read_catalog()["P12.1"].signature
-    >>> settle(p12, 4).removable is not None
-    True
+    >>> from polyloops.io.examples import load_example
+    >>> settle(canonical_form(load_example("l-shape").dualize(), "full").signature, 4).removable
+    1
     """
     ls = from_signature(signature)
     n = ls.map.num_corners
