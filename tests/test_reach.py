@@ -393,6 +393,7 @@ def test_cli_conjecture(tmp_path, capsys):
     assert main(["conjecture", "check", str(cert), "--catalog", str(small_catalog(26)), "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert data["valid"] and not data["complete"] and data["proven_corners"] == 25 and len(data["open"]) == 1
+    assert data["searched"] == {data["open"][0]: 6}
     # deepened from it: the open class is searched again at +8 and settled
     deeper = tmp_path / "deeper.jsonl"
     assert main(["conjecture", "genus0", "--catalog", str(small_catalog(26)), "--max-corners", "26",

@@ -239,7 +239,8 @@ def cmd_conjecture_check(args: argparse.Namespace) -> int:
             "checked_corners": check.checked_corners, "catalog_corners": check.catalog_corners,
             "records": check.records, "problems": [str(p) for p in problems],
             "complete": check.complete, "proven_corners": check.proven_corners,
-            "open": [c.name or c.signature for c in check.open]}
+            "open": [c.name or c.signature for c in check.open],
+            "searched": {c.name or c.signature: c.searched for c in check.open}}
     checked = (f"checked every class of {args.catalog} through {check.checked_corners} corners "
                f"(the header claims {check.header['max_corners']}, the catalog is complete through "
                f"{check.catalog_corners})")
