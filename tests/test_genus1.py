@@ -181,3 +181,24 @@ def test_the_shipped_genus_one_catalog_rebuilds_byte_for_byte_through_38(tmp_pat
     theirs = [line for line in (G1 / "catalog.jsonl").read_bytes().splitlines()
               if json.loads(line)["corners"] <= 38]
     assert (out / "catalog.jsonl").read_bytes().splitlines() == theirs and theirs
+
+
+def test_a_genus_one_run_resumes_from_earlier_records(monkeypatch):
+    """Through 40 corners at slack 2 the irreducible classes stay open (searched to +2); a run
+    at slack 4 from those records takes their orientation types instead of computing them,
+    searches the open classes from +4 alone, and writes what a run at slack 4 from nothing
+    writes."""
+    from polyloops.reach import conjecture
+    from polyloops.reach.conjecture import certificate_lines, read_records, settle_catalog
+
+    catalog = small_catalog(40, genus=1)
+    low = settle_catalog(catalog, 40, 2)
+    assert low.unsettled and all(r.searched == 2 for r in low.unsettled)
+    records = read_records(certificate_lines(low))
+    typed = []
+    real = conjecture._orientation_job
+    monkeypatch.setattr(conjecture, "_orientation_job", lambda sig: typed.append(sig) or real(sig))
+    again = settle_catalog(catalog, 40, 4, earlier=records)
+    assert typed == [] and all(r.searched == 4 for r in again.unsettled)
+    monkeypatch.undo()
+    assert list(certificate_lines(again)) == list(certificate_lines(settle_catalog(catalog, 40, 4)))

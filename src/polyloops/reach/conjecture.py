@@ -374,6 +374,7 @@ def settle_catalog(directory: Path, max_corners: int, slack: int, workers: int =
 
     census = read_catalog(directory)
     genus = census.genus
+    earlier = list(earlier)
     covered = complete_range(census, genus)
     if max_corners > covered:
         raise ConjectureError(f"{census.directory}: the catalog holds every class only through {covered} "
@@ -382,8 +383,11 @@ def settle_catalog(directory: Path, max_corners: int, slack: int, workers: int =
     if genus == 0:
         tasks = [_Task(sig, slack) for sig, _ in classes]
     else:
-        types = dict(zip([sig for sig, _ in classes],
-                         run_jobs(_orientation_job, [sig for sig, _ in classes], workers, dask), strict=True))
+        # the types earlier records state are taken (the certificate's check computes each again)
+        stated = {r.signature: r.orientation for r in earlier if r.orientation is not None}
+        unknown = [sig for sig, _ in classes if sig not in stated]
+        computed = dict(zip(unknown, run_jobs(_orientation_job, unknown, workers, dask), strict=True))
+        types = {sig: stated.get(sig) or computed[sig] for sig, _ in classes}
         corners = dict(classes)
         bases = orientation_bases(types, corners)
         lowest = {t: corners[b] for t, b in bases.items()}
