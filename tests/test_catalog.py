@@ -801,3 +801,25 @@ def test_generator_options_change_the_work_not_the_records(tmp_path):
         build_catalog(tmp_path / "bad", 32, generator="torus", genus=1, options={"stage": "rows"})
     with pytest.raises(CatalogRunError, match="takes no option cuts"):
         build_catalog(tmp_path / "bad", 16, generator="plantri", options={"cuts": Cuts()})
+
+
+def test_a_ship_takes_the_records_of_its_earlier_passes(tmp_path):
+    """tools/ship_catalog.py keeps one settle journal a slack in the run's parts; a later pass
+    takes every journal of the same catalog and range (the open class with the slack its pass
+    searched to), and none of another range."""
+    import importlib.util
+
+    from polyloops.catalog.run import file_digest
+    from polyloops.reach.conjecture import settle_catalog
+    from shipped import small_catalog
+
+    spec = importlib.util.spec_from_file_location("ship_catalog", ROOT / "tools" / "ship_catalog.py")
+    tool = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(tool)
+    catalog, parts = small_catalog(26), tmp_path / "parts"
+    parts.mkdir()
+    settle_catalog(catalog, 26, 6, journal=parts / "settle-journal-6.jsonl")
+    digest = file_digest(catalog / "catalog.jsonl")
+    records = tool.journal_records(parts, digest, 26)
+    assert len(records) == 55 and [r.searched for r in records if not r.settled] == [6]
+    assert tool.journal_records(parts, digest, 24) == [] == tool.journal_records(parts, "0" * 64, 26)

@@ -86,6 +86,7 @@ def ship(run: Path, into: Path = SHIPPED, slack: int = 10, workers: int = 1) -> 
     new = json.loads((run / "summary.json").read_text())
     certificate = into / CERTIFICATE_NAME
     earlier = read_records(certificate.read_text().splitlines()) if certificate.exists() else []
+    top = max(int(n) for n in new["counts"])
     if (into / "summary.json").exists():
         old = json.loads((into / "summary.json").read_text())
         if old.get("genus", 0) != new.get("genus", 0):
@@ -102,14 +103,18 @@ def ship(run: Path, into: Path = SHIPPED, slack: int = 10, workers: int = 1) -> 
     (into / ".catalog.jsonl.new").replace(into / "catalog.jsonl")
     (into / "catalog.sqlite").unlink(missing_ok=True)
     write_atomic(into / "summary.json", json.dumps(shipped_summary(summary, into), indent=1) + "\n")
-    top = max(int(n) for n in summary["counts"])
     from tqdm import tqdm
+
+    from polyloops.catalog.run import file_digest
+
+    # and those of this run's earlier passes, whatever their slack (a stopped pass is not lost)
+    earlier += journal_records(run / "parts", file_digest(into / "catalog.jsonl"), top)
 
     total = sum(int(row["full"]) for row in summary["counts"].values())
     with tqdm(total=total, desc="certificate", unit="class", disable=None, file=sys.stderr) as bar:
         # the classes settled so far, kept in the run's parts: a stopped ship resumes
         result = settle_catalog(into, top, slack, workers, progress=lambda _: bar.update(1),
-                                journal=run / "parts" / "settle-journal.jsonl", earlier=earlier)
+                                journal=run / "parts" / f"settle-journal-{slack}.jsonl", earlier=earlier)
     lines = list(certificate_lines(result))
     check = check_certificate(lines, into)
     if not check.valid:
@@ -118,6 +123,33 @@ def ship(run: Path, into: Path = SHIPPED, slack: int = 10, workers: int = 1) -> 
     return {"max_corners": top, "classes": check.records, "proves": check.statement(),
             "unsettled": {c.name: c.searched for c in check.open},
             "by_corners": [row.to_json() for row in result.table()]}
+
+
+def journal_records(parts: Path, digest: str, top: int) -> list:
+    """The records of the run's settle journals (one a slack) of this catalog and range; an
+    open one without its search stated was searched to its journal's slack."""
+    from dataclasses import replace
+
+    from polyloops.reach.conjecture import ClassRecord
+
+    out = []
+    for path in sorted(parts.glob("settle-journal*.jsonl")):
+        lines = path.read_bytes().decode("utf-8", "replace").splitlines()
+        try:
+            head = json.loads(lines[0]) if lines else {}
+        except ValueError:
+            continue
+        if not isinstance(head, dict) or head.get("kind") != "settle-journal" \
+                or head.get("catalog") != digest or head.get("max_corners") != top:
+            continue
+        for line in lines[1:]:
+            try:
+                record = ClassRecord.from_json(json.loads(line))
+            except (ValueError, KeyError, TypeError, AttributeError):
+                break  # a line cut short when the pass stopped
+            out.append(record if record.settled or record.searched is not None
+                       else replace(record, searched=head["slack"]))
+    return out
 
 
 def _tool(name: str):

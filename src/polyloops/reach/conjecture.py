@@ -427,10 +427,13 @@ def _resume(tasks: list[_Task], earlier: Iterable[ClassRecord],
         task = wanted.get(r.signature)
         if task is None or r.base != task.base or r.orientation != task.orientation:
             continue  # not a class of this range, or one settled another way: settled afresh
+        before = taken.get(r.signature)
         if r.settled or (r.searched or 0) >= slack:
-            taken[r.signature] = r
-        else:
-            resumed[r.signature] = replace(task, searched=r.searched or 0)
+            if before is None or not before.settled:  # a settled record over an open one
+                taken[r.signature] = r
+        else:  # searched again from the furthest any record went
+            searched = max(r.searched or 0, resumed[r.signature].searched if r.signature in resumed else 0)
+            resumed[r.signature] = replace(task, searched=searched)
     return [resumed.get(t.signature, t) for t in tasks if t.signature not in taken], taken
 
 
