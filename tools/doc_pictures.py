@@ -47,16 +47,20 @@ def screenshots(site: Path, viewer: Path) -> None:
 
 def genus1_sheet() -> None:
     """The smallest class of each hole-orientation type in the genus-1 catalog (the
-    certificate's bases) and every irreducible genus-1 class (the bridged ring, of the type
-    whose invariant is zero, among them)."""
+    certificate's bases), every irreducible genus-1 class through 46 corners (the bridged ring,
+    of the type whose invariant is zero, among them) and the classes the certificate leaves
+    open."""
     import json
 
     catalog = ROOT / "catalogs" / "genus1"
-    lines = (catalog / "reachability-certificate.jsonl").read_text().splitlines()[1:]
-    bases = {json.loads(line)["signature"] for line in lines if '"base"' in line}
+    lines = [json.loads(line) for line in
+             (catalog / "reachability-certificate.jsonl").read_text().splitlines()[1:]]
+    bases = {r["signature"] for r in lines if r.get("base")}
+    open_ = {r["signature"] for r in lines if r.get("unsettled")}
     records = [json.loads(line) for line in (catalog / "catalog.jsonl").read_text().splitlines()]
-    chosen = [f"sig:{r['signature']}" for r in records if r["signature"] in bases or r["irreducible"]]
-    polyloops("sheet", *chosen, "--columns", "3",
+    chosen = [f"sig:{r['signature']}" for r in records
+              if r["signature"] in bases | open_ or (r["irreducible"] and r["corners"] <= 46)]
+    polyloops("sheet", *chosen, "--columns", "4",
               "-o", str(IMAGES / "genus1-sheet.png"))
 
 
