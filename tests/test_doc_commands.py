@@ -28,8 +28,8 @@ PAGES = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md")), ROOT / "cata
 # never run by the tests.
 REPRODUCTIONS = ("--max-corners 30 --generator plantri", "--max-corners 36 --generator loops",
                  "--max-corners 40 --generator loops", "/shared/genus0-44", "/shared/genus1-47",
-                 "/shared/genus2-48", "--genus 1 --max-corners 47", "--genus 1 --max-corners 48", "-o catalogs/genus0/",
-                 "-o catalogs/genus1/", "tools/ship_catalog.py")
+                 "/shared/genus2-48", "--genus 1 --max-corners 47", "--genus 1 --max-corners 48",
+                 "-o catalogs/genus0/", "-o catalogs/genus1/", "tools/ship_catalog.py")
 # Commands that draw, build or replay: seconds to minutes each, run with --run-slow.
 HEAVY = ("render", "view", "sheet", "gallery", "catalog", "reach", "conjecture", "path", "segment")
 
