@@ -134,14 +134,18 @@ def drafts(summary: dict) -> list[str]:
 
 def orientation_counts(catalog: Path) -> dict[str, dict[int, int]]:
     """Per hole-orientation type (the invariant up to the axes' symmetries), the classes up to
-    all symmetries by corners, from a catalog's records (computed from their signatures)."""
+    all symmetries by corners, from a catalog's records: the type its certificate states (which
+    `conjecture check` computes again from the signature), else computed from the signature."""
     from polyloops.core.canonical import from_signature
     from polyloops.reach.conjecture import orientation_type
 
+    cert = catalog / "reachability-certificate.jsonl"
+    stated = {r["signature"]: r["orientation"] for r in map(json.loads, cert.read_text().splitlines()[1:])
+              if "orientation" in r} if cert.is_file() else {}
     out: dict[str, dict[int, int]] = {}
     for line in (catalog / "catalog.jsonl").read_text().splitlines():
         record = json.loads(line)
-        kind = orientation_type(from_signature(record["signature"]))
+        kind = stated.get(record["signature"]) or orientation_type(from_signature(record["signature"]))
         row = out.setdefault(kind, {})
         row[record["corners"]] = row.get(record["corners"], 0) + 1
     return out
