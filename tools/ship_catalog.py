@@ -130,7 +130,7 @@ def journal_records(parts: Path, digest: str, top: int) -> list:
     open one without its search stated was searched to its journal's slack."""
     from dataclasses import replace
 
-    from polyloops.reach.conjecture import ClassRecord
+    from polyloops.reach.conjecture import journal_lines
 
     out = []
     for path in sorted(parts.glob("settle-journal*.jsonl")):
@@ -142,13 +142,8 @@ def journal_records(parts: Path, digest: str, top: int) -> list:
         if not isinstance(head, dict) or head.get("kind") != "settle-journal" \
                 or head.get("catalog") != digest or head.get("max_corners") != top:
             continue
-        for line in lines[1:]:
-            try:
-                record = ClassRecord.from_json(json.loads(line))
-            except (ValueError, KeyError, TypeError, AttributeError):
-                break  # a line cut short when the pass stopped
-            out.append(record if record.settled or record.searched is not None
-                       else replace(record, searched=head["slack"]))
+        out += (record if record.settled or record.searched is not None
+                else replace(record, searched=head["slack"]) for record in journal_lines(lines[1:]))
     return out
 
 

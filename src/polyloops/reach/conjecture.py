@@ -479,12 +479,7 @@ class _Journal:
         if lines and not _is_journal_header(lines[0]):
             raise ConjectureError(f"{path}: exists and is no journal of settled classes; move it away")
         if lines and lines[0] == self.header:
-            for line in lines[1:]:
-                try:
-                    record = ClassRecord.from_json(json.loads(line))
-                except (ValueError, KeyError, TypeError):
-                    break  # a line cut short when the run stopped: settled again
-                self.records[record.signature] = record
+            self.records = {r.signature: r for r in journal_lines(lines[1:])}
         from polyloops.io.files import write_atomic
 
         # what was read back, whole lines only, then each new record appended
@@ -494,6 +489,16 @@ class _Journal:
     def add(self, record: ClassRecord) -> None:
         with self.path.open("a") as out:
             out.write(json.dumps(record.to_json()) + "\n")
+
+
+def journal_lines(lines: Iterable[str]) -> Iterator[ClassRecord]:
+    """The records of a journal's lines after its header, up to the first that is not one (a
+    line cut short when the run stopped: its class is settled again)."""
+    for line in lines:
+        try:
+            yield ClassRecord.from_json(json.loads(line))
+        except (ValueError, KeyError, TypeError, AttributeError):
+            return
 
 
 def _is_journal_header(line: str) -> bool:
