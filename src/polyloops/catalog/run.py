@@ -190,20 +190,25 @@ def part_text(result: JobResult) -> str:
                       separators=(",", ":"), sort_keys=True)
 
 
-def load_part(out: Path, job: Job) -> JobResult | None:
-    """A finished job's result, or ``None`` when it is missing, damaged, edited (its digest
-    does not match), of another schema version or of another job (it is then recomputed)."""
-    path = part_path(out, job)
+def read_part(path: Path, out: Path) -> JobResult | None:
+    """The result in the part file ``path`` (inside ``out``), or ``None`` when it is missing,
+    damaged, edited (its digest does not match) or of another schema version."""
     try:
         check_within(path, out)
         data = json.loads(read_text(path, stdin=False))
         body = json.dumps(data["result"], separators=(",", ":"), sort_keys=True)
         if hashlib.sha256(body.encode()).hexdigest() != data["sha256"]:
             return None
-        result = JobResult.from_json(data["result"])
+        return JobResult.from_json(data["result"])
     except (InputError, OutputError, ValueError, KeyError, TypeError, AttributeError, RecursionError):
         return None
-    return result if result.job == job else None
+
+
+def load_part(out: Path, job: Job) -> JobResult | None:
+    """A finished job's result, or ``None`` when it is missing, damaged, edited, of another
+    schema version or of another job (:func:`read_part`; it is then recomputed)."""
+    result = read_part(part_path(out, job), out)
+    return result if result is not None and result.job == job else None
 
 
 def execute(generator: Generator, jobs: list[Job], out: Path, workers: int = 1, dask: str | None = None,

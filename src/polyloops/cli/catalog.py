@@ -1,4 +1,5 @@
-"""The catalog commands: ``catalog`` (build or resume), ``catalog query`` and ``catalog export``."""
+"""The catalog commands: ``catalog`` (build or resume), ``catalog query``, ``catalog export`` and
+``catalog status``."""
 
 from __future__ import annotations
 
@@ -28,6 +29,8 @@ def cmd_catalog(args: argparse.Namespace) -> int:
         return cmd_catalog_query(args)
     if args.action == "export":
         return cmd_catalog_export(args)
+    if args.action == "status":
+        return cmd_catalog_status(args)
     missing = [flag for flag, value in (("--max-corners", args.max_corners), ("-o/--output", args.output))
                if value is None]
     if missing:
@@ -133,6 +136,28 @@ def cmd_catalog_export(args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
+def cmd_catalog_status(args: argparse.Namespace) -> int:
+    from polyloops.catalog.run import CatalogRunError
+    from polyloops.catalog.status import run_status
+
+    try:
+        status = run_status(args.dir)
+    except CatalogRunError as err:
+        raise CliError(str(err)) from None
+    lines = [f"{args.dir}: " + ("catalog written" if status.finished else "catalog not written yet")]
+    for plan in status.plans:
+        lines.append(plan.describe())
+        found = {n: c for n, c in plan.classes.items() if c}
+        lines.append("  classes found so far (up to all symmetries): " + (
+            ", ".join(f"{c:,} with {n}" for n, c in found.items()) if found else "none")
+            + f" (of {plan.min_corners} to {plan.max_corners} corners)")
+    if status.damaged:
+        lines.append(f"recomputed when the run resumes (damaged, edited or misnamed): "
+                     f"{', '.join(status.damaged)}")
+    emit(args, status.to_json(), "\n".join(lines))
+    return EXIT_OK
+
+
 # The library names its parameters and alternatives; the command line adds the flags for them.
 FLAGS = {
     "max_corners": "--max-corners",
@@ -157,6 +182,8 @@ def with_flags(message: str) -> str:
 
 QUERY_HELP = "rows of a catalog matching an SQL WHERE clause"
 EXPORT_HELP = "a catalog's table as CSV"
+STATUS_HELP = ("a run's finished shares (DIR/parts): how many of how many, their seconds and an "
+               "estimate for the others, the classes they found by corners")
 
 
 def _query_arguments(p: argparse.ArgumentParser) -> None:
@@ -180,7 +207,8 @@ def add_commands(command: AddCommand, hidden: AddCommand) -> None:
                 "plantri's quadrangulations, at genus 1 from the torus search (two stages: "
                 "arrangements of two axes' loops, then the third axis region by region); 'catalog "
                 "query [DIR] WHERE' searches one, 'catalog export [DIR] --csv OUT' writes its table "
-                "(without DIR: the shipped catalog of --genus)", file_arg=False)
+                "(without DIR: the shipped catalog of --genus), 'catalog status DIR' says how far a run "
+                "got", file_arg=False)
     p.add_argument("--max-corners", type=count_arg(0, MAX_CATALOG_CORNERS), metavar="N",
                    help=f"required to build; at most {MAX_CATALOG_CORNERS} (the searches' arrays hold no "
                    "more, and no run gets near: 36 corners take minutes of CPU at genus 0)")
@@ -211,7 +239,7 @@ def add_commands(command: AddCommand, hidden: AddCommand) -> None:
     p.add_argument("--overwrite", action="store_true", help="replace a catalog in DIR that covers more "
                    "(more corners, another --symmetry, the whole search where this is one share); "
                    "without it such a build is refused, and a smaller catalog is resumed or extended")
-    actions = p.add_subparsers(dest="action", metavar="[query|export]", parser_class=Parser)
+    actions = p.add_subparsers(dest="action", metavar="[query|export|status]", parser_class=Parser)
     q = actions.add_parser("query", help=QUERY_HELP, description=QUERY_HELP)
     _query_arguments(q)
     q.add_argument("--json", action="store_true", default=argparse.SUPPRESS,
@@ -220,6 +248,10 @@ def add_commands(command: AddCommand, hidden: AddCommand) -> None:
     _export_arguments(e)
     e.add_argument("--json", action="store_true", default=argparse.SUPPRESS,
                    help="print one JSON object for scripts (what was written and how many rows)")
+    st = actions.add_parser("status", help=STATUS_HELP, description=STATUS_HELP)
+    st.add_argument("dir", metavar="DIR", help="a catalog run's directory (-o of the run)")
+    st.add_argument("--json", action="store_true", default=argparse.SUPPRESS,
+                    help="print one JSON object for scripts")
     # The older spellings 'catalog-query' and 'catalog-export' still work.
     _query_arguments(hidden("catalog-query", cmd_catalog_query, QUERY_HELP))
     _export_arguments(hidden("catalog-export", cmd_catalog_export, EXPORT_HELP))

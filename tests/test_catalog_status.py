@@ -1,0 +1,98 @@
+"""``catalog status``: a run's finished shares, counted the way the run itself reads them."""
+
+from __future__ import annotations
+
+import json
+import re
+import shutil
+from pathlib import Path
+
+import pytest
+
+from cli_run import run
+from polyloops.catalog.run import load_part, part_path
+from polyloops.catalog.status import run_status
+from polyloops.cli import main
+from polyloops.generate.base import Job, generators
+
+
+@pytest.fixture(scope="module")
+def torus_run(tmp_path_factory):
+    """A genus-1 run through 32 corners (16 shares; the square ring, the smallest, at 32)."""
+    out = tmp_path_factory.mktemp("status") / "g1-32"
+    assert main(["catalog", "--genus", "1", "--max-corners", "32", "-o", str(out)]) == 0
+    return out
+
+
+def test_a_finished_run_counts_what_its_summary_counts(torus_run, capsys):
+    status = run_status(torus_run)
+    assert status.finished and not status.damaged and len(status.plans) == 1
+    plan = status.plans[0]
+    summary = json.loads((torus_run / "summary.json").read_text())
+    assert (plan.generator, plan.min_corners, plan.max_corners) == ("torus", 8, 32)
+    assert plan.done == tuple(range(plan.shares)) and plan.missing == 0 and plan.estimate == 0
+    assert plan.classes == {int(n): c["full"] for n, c in summary["counts"].items()}
+    assert plan.classes[32] == 1 and not any(plan.classes[n] for n in range(8, 32))  # the square ring first
+    assert plan.statistics == summary["search"]
+    status_code, out, _ = run(capsys, "catalog", "status", str(torus_run), "--json")
+    data = json.loads(out)
+    assert status_code == 0 and data["plans"][0]["done"] == plan.shares and data["finished"] is True
+
+
+def test_an_unfinished_run_and_damaged_parts(torus_run, tmp_path, capsys):
+    """Parts removed (shares not run yet), one edited and one copied under another share's
+    name: status counts only the parts the run would reuse, and the run agrees."""
+    out = tmp_path / "run"
+    shutil.copytree(torus_run, out, ignore=shutil.ignore_patterns("summary.json", "catalog.*"))
+    whole = run_status(torus_run).plans[0]
+    jobs = [Job("torus", 32, 8, r, whole.shares) for r in range(whole.shares)]
+    part_path(out, jobs[0]).unlink()
+    edited = part_path(out, jobs[1])
+    data = json.loads(edited.read_text())
+    data["result"]["seconds"] += 1  # the digest no longer holds
+    edited.write_text(json.dumps(data))
+    shutil.copyfile(part_path(out, jobs[3]), part_path(out, jobs[2]))  # share 3's result as share 2's
+    status = run_status(out)
+    plan = status.plans[0]
+    assert not status.finished
+    assert plan.done == tuple(range(3, whole.shares)) and plan.missing == 3
+    assert sorted(status.damaged) == sorted(part_path(out, j).name for j in jobs[1:3])
+    assert [load_part(out, j) is not None for j in jobs[:4]] == [False, False, False, True]
+    assert plan.estimate == pytest.approx(sum(plan.seconds) / len(plan.seconds) * 3)
+    assert sum(plan.classes.values()) <= sum(whole.classes.values())
+    code, text, _ = run(capsys, "catalog", "status", str(out))
+    assert code == 0 and f"{whole.shares - 3} of {whole.shares} shares done" in text
+    assert "recomputed when the run resumes" in text and part_path(out, jobs[1]).name in text
+
+
+def test_bad_directories(tmp_path, capsys):
+    for where, words in ((tmp_path / "none", "no such directory"), (tmp_path, "holds no catalog run")):
+        code, out, err = run(capsys, "catalog", "status", str(where))
+        assert code == 2 and not out and words in err and len(err.strip().splitlines()) == 1
+
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+def test_committed_runs_are_finished_shares_and_the_docs_say_what_they_hold():
+    """``runs/genus2-48`` carries the finished shares of the genus-2 run through 48 corners
+    between machines: every part there is one the run would reuse (its digest holds, it is at
+    its job's file name, of that run's plan), and docs/counts.md states how many there are,
+    their time, and what they found."""
+    directory = ROOT / "runs" / "genus2-48"
+    if not directory.is_dir():
+        pytest.skip("no runs/ in this installation (a checkout has it)")
+    status = run_status(directory)
+    assert not status.damaged and not status.finished and len(status.plans) == 1
+    plan = status.plans[0]
+    assert (plan.generator, plan.variant, plan.min_corners, plan.max_corners) == ("handles", "", 8, 48)
+    assert plan.shares == generators()["handles"].shares(48, workers=2) == 1024
+    text = " ".join((ROOT / "docs" / "counts.md").read_text().split())
+    said = re.search(r"\*\*([\d,]+) of the 1,024 shares\*\* finished, ([\d,]+) s of worker time, (.*?)\. ",
+                     text)
+    assert said, "docs/counts.md: the run's progress is not stated"
+    assert int(said[1].replace(",", "")) == len(plan.done)
+    assert int(said[2].replace(",", "")) == round(sum(plan.seconds))
+    found = {n: c for n, c in plan.classes.items() if c}
+    assert said[3] == ("no class found in them" if not found else
+                       "found in them: " + ", ".join(f"{c:,} with {n} corners" for n, c in found.items()))
