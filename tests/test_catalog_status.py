@@ -75,24 +75,26 @@ ROOT = Path(__file__).resolve().parent.parent
 
 
 def test_committed_runs_are_finished_shares_and_the_docs_say_what_they_hold():
-    """``runs/genus2-48`` carries the finished shares of the genus-2 run through 48 corners
-    between machines: every part there is one the run would reuse (its digest holds, it is at
-    its job's file name, of that run's plan), and docs/counts.md states how many there are,
-    their time, and what they found."""
-    directory = ROOT / "runs" / "genus2-48"
-    if not directory.is_dir():
+    """``runs/`` carries the finished shares of long genus-2 runs between machines: every part
+    there is one its run would reuse (its digest holds, it is at its job's file name, of that
+    run's plan: ``genus2-N`` is the handles search through ``N`` corners), and docs/counts.md
+    states, for each run, how many shares are finished, their time, and what they found."""
+    runs = sorted(p for p in (ROOT / "runs").glob("genus2-*") if p.is_dir())
+    if not runs:
         pytest.skip("no runs/ in this installation (a checkout has it)")
-    status = run_status(directory)
-    assert not status.damaged and not status.finished and len(status.plans) == 1
-    plan = status.plans[0]
-    assert (plan.generator, plan.variant, plan.min_corners, plan.max_corners) == ("handles", "", 8, 48)
-    assert plan.shares == generators()["handles"].shares(48, workers=2) == 1024
     text = " ".join((ROOT / "docs" / "counts.md").read_text().split())
-    said = re.search(r"\*\*([\d,]+) of the 1,024 shares\*\* finished, ([\d,]+) s of worker time, (.*?)\. ",
-                     text)
-    assert said, "docs/counts.md: the run's progress is not stated"
-    assert int(said[1].replace(",", "")) == len(plan.done)
-    assert int(said[2].replace(",", "")) == round(sum(plan.seconds))
-    found = {n: c for n, c in plan.classes.items() if c}
-    assert said[3] == ("no class found in them" if not found else
-                       "found in them: " + ", ".join(f"{c:,} with {n} corners" for n, c in found.items()))
+    for directory in runs:
+        top = int(directory.name.removeprefix("genus2-"))
+        status = run_status(directory)
+        assert not status.damaged and not status.finished and len(status.plans) == 1, directory
+        plan = status.plans[0]
+        assert (plan.generator, plan.variant, plan.min_corners, plan.max_corners) == ("handles", "", 8, top)
+        assert plan.shares == generators()["handles"].shares(top, workers=2)
+        said = re.search(rf"`runs/{directory.name}`[^*]*\*\*([\d,]+) of the ([\d,]+) shares\*\* finished, "
+                         r"([\d,]+) s of worker time, (.*?)\. ", text)
+        assert said, f"docs/counts.md: the progress of runs/{directory.name} is not stated"
+        assert [int(said[k].replace(",", "")) for k in (1, 2, 3)] == \
+            [len(plan.done), plan.shares, round(sum(plan.seconds))], directory.name
+        found = {n: c for n, c in plan.classes.items() if c}
+        assert said[4] == ("no class found in them" if not found else
+                           "found in them: " + ", ".join(f"{c:,} with {n} corners" for n, c in found.items()))
