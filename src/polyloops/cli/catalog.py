@@ -144,7 +144,8 @@ def cmd_catalog_status(args: argparse.Namespace) -> int:
         status = run_status(args.dir)
     except CatalogRunError as err:
         raise CliError(str(err)) from None
-    lines = [f"{args.dir}: " + ("catalog written" if status.finished else "catalog not written yet")]
+    lines = [f"{args.dir}: " + ("catalog written" if status.finished else "catalog not written yet")
+             + ("" if status.plans else "; no finished share kept in its parts/")]
     for plan in status.plans:
         lines.append(plan.describe())
         found = {n: c for n, c in plan.classes.items() if c}
