@@ -182,7 +182,7 @@ def genus1_section(summary: dict, types: dict[str, dict[int, int]]) -> list[str]
 
 
 # No genus-2 catalog ships (a run through 44 corners finds none), so this section is what the
-# runs it names found, kept here beside the tables it follows.
+# runs it names found, kept here beside the tables it follows; the runs carried in runs/ are read.
 GENUS2 = """## Genus 2
 
 Computed by `polyloops catalog --genus 2` (the `handles` generator:
@@ -212,12 +212,43 @@ first stage lists every two-axis arrangement `B` with up to `(N + 2) / 3` crossi
   about 40 hours of CPU through 47 corners and 65 through 48 (measured on samples:
   [searches.md](searches.md#genus-2-the-same-two-stages-with-pieces)): the run is a cluster's
   ([cluster.md](cluster.md#genus-2-through-48-corners)).
-- Moves from the slab (`polyloops reach example:slab-2-holes --max-corners 60 --symmetry full`):
+{runs}- Moves from the slab (`polyloops reach example:slab-2-holes --max-corners 60 --symmetry full`):
   4,872 classes, none with fewer than 48 corners. The two known 48-corner polycubes have
   different hole orientations (the slab `XY: rank 0; XZ: rank 2; YZ: rank 2`, the bar with holes
   along two axes `XY: rank 1; XZ: rank 1; YZ: rank 2`; `polyloops info`), so no sequence of
   moves joins them: at genus 2 too the reachability question is one per orientation type.
 """
+
+
+def runs_section(root: Path = ROOT) -> str:
+    """A bullet a genus-2 run carried in ``runs/`` (its finished shares: ``catalog status``)."""
+    from polyloops.catalog.status import run_status
+
+    out = []
+    for directory in sorted((root / "runs").glob("genus2-*")):
+        plan = run_status(directory).plans[0]
+        top, secs = plan.max_corners, round(sum(plan.seconds))
+        found = {n: c for n, c in plan.classes.items() if c}
+        said = "no class found in them" if not found else \
+            "found in them: " + ", ".join(f"{c:,} with {n} corners" for n, c in found.items())
+        rest = "all are in: run the command again to merge them" if not plan.missing else \
+            f"at their mean so far the others need about {plan.estimate / 3600:,.0f} hours of one core"
+        out.append(
+            f"- **The run through {top} corners, in progress** (`runs/{directory.name}` in the "
+            f"repository; `runs/README.md` says how to go on): `polyloops catalog --genus 2 --max-corners "
+            f"{top}`, resumable anywhere from its finished shares (`polyloops catalog status` reads them): "
+            f"**{len(plan.done):,} of the {plan.shares:,} shares** finished, {secs:,} s of worker time, "
+            f"{said}. A share's `B` are a subtree of the first stage's listing, not a range of corners, so "
+            f"the finished shares decide nothing about any corner count until all are in; {rest}.")
+    return "".join(wrap(line) + "\n" for line in out)
+
+
+def wrap(line: str, width: int = 96) -> str:
+    """A Markdown bullet wrapped as the page's others are (continuation lines indented)."""
+    import textwrap
+
+    return "\n".join(textwrap.wrap(line, width, subsequent_indent="  ", break_long_words=False,
+                                    break_on_hyphens=False))
 
 
 def write_all(summary: dict | None = None, genus1: dict | None = None) -> dict[Path, str]:
@@ -232,7 +263,7 @@ def write_all(summary: dict | None = None, genus1: dict | None = None) -> dict[P
         text += "\n" + "\n".join(genus1_section(genus1, orientation_counts(g1_dir)))
         for mode in SEQUENCES:
             files[ROOT / "docs" / "bfiles" / f"genus1-{mode}.txt"] = bfile(genus1, mode)
-    files[ROOT / "docs" / "counts.md"] = text + "\n" + GENUS2
+    files[ROOT / "docs" / "counts.md"] = text + "\n" + GENUS2.format(runs=runs_section())
     for mode in (*SEQUENCES, "simple-strips"):
         files[ROOT / "docs" / "bfiles" / f"{mode}.txt"] = bfile(summary, mode)
     return files
