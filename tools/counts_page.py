@@ -239,7 +239,8 @@ def runs_section(root: Path = ROOT) -> str:
             f"{top}`, resumable anywhere from its finished shares (`polyloops catalog status` reads them): "
             f"**{len(plan.done):,} of the {plan.shares:,} shares** finished, {secs:,} s of worker time, "
             f"{said}. A share's `B` are a subtree of the first stage's listing, not a range of corners, so "
-            f"the finished shares decide nothing about any corner count until all are in; {rest}.")
+            f"the finished shares decide nothing about any corner count until all are in (then the run "
+            f"decides every count through {top}); {rest}.")
     return "".join(wrap(line) + "\n" for line in out)
 
 
