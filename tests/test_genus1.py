@@ -183,7 +183,17 @@ def test_the_shipped_genus_one_catalog_rebuilds_byte_for_byte_through_38(tmp_pat
     assert (out / "catalog.jsonl").read_bytes().splitlines() == theirs and theirs
 
 
-def test_a_genus_one_run_resumes_from_earlier_records(monkeypatch):
+@pytest.fixture(scope="module")
+def open_at_2():
+    """The genus-1 catalog through 40 corners, and its classes settled at slack 2 (the
+    irreducible ones left open, searched to +2)."""
+    from polyloops.reach.conjecture import settle_catalog
+
+    catalog = small_catalog(40, genus=1)
+    return catalog, settle_catalog(catalog, 40, 2)
+
+
+def test_a_genus_one_run_resumes_from_earlier_records(monkeypatch, open_at_2):
     """Through 40 corners at slack 2 the irreducible classes stay open (searched to +2); a run
     at slack 4 from those records takes their orientation types instead of computing them,
     searches the open classes from +4 alone, and writes what a run at slack 4 from nothing
@@ -191,8 +201,7 @@ def test_a_genus_one_run_resumes_from_earlier_records(monkeypatch):
     from polyloops.reach import conjecture
     from polyloops.reach.conjecture import certificate_lines, read_records, settle_catalog
 
-    catalog = small_catalog(40, genus=1)
-    low = settle_catalog(catalog, 40, 2)
+    catalog, low = open_at_2
     assert low.unsettled and all(r.searched == 2 for r in low.unsettled)
     records = read_records(certificate_lines(low))
     typed = []
@@ -202,3 +211,41 @@ def test_a_genus_one_run_resumes_from_earlier_records(monkeypatch):
     assert typed == [] and all(r.searched == 4 for r in again.unsettled)
     monkeypatch.undo()
     assert list(certificate_lines(again)) == list(certificate_lines(settle_catalog(catalog, 40, 4)))
+
+
+def test_long_detours_settle_what_the_breadth_first_search_left_open(open_at_2):
+    """Through 40 corners at slack 2 the irreducible classes stay open; the long search within
+    +10 (``--long 10``) settles some of them.  Each such record keeps the slack searched in vain
+    (2), its detour replays and peaks where its slack says, the breadth-first search finds no
+    detour within that slack (the claim) and finds one within the long detour's slack (the
+    least slack is never above it); the certificate checks, with the header's slack bounding
+    every detour; a record whose ``searched`` reaches its own detour's slack is refused.  The
+    breadth-first search's own detours (the shipped certificate's) are never longer."""
+    from polyloops.core.canonical import from_signature
+    from polyloops.reach.conjecture import (
+        certificate_lines,
+        check_certificate,
+        check_record,
+        find_detour,
+        read_records,
+        settle_catalog,
+    )
+
+    catalog, low = open_at_2
+    opened = {r.signature for r in low.unsettled}
+    result = settle_catalog(catalog, 40, 2, earlier=read_records(certificate_lines(low)), long=10)
+    long = [r for r in result.records if r.signature in opened and r.settled]
+    assert long and result.slack == max(r.slack for r in result.records if r.slack)
+    shipped = {r.signature: r for r in read_records((catalog / "reachability-certificate.jsonl").read_text()
+                                                    .splitlines())}
+    for r in long:
+        base = next(b for b in result.records if b.base and b.orientation == r.orientation)
+        target = base.signature if r.corners == base.corners else None
+        assert r.searched == 2 and r.slack > 2 and r.detour_peak() == r.slack == r.max_corners - r.corners
+        assert find_detour(from_signature(r.signature), r.corners + 2, target) is None
+        assert shipped[r.signature].slack <= r.slack  # the shipped detours are breadth-first: least
+    assert check_certificate(list(certificate_lines(result)), catalog).valid
+    data = long[0].to_json()
+    assert check_record(data, 40, result.slack) is None
+    data["searched"] = data["detour"]["slack"]
+    assert "states that no detour within" in (check_record(data, 40, result.slack) or "")

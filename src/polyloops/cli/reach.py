@@ -177,13 +177,16 @@ def cmd_conjecture_settle(args: argparse.Namespace) -> int:
                        f"only through {covered} corners; extend it first (polyloops catalog)")
     if args.slack < 2:
         raise CliError("--slack must be at least 2")
+    if args.long and args.long <= args.slack:
+        raise CliError(f"--long {args.long} must be above --slack {args.slack}")
     # Each class settled goes to CERT.journal as it is settled: a stopped run, started again
     # with the same catalog, range and slack, resumes from it; it goes once CERT is written.
     journal = None if args.output == "-" else Path(args.output).with_name(Path(args.output).name + ".journal")
     bar = tqdm(total=total, desc=args.which, unit="class", disable=None, file=sys.stderr)
     try:
         result = settle_catalog(census.directory, args.max_corners, args.slack, args.workers, args.dask,
-                                progress=lambda _: bar.update(1), journal=journal, earlier=earlier)
+                                progress=lambda _: bar.update(1), journal=journal, earlier=earlier,
+                                long=args.long or 0)
     except (CatalogError, ConjectureError) as err:
         raise CliError(str(err), getattr(err, "status", 2)) from None
     except OSError as err:
@@ -311,6 +314,10 @@ def add_commands(command: AddCommand) -> None:
         g.add_argument("--from", dest="earlier", metavar="CERT",
                        help="an earlier certificate of the catalog: its records are taken, and its open "
                        "classes searched again from the slack they were searched to (when below K)")
+        g.add_argument("--long", type=count_arg(3), metavar="L",
+                       help="give the classes left open to a search for long detours within L corners "
+                       "above them (loops added, each followed by removals alone; far higher than the "
+                       "breadth-first search, but finding none proves nothing)")
         g.add_argument("--workers", type=count_arg(1, MAX_WORKERS), default=1, metavar="K",
                        help="local worker processes")
         g.add_argument("--dask", metavar="ADDRESS", help="a Dask cluster (an address, or local)")

@@ -24,6 +24,12 @@ corners than the smallest open one is reachable, and so is every other class wit
 many (its move or detour ends below, or at a base).  Larger classes may lean on an open one, so
 their records prove nothing more (:meth:`CertificateCheck.statement`).
 
+**Long detours.**  Past the breadth-first search's slack, an open class may be given to
+:func:`find_long_detour` (added loops each followed by removals, far higher).  Its detour is
+replayed like any other, and its record keeps, beside it, the slack the breadth-first search
+went to in vain (``"searched": K``, below the detour's slack): the least slack of any detour of
+that class lies above ``K`` and at most at the detour's.
+
 **Genus 1.**  Moves never change the hole orientation (:mod:`polyloops.core.holes`), so the
 question is asked within each *orientation type* (the invariant up to the symmetries of the
 axes, :meth:`~polyloops.core.holes.HoleOrientation.up_to_axes`): is every class reachable from a
@@ -131,6 +137,75 @@ def find_detour(ls: LoopStructure, max_corners: int, target: str | None = None) 
     return None
 
 
+def find_long_detour(ls: LoopStructure, max_corners: int, target: str | None = None, rounds: int = 2,
+                     depth: int = 8) -> list[Move] | None:
+    """A detour of at most ``rounds`` added loops, each followed by removals alone (at most
+    ``depth`` in a row), every structure on the way within ``max_corners``; ``None`` when there
+    is none of that shape.  Nearly every detour :func:`find_detour` finds has that shape (one
+    long loop added, then two or three loops removed), and this search reaches far higher
+    peaks than a breadth-first one, whose states grow too many beyond about 10 corners above a
+    class of 48.  The detour it returns is not a shortest one, and finding none proves
+    nothing; its moves apply one after the other from ``ls`` (``target`` as in
+    :func:`find_detour`).  States are taken up to all 48 symmetries, each once, in a fixed order.
+
+    >>> from polyloops.io.examples import load_example
+    >>> ls = load_example("non-incremental").dualize()
+    >>> removable_loop(ls) is None, len(find_long_detour(ls, ls.map.num_corners + 8)) >= 2
+    (True, True)
+    """
+    from polyloops.core.moves import add_loop, additions
+
+    n = ls.map.num_corners
+    seen = {canonical_form(ls, "full").signature}
+    frontier: list[tuple[LoopStructure, list[Move]]] = [(ls, [])]
+    for _ in range(rounds):
+        reached: list[tuple[LoopStructure, list[Move]]] = []
+        for current, moves in frontier:
+            room = max_corners - current.map.num_corners
+            for mv in (additions(current, max_length=room) if room >= 3 else ()):
+                child = add_loop(current, mv, checked=False)
+                if child.map.num_corners > max_corners:
+                    continue
+                s = canonical_form(child, "full").signature
+                if s == target:
+                    return [*moves, Move.add(mv)]
+                if s in seen:
+                    continue
+                seen.add(s)
+                found = _removed_below(child, [*moves, Move.add(mv)], n, target, depth, seen, reached)
+                if found is not None:
+                    return found
+        frontier = reached
+    return None
+
+
+def _removed_below(ls: LoopStructure, moves: list[Move], n: int, target: str | None, depth: int,
+                   seen: set[str], reached: list[tuple[LoopStructure, list[Move]]]) -> list[Move] | None:
+    """Depth first through the removals from ``ls`` (at most ``depth`` in a row): the moves to
+    a structure below ``n`` corners (or to ``target``), or ``None``; every structure met goes to
+    ``reached``, ``ls`` first."""
+    from polyloops.core.moves import removals, remove_loop
+
+    reached.append((ls, moves))
+    if depth == 0:
+        return None
+    for loop in removals(ls):
+        child = remove_loop(ls, loop, checked=False)
+        path = [*moves, Move.remove(loop)]
+        if child.map.num_corners < n:
+            return path
+        s = canonical_form(child, "full").signature
+        if s == target:
+            return path
+        if s in seen:
+            continue
+        seen.add(s)
+        found = _removed_below(child, path, n, target, depth - 1, seen, reached)
+        if found is not None:
+            return found
+    return None
+
+
 @dataclass(frozen=True)
 class ClassRecord:
     """How one catalog class is settled."""
@@ -143,7 +218,8 @@ class ClassRecord:
     slack: int | None = None
     max_corners: int | None = None
     orientation: str | None = None  # genus 1: the orientation type (orientation_type)
-    searched: int | None = None  # an open class: detours searched in vain up to this slack
+    searched: int | None = None  # detours searched in vain up to this slack (an open class, or one
+    # whose detour the long search found past the breadth-first search's slack)
 
     @property
     def settled(self) -> bool:
@@ -157,13 +233,7 @@ class ClassRecord:
 
     def detour_peak(self) -> int:
         """The most corners on the detour, beyond the class's own."""
-        if self.detour is None:
-            return 0
-        ls, peak = from_signature(self.signature), 0
-        for move in self.detour:
-            ls = move.apply(ls)
-            peak = max(peak, ls.map.num_corners - self.corners)
-        return peak
+        return 0 if self.detour is None else _peak(from_signature(self.signature), self.detour)
 
     def to_json(self) -> dict[str, Any]:
         """A JSON-ready dict, one line of the certificate."""
@@ -177,6 +247,8 @@ class ClassRecord:
         elif self.detour is not None:
             out["detour"] = {"slack": self.slack, "max_corners": self.max_corners,
                              "moves": [m.to_json() for m in self.detour]}
+            if self.searched is not None:
+                out["searched"] = self.searched
         else:
             out["unsettled"] = True
             if self.searched is not None:
@@ -193,17 +265,19 @@ class ClassRecord:
                    slack=detour["slack"] if detour else None,
                    max_corners=detour["max_corners"] if detour else None,
                    orientation=data.get("orientation"),
-                   searched=data.get("searched") if data.get("unsettled") else None)
+                   searched=data.get("searched") if data.get("unsettled") or detour else None)
 
 
 def settle(signature: str, slack: int, *, base: bool = False, target: str | None = None,
-           orientation: str | None = None, searched: int = 0) -> ClassRecord:
+           orientation: str | None = None, searched: int = 0, long: int = 0) -> ClassRecord:
     """Settle one class: its lowest removable loop, or the shortest detour with the least
     slack ``K = 2, 4, ...`` up to ``slack`` (to fewer corners, or to the class ``target``).
     At genus 0 the cube is the base; at genus 1 the caller says which class is (``base``) and
     gives each class its ``orientation`` type.  A class whose detours were ``searched`` in vain
     up to some slack already (an earlier run) is searched from the next one on; an open class's
-    record says how far the search went.
+    record says how far the search went.  With ``long`` above ``slack``, a class the
+    breadth-first search leaves open is given to :func:`find_long_detour` within ``long``
+    corners above it; a detour found so keeps, as ``searched``, the slack searched in vain.
 
     >>> from polyloops.io.examples import load_example
     >>> settle(canonical_form(load_example("l-shape").dualize(), "full").signature, 4).removable
@@ -221,7 +295,23 @@ def settle(signature: str, slack: int, *, base: bool = False, target: str | None
         if moves is not None:
             return ClassRecord(signature, n, detour=moves, slack=k, max_corners=n + k,
                                orientation=orientation)
-    return ClassRecord(signature, n, orientation=orientation, searched=max(slack, searched))
+    searched = max(slack, searched)
+    if long > searched:
+        moves = find_long_detour(ls, n + long, target)
+        if moves is not None:
+            peak = n + _peak(ls, moves)
+            return ClassRecord(signature, n, detour=moves, slack=peak - n, max_corners=peak,
+                               orientation=orientation, searched=searched)
+    return ClassRecord(signature, n, orientation=orientation, searched=searched)
+
+
+def _peak(ls: LoopStructure, moves: list[Move]) -> int:
+    """The most corners the moves reach from ``ls``, beyond its own."""
+    n, peak = ls.map.num_corners, 0
+    for move in moves:
+        ls = move.apply(ls)
+        peak = max(peak, ls.map.num_corners - n)
+    return peak
 
 
 @dataclass(frozen=True)
@@ -232,11 +322,12 @@ class _Task:
     target: str | None = None
     orientation: str | None = None
     searched: int = 0
+    long: int = 0
 
 
 def _settle_job(task: _Task) -> ClassRecord:
     return settle(task.signature, task.slack, base=task.base, target=task.target,
-                  orientation=task.orientation, searched=task.searched)
+                  orientation=task.orientation, searched=task.searched, long=task.long)
 
 
 def _orientation_job(signature: str) -> str:
@@ -350,8 +441,11 @@ def catalog_signatures(directory: Path | Census, max_corners: int) -> list[tuple
 def settle_catalog(directory: Path, max_corners: int, slack: int, workers: int = 1,
                    dask: str | None = None,
                    progress: Callable[[ClassRecord], None] | None = None,
-                   journal: Path | None = None, earlier: Iterable[ClassRecord] = ()) -> ConjectureResult:
-    """Settle every class of the catalog with at most ``max_corners`` corners.
+                   journal: Path | None = None, earlier: Iterable[ClassRecord] = (),
+                   long: int = 0) -> ConjectureResult:
+    """Settle every class of the catalog with at most ``max_corners`` corners (the classes the
+    breadth-first search within ``slack`` leaves open given to the long search within ``long``,
+    :func:`settle`).
 
     With a ``journal`` (a file), each class's record is appended there as it is settled, and
     a later call with the same catalog, range and slack takes the records it holds instead of
@@ -360,8 +454,9 @@ def settle_catalog(directory: Path, max_corners: int, slack: int, workers: int =
 
     ``earlier`` records (an earlier certificate's, :func:`read_records`) are taken for the classes
     they settle, whatever their slack; an open one is searched again from the slack it was
-    searched to, when that is below ``slack``.  The result's slack is the largest of ``slack``
-    and the detours taken, so that its certificate's header bounds them all; as for any
+    searched to, when that is below ``slack`` (and to the long search, with ``long``).  The
+    result's slack is the largest of ``slack`` and the detours' slacks, so that its
+    certificate's header bounds them all; as for any
     certificate, :func:`check_certificate` replays whatever was taken.
 
     Raises
@@ -381,7 +476,7 @@ def settle_catalog(directory: Path, max_corners: int, slack: int, workers: int =
                               f"corners, not through {max_corners}")
     classes = catalog_signatures(census, max_corners)
     if genus == 0:
-        tasks = [_Task(sig, slack) for sig, _ in classes]
+        tasks = [_Task(sig, slack, long=long) for sig, _ in classes]
     else:
         # the types earlier records state are taken (the certificate's check computes each again)
         stated = {r.signature: r.orientation for r in earlier if r.orientation is not None}
@@ -392,12 +487,11 @@ def settle_catalog(directory: Path, max_corners: int, slack: int, workers: int =
         bases = orientation_bases(types, corners)
         lowest = {t: corners[b] for t, b in bases.items()}
         tasks = [_Task(sig, slack, base=bases[types[sig]] == sig,
-                       target=bases[types[sig]] if n == lowest[types[sig]] else None, orientation=types[sig])
+                       target=bases[types[sig]] if n == lowest[types[sig]] else None, orientation=types[sig],
+                       long=long)
                  for sig, n in classes]
-    todo, taken = _resume(tasks, earlier, slack)
-    bound = max([slack, *(r.slack or 0 for r in taken.values())])
-    result = ConjectureResult(max_corners, bound, genus=genus)
-    done = _Journal(journal, census, max_corners, slack) if journal is not None else None
+    todo, taken = _resume(tasks, earlier, slack, long)
+    done = _Journal(journal, census, max_corners, slack, long) if journal is not None else None
     known = {**taken, **(done.records if done is not None else {})}
     for record in known.values():
         if progress:
@@ -411,15 +505,16 @@ def settle_catalog(directory: Path, max_corners: int, slack: int, workers: int =
             done.add(record)
         if progress:
             progress(record)
-    result.records.extend(by_signature[t.signature] for t in tasks)
-    return result
+    records = [by_signature[t.signature] for t in tasks]
+    bound = max([slack, *(r.slack or 0 for r in records)])
+    return ConjectureResult(max_corners, bound, records, genus)
 
 
 def _resume(tasks: list[_Task], earlier: Iterable[ClassRecord],
-            slack: int) -> tuple[list[_Task], dict[str, ClassRecord]]:
+            slack: int, long: int = 0) -> tuple[list[_Task], dict[str, ClassRecord]]:
     """The tasks with the earlier records applied: the records to take as they are (settled
-    the way the task would be, or open and searched as far as ``slack``), and the tasks left,
-    open classes searched from where they stopped."""
+    the way the task would be, or open and searched as far as ``slack`` when there is no long
+    search to try), and the tasks left, open classes searched from where they stopped."""
     wanted = {t.signature: t for t in tasks}
     taken: dict[str, ClassRecord] = {}
     resumed: dict[str, _Task] = {}
@@ -428,7 +523,7 @@ def _resume(tasks: list[_Task], earlier: Iterable[ClassRecord],
         if task is None or r.base != task.base or r.orientation != task.orientation:
             continue  # not a class of this range, or one settled another way: settled afresh
         before = taken.get(r.signature)
-        if r.settled or (r.searched or 0) >= slack:
+        if r.settled or ((r.searched or 0) >= slack and long <= (r.searched or 0)):
             if before is None or not before.settled:  # a settled record over an open one
                 taken[r.signature] = r
         else:  # searched again from the furthest any record went
@@ -465,15 +560,17 @@ def read_records(lines: Iterable[str]) -> list[ClassRecord]:
 
 class _Journal:
     """The records :func:`settle_catalog` has settled so far, one JSON line each after a
-    header naming the catalog (its records' digest), the range and the slack."""
+    header naming the catalog (its records' digest), the range, the slack and the long search's
+    (when there is one)."""
 
-    def __init__(self, path: Path, census: Census, max_corners: int, slack: int):
+    def __init__(self, path: Path, census: Census, max_corners: int, slack: int, long: int = 0):
         from polyloops.catalog.run import file_digest
 
         self.path = path
         self.header = json.dumps({"polyloops": 1, "kind": "settle-journal", "genus": census.genus,
                                   "catalog": file_digest(census.directory / "catalog.jsonl"),
-                                  "max_corners": max_corners, "slack": slack})
+                                  "max_corners": max_corners, "slack": slack,
+                                  **({"long": long} if long else {})})
         self.records: dict[str, ClassRecord] = {}
         lines = path.read_bytes().decode("utf-8", "replace").splitlines() if path.is_file() else []
         if lines and not _is_journal_header(lines[0]):
@@ -596,10 +693,13 @@ def check_record(data: Any, corners_bound: int, slack_bound: int | None = None,
         return f"unsettled {data['unsettled']!r} is not true"
     if "searched" in data:
         searched = data["searched"]
-        if "unsettled" not in data:
-            return "states how far its detours were searched, but is not open (unsettled)"
+        if "unsettled" not in data and "detour" not in data:
+            return "states how far its detours were searched, but is neither open nor settled by a detour"
         if not _is_count(searched) or searched < 0 or (slack_bound is not None and searched > slack_bound):
             return f"searched {searched!r} is not a slack from 0 to the header's {slack_bound}"
+        slack = data["detour"].get("slack") if isinstance(data.get("detour"), dict) else None
+        if _is_count(slack) and searched >= slack:
+            return (f"states that no detour within +{searched} exists, and gives one within +{slack}")
     target = None
     if bases is not None:
         kind = orientation_type(ls)
