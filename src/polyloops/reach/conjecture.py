@@ -141,10 +141,10 @@ def find_long_detour(ls: LoopStructure, max_corners: int, target: str | None = N
                      depth: int = 8) -> list[Move] | None:
     """A detour of at most ``rounds`` added loops, each followed by removals alone (at most
     ``depth`` in a row), every structure on the way within ``max_corners``; ``None`` when there
-    is none of that shape.  Nearly every detour :func:`find_detour` finds has that shape (one
-    long loop added, then two or three loops removed), and this search reaches far higher
-    peaks than a breadth-first one, whose states grow too many beyond about 10 corners above a
-    class of 48.  The detour it returns is not a shortest one, and finding none proves
+    is none of that shape.  Most detours :func:`find_detour` finds have that shape (of the 56
+    in the shipped certificates, 45 add one loop and then only remove, and 48 add at most two),
+    and this search reaches far higher peaks than a breadth-first one, whose states grow too
+    many beyond about 10 corners above a class of 48.  The detour it returns is not a shortest one, and finding none proves
     nothing; its moves apply one after the other from ``ls`` (``target`` as in
     :func:`find_detour`).  States are taken up to all 48 symmetries, each once, in a fixed order.
 
