@@ -2,6 +2,7 @@
 catalog's complete range, checks every field it prints, and reports bad records by line."""
 
 import json
+import re
 import shutil
 
 import pytest
@@ -238,3 +239,20 @@ def test_records_read_back_as_written():
         for line in path.read_text().splitlines()[1:]:
             data = json.loads(line)
             assert ClassRecord.from_json(data).to_json() == data
+
+
+def test_the_shape_of_the_shipped_detours_is_as_the_docs_say():
+    """docs/reachability.md and ``find_long_detour`` say how many of the shipped certificates'
+    detours add one loop and then only remove (45 of 56), and how many add at most two, each
+    followed by removals (48)."""
+    from polyloops.reach.conjecture import shipped_certificate
+
+    shapes = []
+    for genus in (0, 1):
+        for line in shipped_certificate(genus).read_text().splitlines()[1:]:
+            if '"detour"' in line:
+                kinds = "".join("a" if "add" in m else "r" for m in json.loads(line)["detour"]["moves"])
+                shapes.append(kinds)
+    one = sum(bool(re.fullmatch("ar+", k)) for k in shapes)
+    two = sum(bool(re.fullmatch("(ar+){1,2}", k)) for k in shapes)
+    assert (len(shapes), one, two) == (56, 45, 48)
