@@ -374,7 +374,7 @@ def test_an_open_class_is_searched_again_from_where_it_stopped(monkeypatch):
         assert why in str(check_certificate(bad, catalog).problems[0])
     settled = next(i for i, line in enumerate(lines) if "removable" in line)
     bad = [*lines[:settled], json.dumps({**json.loads(lines[settled]), "searched": 2}), *lines[settled + 1:]]
-    assert "is not open" in str(check_certificate(bad, catalog).problems[0])
+    assert "is neither open nor settled by a detour" in str(check_certificate(bad, catalog).problems[0])
     with pytest.raises(ConjectureError, match="line 3 is not a certificate record"):
         read_records([lines[0], lines[1], "[]"])
 

@@ -144,9 +144,10 @@ def find_long_detour(ls: LoopStructure, max_corners: int, target: str | None = N
     is none of that shape.  Most detours :func:`find_detour` finds have that shape (of the 56
     in the shipped certificates, 45 add one loop and then only remove, and 48 add at most two),
     and this search reaches far higher peaks than a breadth-first one, whose states grow too
-    many beyond about 10 corners above a class of 48.  The detour it returns is not a shortest one, and finding none proves
-    nothing; its moves apply one after the other from ``ls`` (``target`` as in
-    :func:`find_detour`).  States are taken up to all 48 symmetries, each once, in a fixed order.
+    many beyond about 10 corners above a class of 48.  The detour it returns is not a shortest
+    one, and finding none proves nothing; its moves apply one after the other from ``ls``
+    (``target`` as in :func:`find_detour`).  States are taken up to all 48 symmetries, each
+    once, in a fixed order.
 
     >>> from polyloops.io.examples import load_example
     >>> ls = load_example("non-incremental").dualize()
