@@ -9,6 +9,7 @@ labelled triangle mesh), ``io`` (files and formats), ``verify``, ``solvers``, ``
 conjecture), ``segmentation`` (the checker), ``segment`` (constructors), ``render``, ``cli``."""
 
 import ast
+import functools
 import subprocess
 import sys
 from pathlib import Path
@@ -20,9 +21,15 @@ ABOVE = ("parallel", "shapes", "surface", "io", "verify", "solvers", "generate",
 LAYERS = ("core", *ABOVE)
 
 
+@functools.cache
+def parsed(path: Path) -> ast.Module:
+    """A module's syntax tree, parsed once for all the tests here (none changes it)."""
+    return ast.parse(path.read_text(encoding="utf-8"))
+
+
 def imported_modules(path: Path) -> set[str]:
     names = set()
-    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+    for node in ast.walk(parsed(path)):
         if isinstance(node, ast.ImportFrom) and node.module:
             names.add(node.module)
         elif isinstance(node, ast.Import):
@@ -93,7 +100,7 @@ def resolved_imports(path: Path, lazy: bool = True) -> set[str]:
     are resolved.  Imports for annotations only (``if TYPE_CHECKING``) do not count."""
     me = module_name(path)
     package = me if path.name == "__init__.py" else me.rpartition(".")[0]
-    tree = ast.parse(path.read_text(encoding="utf-8"))
+    tree = parsed(path)
     typing_only = {id(n) for block in ast.walk(tree) if isinstance(block, ast.If)
                    and ast.unparse(block.test) in ("TYPE_CHECKING", "typing.TYPE_CHECKING")
                    for stmt in block.body for n in ast.walk(stmt)}
@@ -203,7 +210,7 @@ def test_the_command_line_parses_no_file_itself():
     offenders = {}
     for path in sorted((PACKAGE / "cli").glob("*.py")):
         found = set()
-        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        for node in ast.walk(parsed(path)):
             if isinstance(node, ast.Call):
                 func = node.func
                 if isinstance(func, ast.Attribute) and func.attr in PARSING_METHODS:
@@ -260,7 +267,7 @@ def test_library_messages_name_no_command_line_flag():
     for path in sorted(PACKAGE.rglob("*.py")):
         if "cli" in path.relative_to(PACKAGE).parts:
             continue
-        tree = ast.parse(path.read_text(encoding="utf-8"))
+        tree = parsed(path)
         docstrings = {id(node.body[0].value) for node in ast.walk(tree)
                       if isinstance(node, (ast.Module, ast.ClassDef, ast.FunctionDef, ast.AsyncFunctionDef))
                       and node.body and isinstance(node.body[0], ast.Expr)
