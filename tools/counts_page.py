@@ -228,9 +228,8 @@ def runs_section(root: Path = ROOT) -> str:
     for directory in sorted((root / "runs").glob("genus2-*")):
         plan = run_status(directory).plans[0]
         top, secs = plan.max_corners, round(sum(plan.seconds))
-        found = {n: c for n, c in plan.classes.items() if c}
-        said = "no class found in them" if not found else \
-            "found in them: " + ", ".join(f"{c:,} with {n} corners" for n, c in found.items())
+        said = "no class found in them" if not plan.found else \
+            "found in them: " + ", ".join(f"{c:,} with {n} corners" for n, c in plan.found.items())
         rest = "all are in: run the command again to merge them" if not plan.missing else \
             f"at their mean so far the others need about {plan.estimate / 3600:,.0f} hours of one core"
         out.append(

@@ -55,6 +55,11 @@ class PlanStatus:
     """The generator's statistics summed over the finished shares."""
 
     @property
+    def found(self) -> dict[int, int]:
+        """The corner counts where the finished shares found classes, and how many."""
+        return {n: c for n, c in self.classes.items() if c}
+
+    @property
     def missing(self) -> int:
         """Shares not finished yet."""
         return self.shares - len(self.done)

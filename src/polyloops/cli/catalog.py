@@ -148,9 +148,8 @@ def cmd_catalog_status(args: argparse.Namespace) -> int:
              + ("" if status.plans else "; no finished share kept in its parts/")]
     for plan in status.plans:
         lines.append(plan.describe())
-        found = {n: c for n, c in plan.classes.items() if c}
         lines.append("  classes found so far (up to all symmetries): " + (
-            ", ".join(f"{c:,} with {n}" for n, c in found.items()) if found else "none")
+            ", ".join(f"{c:,} with {n}" for n, c in plan.found.items()) if plan.found else "none")
             + f" (of {plan.min_corners} to {plan.max_corners} corners)")
     if status.damaged:
         lines.append(f"recomputed when the run resumes (damaged, edited or misnamed): "

@@ -300,8 +300,8 @@ def settle(signature: str, slack: int, *, base: bool = False, target: str | None
     if long > searched:
         moves = find_long_detour(ls, n + long, target)
         if moves is not None:
-            peak = n + _peak(ls, moves)
-            return ClassRecord(signature, n, detour=moves, slack=peak - n, max_corners=peak,
+            peak = _peak(ls, moves)
+            return ClassRecord(signature, n, detour=moves, slack=peak, max_corners=n + peak,
                                orientation=orientation, searched=searched)
     return ClassRecord(signature, n, orientation=orientation, searched=searched)
 
