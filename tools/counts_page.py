@@ -181,7 +181,7 @@ def genus1_section(summary: dict, types: dict[str, dict[int, int]]) -> list[str]
     return lines
 
 
-# No genus-2 catalog ships (a run through 44 corners finds none), so this section is what the
+# No genus-2 catalog ships (a run through 45 corners finds none), so this section is what the
 # runs it names found, kept here beside the tables it follows; the runs carried in runs/ are read.
 GENUS2 = """## Genus 2
 
@@ -190,13 +190,15 @@ Computed by `polyloops catalog --genus 2` (the `handles` generator:
 with `N` corners has `N + 2` crossings, and the search is complete through `N` corners when its
 first stage lists every two-axis arrangement `B` with up to `(N + 2) / 3` crossings.
 
-- **No genus-2 polycube has 44 corners or fewer.** `polyloops catalog --genus 2 --max-corners
-  44 --workers 2 -o g2-44`: the first stage through 15 crossings (491,579 `B`: 2 with 6
+- **No genus-2 polycube has 45 corners or fewer.** `polyloops catalog --genus 2 --max-corners
+  45 --workers 2 -o g2-45`: the first stage through 15 crossings (491,579 `B`: 2 with 6
   crossings, 23 with 8, 522 with 10, 1 with 11, 15,629 with 12, 21 with 13, 474,676 with 14,
-  705 with 15, listed as square-tiled surfaces), then the third axis of each within 46
+  705 with 15, listed as square-tiled surfaces), then the third axis of each within 47
   crossings; four third axes passed the region search and none of their maps carries a
-  polycube. 7,160 s of user CPU in 64 shares, 1 h 31 min of wall time (two workers, beside
-  another run), 89 MB at the peak (`/usr/bin/time -v`). Through 42 corners: 2,576 s.
+  polycube. Run in three sittings on two cores, each resumed from the finished shares' part
+  files (the last: 24 min of wall time for 66 shares); its parts are kept (below). The run
+  through 44 corners before it, the same `B` at 46 crossings: 7,160 s of user CPU in 64
+  shares, 89 MB at the peak (`/usr/bin/time -v`); through 42: 2,576 s.
 - **The smallest known have 48 corners**: the slab with two holes along one axis
   (`example:slab-2-holes`, its sparsest pair of axes crossing 10 times, the others 14 and 26)
   and the bar with holes along two axes (`example:two-axis-holes`, pairs 14, 18 and 18). Every
@@ -205,11 +207,11 @@ first stage lists every two-axis arrangement `B` with up to `(N + 2) / 3` crossi
   one map with a polycube, the slab's (`python benchmarks/genus2.py --bases 12 --corners 48`:
   0.5 s of CPU for the first stage, 2,762 s for the second, 2,576 of them on the 15,629 `B` of
   12 crossings; one process).
-- Between 45 and 47 corners the question is open: a genus-2 polycube with `N <= 47` corners
-  has a pair crossing at most 16 times (`(47 + 2) / 3`), and `two-axis-holes` shows that the
-  sparsest pair of a 48-corner one can cross 14 times. Every `B` through 16 crossings is now
-  listed (14,362,363, 13,870,784 of them with 16), and the third axes of all of them cost
-  about 40 hours of CPU through 47 corners and 65 through 48 (measured on samples:
+- At 46 and 47 corners the question is open: a genus-2 polycube with 46 or 47 corners has a
+  pair crossing at most 16 times (`(47 + 2) / 3`), and `two-axis-holes` shows that the sparsest
+  pair of a 48-corner one can cross 14 times. Every `B` through 16 crossings is now listed
+  (14,362,363, 13,870,784 of them with 16), and the third axes of all of them cost about 40
+  hours of CPU through 47 corners and 65 through 48 (measured on samples:
   [searches.md](searches.md#genus-2-the-same-two-stages-with-pieces)): the run is a cluster's
   ([cluster.md](cluster.md#genus-2-through-48-corners)).
 {runs}- Moves from the slab (`polyloops reach example:slab-2-holes --max-corners 60 --symmetry full`):
@@ -221,7 +223,8 @@ first stage lists every two-axis arrangement `B` with up to `(N + 2) / 3` crossi
 
 
 def runs_section(root: Path = ROOT) -> str:
-    """A bullet a genus-2 run carried in ``runs/`` (its finished shares: ``catalog status``)."""
+    """A bullet a genus-2 run carried in ``runs/``, finished or in progress (its parts, read by
+    ``catalog status``)."""
     from polyloops.catalog.status import run_status
 
     out = []
@@ -230,7 +233,14 @@ def runs_section(root: Path = ROOT) -> str:
         top, secs = plan.max_corners, round(sum(plan.seconds))
         said = "no class found in them" if not plan.found else \
             "found in them: " + ", ".join(f"{c:,} with {n} corners" for n, c in plan.found.items())
-        rest = "all are in: run the command again to merge them" if not plan.missing else \
+        if not plan.missing:
+            out.append(
+                f"- **The run through {top} corners, finished** (`runs/{directory.name}` in the "
+                f"repository): the part files of all {plan.shares:,} shares (`polyloops catalog status "
+                f"runs/{directory.name}` reads them, as a resumed run would): {secs:,} s of worker time, "
+                f"{said}.")
+            continue
+        rest = "no share has finished yet" if plan.estimate is None else \
             f"at their mean so far the others need about {plan.estimate / 3600:,.0f} hours of one core"
         out.append(
             f"- **The run through {top} corners, in progress** (`runs/{directory.name}` in the "
