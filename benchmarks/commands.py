@@ -70,7 +70,7 @@ def write_structures(tmp: Path) -> tuple[Path, Path]:
     """The box's loop structure in its own numbering and shuffled."""
     ls = box_surface(130, 130, 130).dualize()
     faces = [list(f) for f in ls.map.faces]
-    edges = [[u, v, lab] for u, v, lab in ls.edge_labels()]
+    edges = list(ls.edge_labels())  # (u, v, label): JSON writes each as a list
     own = tmp / "box.json"
     own.write_text(structure_json(faces, edges))
     rng = random.Random(5)

@@ -12,7 +12,10 @@ from __future__ import annotations
 
 import argparse
 import sys
+from collections.abc import Callable, Iterable
+from functools import partial
 from pathlib import Path
+from typing import Any
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
@@ -23,6 +26,11 @@ from polyloops.core.moves import add_loop, additions, count_additions, removals,
 from polyloops.shapes.builders import box
 from polyloops.shapes.voxels import polycube_from_voxels
 from strategies import well_composed_blob
+
+
+def each(fn: Callable[[Any, Any], object], ls: Any, items: Iterable[Any]) -> list[object]:
+    """``fn(ls, item)`` for every item (timed as one)."""
+    return [fn(ls, item) for item in items]
 
 
 def structures(quick: bool):
@@ -41,12 +49,12 @@ def main() -> None:
     rows = []
     for name, q in structures(args.quick):
         ls = q.dualize()
-        t_count, counts = timed(lambda ls=ls: count_additions(ls))
+        t_count, counts = timed(partial(count_additions, ls))
         total = sum(counts.values())
-        t_rem, removable = timed(lambda ls=ls: removals(ls))
+        t_rem, removable = timed(partial(removals, ls))
         sample = list(additions(ls, limit=20))
-        t_add, _ = timed(lambda ls=ls, sample=sample: [add_loop(ls, mv) for mv in sample])
-        t_one_rem, _ = timed(lambda ls=ls, r=removable[:20]: [remove_loop(ls, i) for i in r])
+        t_add, _ = timed(partial(each, add_loop, ls, sample))
+        t_one_rem, _ = timed(partial(each, remove_loop, ls, removable[:20]))
         rows.append([name, ls.map.num_corners, len(ls.loops), total, t_count,
                      total / t_count if t_count else float("nan"), len(removable), t_rem,
                      t_add / max(1, len(sample)), t_one_rem / max(1, len(removable[:20]))])

@@ -18,6 +18,7 @@ from __future__ import annotations
 import argparse
 import random
 import sys
+from functools import partial
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
@@ -25,10 +26,21 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from _common import markdown_table, timed
 
+from polyloops.core.directions import Axis
 from polyloops.shapes.voxels import polycube_from_voxels
 from polyloops.solvers import OrientationProblem, make_solver
 from polyloops.solvers.base import count, solve
 from strategies import pillar_cells, renumbered
+
+
+def solved(name: str, problem: OrientationProblem) -> object:
+    """One orientation by solver ``name`` (its construction timed too)."""
+    return solve(make_solver(name), problem)
+
+
+def counted(name: str, problem: OrientationProblem) -> int:
+    """The orientations counted by solver ``name`` (its construction timed too)."""
+    return count(make_solver(name), problem)
 
 
 def bumpy_slab(bumps: int):
@@ -59,7 +71,7 @@ def main() -> None:
     for family, q in instances(args.max_k):
         problem = OrientationProblem(q.dualize().forget_orientation())
         k = problem.k
-        kmax = max(len(problem.components_of(a)) for a in range(3))
+        kmax = max(len(problem.components_of(a)) for a in Axis)
         if k > args.max_k:
             continue
         # The problem caches a Definition-4 check of the structure; computing it here keeps
@@ -70,13 +82,13 @@ def main() -> None:
             if name == "brute" and kmax > args.brute_max:
                 row += ["-", "-"]
                 continue
-            t_solve, _ = timed(lambda n=name, p=problem: solve(make_solver(n), p), repeat=3)
-            t_count, n_count = timed(lambda n=name, p=problem: count(make_solver(n), p), repeat=3)
+            t_solve, _ = timed(partial(solved, name, problem), repeat=3)
+            t_count, n_count = timed(partial(counted, name, problem), repeat=3)
             row += [t_solve, t_count]
         # The builder numbers corners in a regular order; a random numbering is the usual case.
         shuffled = OrientationProblem(renumbered(q, rng).dualize().forget_orientation())
         _ = shuffled.local_violations
-        t_shuffled, _ = timed(lambda p=shuffled: solve(make_solver("sat"), p), repeat=3)
+        t_shuffled, _ = timed(partial(solved, "sat", shuffled), repeat=3)
         row += [t_shuffled, n_count]
         rows.append(row)
         print(f"{family} k={k} genus={q.genus} done", file=sys.stderr)

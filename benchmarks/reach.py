@@ -20,6 +20,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _common import markdown_table
 from naive_reach import naive_explore
 
+from polyloops.core.polycube import Polycube
 from polyloops.io.examples import load_example
 from polyloops.reach.search import explore
 
@@ -39,7 +40,9 @@ def main() -> None:
                         help="run the naive reference up to this bound (it grows about 3x per 2 corners)")
     args = parser.parse_args()
     bounds = [20, 24] if args.quick else args.bounds
-    cube = load_example("cube").dualize()
+    cube_polycube = load_example("cube")
+    assert isinstance(cube_polycube, Polycube)
+    cube = cube_polycube.dualize()
     rows = []
     for m in bounds:
         naive_cpu = None

@@ -25,6 +25,7 @@ import sys
 import time
 from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
@@ -115,7 +116,7 @@ def shuffled(q: Polycube, seed: int = 5) -> Polycube:
     rng = random.Random(seed)
     perm = list(range(q.map.num_corners))
     rng.shuffle(perm)
-    positions = [None] * len(perm)
+    positions = list(q.positions)
     for c, p in enumerate(q.positions):
         positions[perm[c]] = p
     faces = []
@@ -123,7 +124,7 @@ def shuffled(q: Polycube, seed: int = 5) -> Polycube:
         k = rng.randrange(len(f))
         faces.append([perm[c] for c in (*f[k:], *f[:k])])
     rng.shuffle(faces)
-    return Polycube(HalfEdgeMap.from_faces(faces), positions)
+    return Polycube(HalfEdgeMap.from_faces(faces), tuple(positions))
 
 
 def parameter_for(family: str, faces: float) -> int:
@@ -143,7 +144,7 @@ def fresh_polycube(q: Polycube) -> Polycube:
     return Polycube(HalfEdgeMap.from_faces(q.faces), q.positions)
 
 
-Operation = tuple[Callable[[], object], Callable[[], object]]
+Operation = tuple[Callable[[], Any], Callable[[Any], object]]
 
 
 def operations(q: Polycube, ls: LoopStructure) -> dict[str, Operation]:
@@ -170,6 +171,11 @@ def measure(setup, op, repeat: int) -> tuple[float, float]:
         best_cpu = min(best_cpu, time.process_time() - c)
         best_wall = min(best_wall, time.perf_counter() - w)
     return best_cpu, best_wall
+
+
+def _nearest(points: list[tuple[float, float]], size: float) -> tuple[float, float]:
+    """The point whose size is nearest ``size`` on a log scale."""
+    return min(points, key=lambda p: abs(math.log(p[0] / size)))
 
 
 def slope(points: list[tuple[float, float]]) -> float:
@@ -212,7 +218,7 @@ def main() -> None:
     print()
     growth = []
     for (family, name), pts in series.items():
-        near = [min(pts, key=lambda p, t=t: abs(math.log(p[0] / t))) for t in (1e4, 1e5)]
+        near = [_nearest(pts, t) for t in (1e4, 1e5)]
         decade = slope(near) if near[0] != near[1] else float("nan")
         growth.append([family, name, f"{slope(pts):.2f}", f"{decade:.2f}", pts[-1][0], pts[-1][1]])
     print(markdown_table(["family", "operation", "exponent (all sizes)", "exponent (10^4 to 10^5)",

@@ -36,13 +36,14 @@ def subdivided(q: Polycube, s: int) -> LabelledMesh:
         key = tuple(round(x, 9) for x in p)
         if key not in index:
             index[key] = len(points)
-            points.append(key)  # type: ignore[arg-type]
+            points.append(key)
         return index[key]
 
     triangles, labels = [], []
     for f, (a, b, _, d) in enumerate(q.faces):
         pa, pb, pd = (q.positions[i] for i in (a, b, d))
         label = q.face_normal(f)
+        assert label is not None  # a polycube's faces are axis-parallel
 
         def at(i: int, j: int, pa=pa, pb=pb, pd=pd):
             return tuple(pa[k] + i / s * (pb[k] - pa[k]) + j / s * (pd[k] - pa[k]) for k in range(3))

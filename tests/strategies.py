@@ -39,7 +39,7 @@ def _critical(cells: set[Cell], c: Cell) -> bool:
                             for v in (0, 1):
                                 key = [u, v]
                                 key.insert(axis, layer)
-                                sq.append(b[tuple(key)])
+                                sq.append(b[(key[0], key[1], key[2])])
                         if sq[0] == sq[3] != sq[1] == sq[2]:
                             return True
                 for i, j, k in ((0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)):
@@ -179,7 +179,8 @@ def grown_structures(draw, max_moves: int = 4, start: str = "cube") -> LoopStruc
     from polyloops.core.moves import add_loop, additions
     from polyloops.io.examples import load_example
 
-    ls = load_example(start).dualize()
+    first = load_example(start)
+    ls = first.dualize() if isinstance(first, Polycube) else first
     for _ in range(draw(st.integers(0, max_moves))):
         axis = draw(st.sampled_from(list(Axis)))
         found = list(additions(ls, axis, limit=6))
@@ -267,9 +268,9 @@ def renumbered(q: Polycube, rng: random.Random) -> Polycube:
         faces.append([perm[c] for c in face[k:] + face[:k]])
     rng.shuffle(faces)
     shift = [rng.randint(-5, 5) for _ in range(3)]
-    positions = [None] * n
+    positions = list(q.positions)
     for c, p in enumerate(q.positions):
-        positions[perm[c]] = tuple(p[i] + shift[i] for i in range(3))
+        positions[perm[c]] = (p[0] + shift[0], p[1] + shift[1], p[2] + shift[2])
     return Polycube.from_faces(faces, positions)
 
 

@@ -36,6 +36,7 @@ def _run_cell(source: str, namespace: dict[str, Any], label: str) -> tuple[str, 
     """Run one cell; its printed text and the repr of its last line's value (or ``None``)."""
     tree = ast.parse(source, label)
     last = tree.body.pop() if tree.body and isinstance(tree.body[-1], ast.Expr) else None
+    assert last is None or isinstance(last, ast.Expr)  # for the type checker: popped as checked
     out = io.StringIO()
     value = None
     try:

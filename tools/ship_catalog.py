@@ -130,9 +130,9 @@ def journal_records(parts: Path, digest: str, top: int) -> list:
     open one without its search stated was searched to its journal's slack."""
     from dataclasses import replace
 
-    from polyloops.reach.conjecture import journal_lines
+    from polyloops.reach.conjecture import ClassRecord, journal_lines
 
-    out = []
+    out: list[ClassRecord] = []
     for path in sorted(parts.glob("settle-journal*.jsonl")):
         lines = path.read_bytes().decode("utf-8", "replace").splitlines()
         try:
