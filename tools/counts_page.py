@@ -210,8 +210,8 @@ first stage lists every two-axis arrangement `B` with up to `(N + 2) / 3` crossi
 - At 46 and 47 corners the question is open: a genus-2 polycube with 46 or 47 corners has a
   pair crossing at most 16 times (`(47 + 2) / 3`), and `two-axis-holes` shows that the sparsest
   pair of a 48-corner one can cross 14 times. Every `B` through 16 crossings is now listed
-  (14,362,363, 13,870,784 of them with 16), and the third axes of all of them cost about 70 to
-  110 hours of CPU through 47 corners and 140 to 200 through 48 (measured on whole shares:
+  (14,362,363, 13,870,784 of them with 16), and the third axes of all of them cost about 60 to
+  110 hours of CPU through 47 corners and 105 to 200 through 48 (measured on whole shares:
   [searches.md](searches.md#genus-2-the-same-two-stages-with-pieces)): the run is a cluster's
   ([cluster.md](cluster.md#genus-2-through-48-corners)).
 {runs}- Moves from the slab (`polyloops reach example:slab-2-holes --max-corners 60 --symmetry full`):
