@@ -299,3 +299,37 @@ def test_mutated_files_of_every_format(tmp_path, case, command):
     path = tmp_path / f"in{suffix}"
     path.write_bytes(data)
     assert_contract([*command, str(path)], seconds=10.0)
+
+
+@pytest.mark.filterwarnings("ignore::pytest.PytestUnraisableExceptionWarning")  # the dropped exception
+def test_sigterm_whose_exception_a_finalizer_swallows_still_ends_interrupted(monkeypatch, capsys):
+    """A signal handler's exception raised inside a finalizer is printed and dropped by Python;
+    the command still ends "interrupted" (exit 130), not as if it had run to the end."""
+    import argparse
+    import gc
+    import signal
+
+    cli_main = sys.modules["polyloops.cli.main"]
+
+    class SignalsWhenCollected:
+        def __del__(self):
+            os.kill(os.getpid(), signal.SIGTERM)  # the handler runs here, inside the finalizer
+
+    def command(args):
+        SignalsWhenCollected()
+        gc.collect()
+        return 0
+
+    real = cli_main.build_parser
+
+    def parser():
+        built = real()
+        parse = built.parse_args
+        built.parse_args = lambda argv: argparse.Namespace(**{**vars(parse(argv)), "func": command})
+        return built
+
+    monkeypatch.setattr(cli_main, "build_parser", parser)
+    assert cli_main.main(["examples"]) == 130
+    assert "interrupted" in capsys.readouterr().err
+    monkeypatch.undo()
+    assert cli_main.main(["examples"]) == 0  # the next command in the process is not marked

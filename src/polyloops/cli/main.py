@@ -105,7 +105,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     previous = _terminate_cleanly()
     guard = _ClosedPipeGuard.install()
     try:
-        return args.func(args)
+        status = args.func(args)
+        if _TERMINATED:  # the signal's exception was swallowed (raised inside a finalizer, say)
+            raise KeyboardInterrupt
+        return status
     except CliError as err:
         print(f"polyloops {name}: {_clip_words(str(err))}", file=sys.stderr)
         _json_error(args, str(err), err.status, err.data)
@@ -189,13 +192,20 @@ def _json_error(args: argparse.Namespace | None, message: str, status: int,
             print(json.dumps({**(data or {}), "error": _clip_words(message), "status": status}, indent=2))
 
 
+_TERMINATED = False  # set by SIGTERM: the command ends "interrupted" even if its exception was lost
+
+
 def _terminate_cleanly():
     """Turn SIGTERM into an exception, so that temporary files are removed and worker
     processes stopped on the way out, as for Ctrl-C.  Returns the previous handler (``None``
     outside the main thread, where handlers cannot be set)."""
     def stop(signum: int, frame: object) -> None:
+        global _TERMINATED
+        _TERMINATED = True
         raise KeyboardInterrupt
 
+    global _TERMINATED
+    _TERMINATED = False  # a new command (main may run several in one process)
     try:
         return signal.signal(signal.SIGTERM, stop)
     except ValueError:
