@@ -93,7 +93,7 @@ def whole_share(genus: int, res: int, mod: int, budgets: list[int], extra: int) 
     for budget in budgets:
         costs: dict[int, list[float]] = defaultdict(list)
         for raw in listed:
-            base = arrangement_of_twin(raw)
+            base = arrangement_of_twin(raw)  # anew at each budget: it caches what a search derives
             start = time.process_time()
             for _ in third_axis_systems(base, budget + extra, TorusSearchStats()):
                 pass

@@ -93,12 +93,14 @@ def read_rows(text: str) -> list[tuple[str, dict[str, str]]]:
     return out
 
 
-def _medians(rows: list[dict[str, str]]) -> str:
-    """Median charts of ``rows``, segment's and the graph-cut labelling's (empty without rows)."""
-    if not rows:
+def _medians(rows: list[dict[str, str]], cut_rows: list[dict[str, str]] | None = None) -> str:
+    """Median charts: segment's over ``rows``, the graph-cut labelling's over ``cut_rows``
+    (``rows`` unless given); empty without rows."""
+    cut_rows = rows if cut_rows is None else cut_rows
+    if not rows or not cut_rows:
         return ""
     return (f"{statistics.median(int(r['charts']) for r in rows):g} / "
-            f"{statistics.median(int(r['graph-cut charts']) for r in rows):g}")
+            f"{statistics.median(int(r['graph-cut charts']) for r in cut_rows):g}")
 
 
 def summary(rows: list[tuple[str, dict[str, str]]]) -> str:
@@ -117,9 +119,8 @@ def summary(rows: list[tuple[str, dict[str, str]]]) -> str:
         own = sum(r["start"].startswith(kept) for r in done)
         gaps = [float(r["gap"]) for r in done]
         table.append([folder, len(mine), len(done), f"{statistics.mean(gaps):.4f}" if gaps else "",
-                      f"{statistics.median(int(r['charts']) for r in done):g} / "
-                      f"{statistics.median(int(r['graph-cut charts']) for r in mine):g}",
-                      _medians(valid_cut), len(valid_cut), f"{at_least} of {len(valid_cut)}", own,
+                      _medians(done, mine), _medians(valid_cut), len(valid_cut),
+                      f"{at_least} of {len(valid_cut)}", own,
                       f"{statistics.mean(float(r['backwards']) for r in done):.3f}" if done else "",
                       f"{max(float(r['segment s']) for r in mine):.1f} s"])
     valid = [r for _, r in rows if r["segment"] == "certified" and r["graph-cut"] == "valid"]

@@ -95,17 +95,20 @@ def test_committed_runs_are_finished_shares_and_the_docs_say_what_they_hold():
         if plan.missing:
             said = re.search(rf"`runs/{directory.name}`[^*]*\*\*([\d,]+) of the ([\d,]+) shares\*\* "
                              r"finished, ([\d,]+) s of worker time, (.*?)\. ", text)
-        else:  # finished: every share (the count twice, done and planned), and what the run decides
-            said = re.search(rf"`runs/{directory.name}`[^:]*: the part files of (?:all )?(([\d,]+)) shares "
+            assert said, f"docs/counts.md: the progress of runs/{directory.name} is not stated"
+            done, shares, secs, words = said.groups()
+        else:  # finished: every share, and what the whole run decides
+            said = re.search(rf"`runs/{directory.name}`[^:]*: the part files of all ([\d,]+) shares "
                              r"[^:]*: ([\d,]+) s of worker time, (.*?)\.", text)
+            assert said, f"docs/counts.md: the finished runs/{directory.name} is not stated"
+            (done, secs, words), shares = said.groups(), said[1]
             assert plan.found or f"No genus-2 polycube has {top} corners or fewer." in text, directory.name
             if not plan.found:
                 decided = max(decided, top)
-        assert said, f"docs/counts.md: the progress of runs/{directory.name} is not stated"
-        assert [int(said[k].replace(",", "")) for k in (1, 2, 3)] == \
+        assert [int(x.replace(",", "")) for x in (done, shares, secs)] == \
             [len(plan.done), plan.shares, round(sum(plan.seconds))], directory.name
         found = ", ".join(f"{c:,} with {n} corners" for n, c in plan.found.items())
-        assert said[4] == ("found in them: " + found if found else "no class found in them")
+        assert words == ("found in them: " + found if found else "no class found in them")
     # and no page claims more than a finished run decided
     for page in (*(ROOT / "docs").glob("*.md"), ROOT / "README.md", ROOT / "runs" / "README.md"):
         words = " ".join(page.read_text().split())
