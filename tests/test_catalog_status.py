@@ -66,7 +66,9 @@ def test_an_unfinished_run_and_damaged_parts(torus_run, tmp_path, capsys):
 
 
 def test_bad_directories(tmp_path, capsys):
-    for where, words in ((tmp_path / "none", "no such directory"), (tmp_path, "holds no catalog run")):
+    (tmp_path / "file").write_text("x")
+    for where, words in ((tmp_path / "none", "no such directory"), (tmp_path / "file", "not a directory"),
+                         (tmp_path, "holds no catalog run")):
         code, out, err = run(capsys, "catalog", "status", str(where))
         assert code == 2 and not out and words in err and len(err.strip().splitlines()) == 1
 

@@ -120,7 +120,8 @@ def run_status(directory: Path | str) -> RunStatus:
     """
     directory = Path(directory)
     if not directory.is_dir():
-        raise CatalogRunError(f"{directory}: no such directory")
+        why = "not a directory" if directory.exists() else "no such directory"
+        raise CatalogRunError(f"{directory}: {why}")
     parts = directory / "parts"
     files = sorted(parts.glob("*.json")) if parts.is_dir() else []
     extent = existing_extent(directory)
