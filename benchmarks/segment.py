@@ -52,7 +52,7 @@ def share(x: float | None) -> str:
 
 
 def row(path: Path, budget: float, seed: int, start_arg: str | None, workers: int = 1,
-        price: float = PRICE, floor: Floor = Floor.REPAIRED) -> list[object]:
+        price: float = PRICE, floor: Floor = Floor.REPAIRED, merge: bool = False) -> list[object]:
     s = surface_of(*read_triangle_mesh(path))
     naive = judged(s, naive_labels(s))
     start = time.perf_counter()
@@ -64,7 +64,8 @@ def row(path: Path, budget: float, seed: int, start_arg: str | None, workers: in
     start = time.perf_counter()
     try:
         done = segment_surface(s, budget=budget, seed=seed, price=price, bound=floor,
-                               start=read_start(start_arg) if start_arg else None, workers=workers)
+                               start=read_start(start_arg) if start_arg else None, workers=workers,
+                               merge=merge)
     except Exception as err:  # a benchmark reports every failure in its row
         took = time.perf_counter() - start
         return [*out, f"none ({type(err).__name__})", "", "", "", "", "", "", f"{took:.1f}",
@@ -144,6 +145,7 @@ def main() -> None:
     parser.add_argument("--price", type=float, default=PRICE, help=f"as segment --price (default {PRICE:g})")
     parser.add_argument("--floor", choices=[f.value for f in Floor], default=Floor.REPAIRED.value,
                         help="as segment --floor (default repaired)")
+    parser.add_argument("--merge", action="store_true", help="as segment --merge")
     parser.add_argument("--summarize", type=Path, metavar="FILE",
                         help="print only the summary of FILE, an earlier output of this script")
     args = parser.parse_args()
@@ -162,7 +164,7 @@ def main() -> None:
 
     def measured(p: Path) -> list[list[object]]:
         found = row(p, args.budget, args.seed, starts.get(p.stem), args.workers, args.price,
-                    Floor(args.floor))
+                    Floor(args.floor), args.merge)
         rows.append((p.parent.name, dict(zip(HEADER, map(str, found), strict=True))))
         return [found]
 

@@ -110,7 +110,7 @@ def test_a_higher_price_asks_fewer_loops():
 def test_segment_writes_the_score_of_every_start(tmp_path, capsys):
     out = tmp_path / "scores.csv"
     assert main(["segment", "example:egg", "--budget", "1", "--workers", "2", "--score-csv", str(out),
-                 "--json"]) == 0
+                 "--merge", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     rows = list(csv.DictReader(io.StringIO(out.read_text())))
     assert tuple(rows[0]) == Candidate.FIELDS and len(rows) >= 1 and data["score_csv"] == str(out)

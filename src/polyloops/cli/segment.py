@@ -60,6 +60,10 @@ def add_command(command: Callable[..., argparse.ArgumentParser]) -> None:
                    help="which of the mesh's own labellings the result is never less faithful than: "
                    "those valid as they are, or also the graph-cut labelling (or the guide) once "
                    "repaired (default; 'valid' lets the price choose a coarser one with fewer loops)")
+    p.add_argument("--merge", action="store_true",
+                   help="then relabel whole charts as a neighbour where the loops saved pay for the "
+                   "fidelity lost (fewer charts and loops, a little less faithful; each merge "
+                   "certified, never below the floor)")
     p.add_argument("--score-csv", metavar="FILE", help="write one row per start tried: its fidelity, "
                    "agreement with the guide, loops, price, score, charts, corners, seconds, whether it "
                    "converged and was kept, or why it gave nothing")
@@ -123,7 +127,7 @@ def cmd_segment(args: argparse.Namespace) -> int:
     try:
         result = segment_mesh(points, triangles, budget=args.budget, seed=args.seed, price=args.price,
                               start=start, guide=guide, direct=not args.search_only, workers=args.workers,
-                              bound=Floor(args.floor),
+                              bound=Floor(args.floor), merge=args.merge,
                               on_candidate=lambda candidate: bar.update(1))
     except SurfaceError as err:
         raise CliError(f"{args.mesh}: {err}") from None

@@ -36,6 +36,7 @@ from polyloops.segment.labellings import (
     naive_labels,
 )
 from polyloops.segment.layout import Layout, lay_out
+from polyloops.segment.merge import merges
 from polyloops.segment.polish import polish_labels, polish_layout, polished_fidelity
 from polyloops.segment.refine import Refined
 from polyloops.segment.repair import repair_labels
@@ -212,7 +213,7 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
                     start: LoopStructure | None = None,
                     guide: Sequence[Direction] | None = None, direct: bool = True, workers: int = 1,
                     on_candidate: Callable[[Candidate], None] | None = None,
-                    bound: Floor = Floor.REPAIRED) -> SegmentResult:
+                    bound: Floor = Floor.REPAIRED, merge: bool = False) -> SegmentResult:
     """:func:`segment_mesh` on a checked surface: the search from the given start, or from
     each recipe of :func:`~polyloops.segment.starts.recipes` (``workers`` at a time): each
     scouted (searched for a share of the budget, ranked by an estimate), the
@@ -226,7 +227,8 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
     compactness made valid (:func:`_other_weights`), scored alike but no floor.  Last, the
     patches of the graph-cut labellings (or of the guide) that keep the result valid and raise
     its score are grafted into it (:func:`_grafted`), for at most :data:`GRAFTING` of the
-    budget."""
+    budget; with ``merge`` and without a guide, its charts are then merged where that raises
+    the score (:func:`_merged`), for at most :data:`MERGING` of the budget."""
     began = time.monotonic()
     if guide is not None and len(guide) != len(surface.triangles):
         raise ValueError(f"a guide of {len(guide)} labels for {len(surface.triangles)} triangles")
@@ -259,8 +261,14 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
         r, loops, placed = embed_start(surface, start, GRIDS, budget)
         how = f"the given start, turned by {placed.symmetry}" + (
             " (sections of the polycube-like deformation)" if placed.deformed else "")
-        given = _search_from(surface, (r, loops, list(placed.curves), how), began, knobs, on_step)
-        return _alone(given, knobs)
+        searched = _search_from(surface, (r, loops, list(placed.curves), how), began, knobs, on_step)
+        given = _alone(searched, knobs)
+        merged = _merged(given, given.candidates[0], knobs, began, None) if merge else None
+        if merged is None:
+            return given
+        merged_row, coarser = merged
+        return replace(coarser, seconds=time.monotonic() - began, score=merged_row.score,
+                       candidates=(replace(given.candidates[0], kept=False), replace(merged_row, kept=True)))
     tried: list[tuple[Candidate, SegmentResult | None]] = []
     no_start: StartError | None = None
 
@@ -354,6 +362,11 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
     if grafted is not None:
         best_c, best = grafted
         rows.append(best_c)
+    if merge and guide is None:
+        merged = _merged(best, best_c, knobs, began, _floor_of(floor, which, bound))
+        if merged is not None:
+            best_c, best = merged
+            rows.append(best_c)
     return replace(best, seconds=time.monotonic() - began, score=best_c.score,
                    candidates=tuple(replace(c, kept=c is best_c) for c in rows),
                    converged=best.converged and all(c.converged is not False for c, _ in tried))
@@ -396,6 +409,37 @@ def _grafted(surface: Surface, best: SegmentResult, row: Candidate, donors: Sequ
     if candidate.score is None or row.score is None or candidate.score <= row.score:
         return None
     return candidate, replace(result, states=best.states, converged=best.converged)
+
+
+MERGING = 0.25  # of the budget, the most the merges of the result's charts take
+
+
+def _merged(best: SegmentResult, row: Candidate, knobs: SearchSettings, began: float,
+            floor: float | None) -> tuple[Candidate, SegmentResult] | None:
+    """The run's result with whole charts relabelled as a neighbour, merged
+    (:func:`~polyloops.segment.merge.merges`), where that scores better than ``row`` (fewer
+    loops on the checker's polycube paying for the fidelity lost), and its row; ``None`` when
+    no merge does.  No merge is less faithful than ``floor``, or than the fidelity less the
+    price of all the result's loops (it could not score better)."""
+    if row.score is None:
+        return None
+    t0 = time.monotonic()
+    mesh, parent = best.mesh, np.asarray(best.face_map)
+    own = Surface(np.asarray(mesh.points, dtype=float), np.asarray(mesh.triangles, dtype=np.int64))
+    least = max(best.fidelity - knobs.price * best.loops, -1.0 if floor is None else floor)
+    chosen, to_beat = None, row.score
+    for k, step in enumerate(merges(own, label_indices(mesh.labels), least,
+                                    deadline=t0 + MERGING * knobs.budget), start=1):
+        how = f"{best.start}, merged ({k} chart{'s' if k > 1 else ''} relabelled)"
+        result = _kept_labelling(own, tuple(Direction(int(d)) for d in step.labels), how, began, step.report,
+                                 parent, best.input_triangles)
+        if result is None:
+            continue
+        candidate = _candidate(result, knobs, time.monotonic() - t0)
+        if candidate.score is not None and candidate.score > to_beat:
+            chosen = candidate, replace(result, states=best.states, converged=best.converged)
+            to_beat = candidate.score
+    return chosen
 
 
 Scouted = tuple[Start, tuple[frozenset[int], ...]]  # a start at its best state, and its search's last states
@@ -457,9 +501,15 @@ def _above_floor(rows: list[tuple[Candidate, SegmentResult]], floor: float | Non
     valid labelling (``None``: there is none, all rows), ``which`` says what that labelling is:
     a repaired one (the graph-cut labelling or the guide) bounds the rows only when ``bound``
     is :attr:`Floor.REPAIRED`."""
+    floor = _floor_of(floor, which, bound)
+    return rows if floor is None else [row for row in rows if _aim(row, knobs) >= floor]
+
+
+def _floor_of(floor: float | None, which: Charts, bound: Floor) -> float | None:
+    """The floor that holds (see :func:`_above_floor`), or ``None``."""
     if floor is None or (bound is Floor.VALID and which in (Charts.REPAIRED, Charts.GUIDE)):
-        return rows
-    return [row for row in rows if _aim(row, knobs) >= floor]
+        return None
+    return floor
 
 
 def _aim(row: tuple[Candidate, SegmentResult], knobs: SearchSettings) -> float:
@@ -653,7 +703,7 @@ def segment_mesh(points: Sequence[Sequence[float]] | np.ndarray,
                  start: LoopStructure | None = None,
                  guide: Sequence[Direction] | None = None, direct: bool = True, workers: int = 1,
                  on_candidate: Callable[[Candidate], None] | None = None,
-                 bound: Floor = Floor.REPAIRED) -> SegmentResult:
+                 bound: Floor = Floor.REPAIRED, merge: bool = False) -> SegmentResult:
     """A certified polycube segmentation of the closed triangle mesh ``points``, ``triangles``
     (counter-clockwise seen from outside), by the greedy loop search of
     :mod:`~polyloops.segment.search` within ``budget`` seconds (its order fixed by ``seed``):
@@ -673,7 +723,10 @@ def segment_mesh(points: Sequence[Sequence[float]] | np.ndarray,
     loops, whatever they are): the result is then the best score among the results at least
     as faithful as that labelling (it included, priced by its realising polycube's loops);
     ``bound`` says whether the graph-cut labelling (or the guide) repaired is such a floor
-    (:attr:`Floor.REPAIRED`, the default) or only a candidate (:attr:`Floor.VALID`).
+    (:attr:`Floor.REPAIRED`, the default) or only a candidate (:attr:`Floor.VALID`).  With
+    ``merge``, whole charts of the result are relabelled as a neighbour where the loops saved
+    pay for the fidelity lost (fewer charts and loops, a little less faithful, never below
+    the floor; :mod:`~polyloops.segment.merge`).
 
     Raises
     ------
@@ -688,4 +741,4 @@ def segment_mesh(points: Sequence[Sequence[float]] | np.ndarray,
         When no state of the search passed both checks (nothing is returned then).
     """
     return segment_surface(surface_of(points, triangles), budget, seed, planes, price, on_step, start, guide,
-                           direct, workers, on_candidate, bound)
+                           direct, workers, on_candidate, bound, merge)
