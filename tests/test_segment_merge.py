@@ -11,7 +11,7 @@ from hypothesis import strategies as st
 
 from polyloops.core.directions import Direction
 from polyloops.io.examples import load_example
-from polyloops.segment.labellings import chart_indices, fidelity
+from polyloops.segment.labellings import chart_indices, fidelity, label_vectors
 from polyloops.segment.merge import merge_options, merges
 from polyloops.segment.run import _candidate, _kept_labelling, _merged
 from polyloops.segment.search import SearchSettings
@@ -28,26 +28,28 @@ def _directions(labels: np.ndarray) -> tuple[Direction, ...]:
 
 
 @settings(max_examples=12, deadline=None)
-@given(polycubes(max_size=4), st.integers(0, 2**32 - 1))
-def test_each_merge_leaves_the_charts_and_fidelity_computed_from_scratch(q, seed):
+@given(polycubes(max_size=4), st.integers(0, 2**32 - 1), st.booleans())
+def test_each_merge_leaves_the_charts_and_fidelity_computed_from_scratch(q, seed, guided):
     """Twin: each chart relabelled as a neighbour, the labelling's charts counted and its
-    fidelity summed again."""
+    fidelity (or agreement with a guide) summed again."""
     s, labels = _fine(q)
-    own = _noisy(np.array([int(d) for d in labels]), s, np.random.default_rng(seed), 4)
+    rng = np.random.default_rng(seed)
+    own = _noisy(np.array([int(d) for d in labels]), s, rng, 4)
+    target = label_vectors(_directions(_noisy(own, s, rng, 4))) if guided else None
     chart = chart_indices(s, own)
-    options = merge_options(s, own)
+    options = merge_options(s, own, target)
     assert options == sorted(options, key=lambda o: (-o[0], o[1], o[2], o[3]))
     pairs, _ = s.adjacency
     beside: dict[int, set[int]] = {}  # per chart, the labels of the charts beside it
     for a, b in np.concatenate([pairs, pairs[:, ::-1]]).tolist():
         if chart[a] != chart[b]:
             beside.setdefault(int(chart[a]), set()).add(int(own[b]))
-    for after, charts, c, target in options:
-        assert target in beside[c] and target != own[chart == c][0]
+    for after, charts, c, label in options:
+        assert label in beside[c] and label != own[chart == c][0]
         trial = own.copy()
-        trial[chart == c] = target
+        trial[chart == c] = label
         assert charts == chart_indices(s, trial).max() + 1 < chart.max() + 1
-        assert after == pytest.approx(fidelity(s, _directions(trial)))
+        assert after == pytest.approx(fidelity(s, _directions(trial), target))
     assert {(c, t) for _, _, c, t in options} == {
         (c, t) for c, labels in beside.items() for t in labels if t != own[chart == c][0]}
 
@@ -95,3 +97,21 @@ def test_a_run_keeps_a_merge_only_where_it_scores_better_above_the_floor(price, 
     assert result.certified and result.charts == 6 and result.loops == 3 < best.loops
     assert candidate.score is not None and row.score is not None and candidate.score > row.score
     assert result.start == "the L, merged (1 chart relabelled)"
+
+
+def test_with_a_guide_a_merge_is_scored_by_its_agreement_and_reports_the_area_changed():
+    m = labelled_mesh_from_polycube(load_example("l-shape"))
+    s = surface_of(m.points, m.triangles)
+    began = time.monotonic()
+    best = _kept_labelling(s, m.labels, "the L", began)
+    assert best is not None
+    knobs = SearchSettings(budget=5.0, price=0.05, guide=label_vectors(m.labels))
+    row = _candidate(best, knobs, 0.0)
+    assert row.agreement == pytest.approx(1.0)
+    got = _merged(best, row, knobs, began, None)
+    assert got is not None
+    candidate, result = got
+    assert result.charts == 6 and candidate.agreement is not None and result.guide_changed is not None
+    # the notch's faces, relabelled across: what is labelled otherwise agrees not at all
+    assert result.guide_changed == pytest.approx(1.0 - candidate.agreement)
+    assert candidate.score == pytest.approx(candidate.agreement - 0.05 * result.loops)

@@ -50,9 +50,12 @@ class Merge:
     report: SegmentationReport
 
 
-def merge_options(surface: Surface, labels: np.ndarray) -> list[tuple[float, int, int, int]]:
+def merge_options(surface: Surface, labels: np.ndarray, target: np.ndarray | None = None
+                  ) -> list[tuple[float, int, int, int]]:
     """Every chart relabelled as a chart beside it: ``(fidelity, charts, chart, label)`` after
-    the merge, the most faithful first (then the fewest charts), unchecked.
+    the merge, the most faithful first (then the fewest charts), unchecked; with ``target`` (a
+    unit vector per triangle, such as a guide's labels) the agreement with it instead of the
+    fidelity (as :func:`~polyloops.segment.labellings.fidelity`).
 
     >>> import numpy as np
     >>> from polyloops.shapes.meshes import ellipsoid
@@ -66,7 +69,8 @@ def merge_options(surface: Surface, labels: np.ndarray) -> list[tuple[float, int
     labels = np.asarray(labels, dtype=np.int64)
     chart = chart_indices(surface, labels)
     n = int(chart.max()) + 1
-    weighted = surface.areas[:, None] * (surface.normals @ DIRECTION_VECTORS.T)  # per triangle and label
+    wanted = surface.normals if target is None else target
+    weighted = surface.areas[:, None] * (wanted @ DIRECTION_VECTORS.T)  # per triangle and label
     total = float(surface.areas.sum())
     rows = np.arange(len(labels))
     now = float(weighted[rows, labels].sum()) / total
@@ -84,29 +88,30 @@ def merge_options(surface: Surface, labels: np.ndarray) -> list[tuple[float, int
     out = []
     for c in range(n):
         beside = touching[touching[:, 0] == c, 1]
-        for target in sorted(set(label_of[beside].tolist()) - {int(label_of[c])}):
-            k = int((label_of[beside] == target).sum())
-            after = now + float(as_label[c, target] - own[c]) / total
-            out.append((after, n - k, c, target))
+        for label in sorted(set(label_of[beside].tolist()) - {int(label_of[c])}):
+            k = int((label_of[beside] == label).sum())
+            after = now + float(as_label[c, label] - own[c]) / total
+            out.append((after, n - k, c, label))
     out.sort(key=lambda o: (-o[0], o[1], o[2], o[3]))
     return out
 
 
 def merges(surface: Surface, labels: np.ndarray, least: float, steps: int = 6,
-           deadline: float | None = None) -> tuple[Merge, ...]:
+           deadline: float | None = None, target: np.ndarray | None = None) -> tuple[Merge, ...]:
     """The certified merges from ``labels``, step by step (each from the one before, at most
-    ``steps``), none less faithful than ``least``; checking stops at ``deadline``
-    (``time.monotonic()``) and after :data:`CHECKS` invalid merges in one step."""
+    ``steps``), none less faithful than ``least`` (with ``target``: agreeing less with it, see
+    :func:`merge_options`; ``fidelity`` is then that agreement); checking stops at
+    ``deadline`` (``time.monotonic()``) and after :data:`CHECKS` invalid merges in one step."""
     found: list[Merge] = []
     current = np.asarray(labels, dtype=np.int64)
     for _ in range(steps):
         chart = chart_indices(surface, current)
         step = None
-        for checked, (after, charts, c, target) in enumerate(merge_options(surface, current)):
+        for checked, (after, charts, c, label) in enumerate(merge_options(surface, current, target)):
             if after < least or checked >= CHECKS or (deadline is not None and time.monotonic() > deadline):
                 break
             trial = current.copy()
-            trial[chart == c] = target
+            trial[chart == c] = label
             report = check_segmentation(surface.labelled(tuple(Direction(int(k)) for k in trial)))
             if report.valid is True and report.polycube is not None:
                 step = Merge(trial, charts, after, report)

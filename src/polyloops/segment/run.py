@@ -227,8 +227,8 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
     compactness made valid (:func:`_other_weights`), scored alike but no floor.  Last, the
     patches of the graph-cut labellings (or of the guide) that keep the result valid and raise
     its score are grafted into it (:func:`_grafted`), for at most :data:`GRAFTING` of the
-    budget; with ``merge`` and without a guide, its charts are then merged where that raises
-    the score (:func:`_merged`), for at most :data:`MERGING` of the budget."""
+    budget; with ``merge``, its charts are then merged where that raises the score
+    (:func:`_merged`), for at most :data:`MERGING` of the budget."""
     began = time.monotonic()
     if guide is not None and len(guide) != len(surface.triangles):
         raise ValueError(f"a guide of {len(guide)} labels for {len(surface.triangles)} triangles")
@@ -362,7 +362,7 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
     if grafted is not None:
         best_c, best = grafted
         rows.append(best_c)
-    if merge and guide is None:
+    if merge:
         merged = _merged(best, best_c, knobs, began, _floor_of(floor, which, bound))
         if merged is not None:
             best_c, best = merged
@@ -418,23 +418,27 @@ def _merged(best: SegmentResult, row: Candidate, knobs: SearchSettings, began: f
             floor: float | None) -> tuple[Candidate, SegmentResult] | None:
     """The run's result with whole charts relabelled as a neighbour, merged
     (:func:`~polyloops.segment.merge.merges`), where that scores better than ``row`` (fewer
-    loops on the checker's polycube paying for the fidelity lost), and its row; ``None`` when
-    no merge does.  No merge is less faithful than ``floor``, or than the fidelity less the
-    price of all the result's loops (it could not score better)."""
+    loops on the checker's polycube paying for the fidelity, or the agreement with the guide,
+    lost), and its row; ``None`` when no merge does.  No merge aims lower than ``floor``, or
+    than its aim less the price of all the result's loops (it could not score better)."""
     if row.score is None:
         return None
     t0 = time.monotonic()
     mesh, parent = best.mesh, np.asarray(best.face_map)
     own = Surface(np.asarray(mesh.points, dtype=float), np.asarray(mesh.triangles, dtype=np.int64))
-    least = max(best.fidelity - knobs.price * best.loops, -1.0 if floor is None else floor)
+    target = None if knobs.guide is None else knobs.guide[parent]
+    aim = _aim((row, best), knobs)
+    least = max(aim - knobs.price * best.loops, -1.0 if floor is None else floor)
     chosen, to_beat = None, row.score
     for k, step in enumerate(merges(own, label_indices(mesh.labels), least,
-                                    deadline=t0 + MERGING * knobs.budget), start=1):
+                                    deadline=t0 + MERGING * knobs.budget, target=target), start=1):
         how = f"{best.start}, merged ({k} chart{'s' if k > 1 else ''} relabelled)"
         result = _kept_labelling(own, tuple(Direction(int(d)) for d in step.labels), how, began, step.report,
                                  parent, best.input_triangles)
         if result is None:
             continue
+        if target is not None:
+            result = replace(result, guide_changed=_changed(own.areas, target, result.mesh.labels))
         candidate = _candidate(result, knobs, time.monotonic() - t0)
         if candidate.score is not None and candidate.score > to_beat:
             chosen = candidate, replace(result, states=best.states, converged=best.converged)
