@@ -13,7 +13,7 @@ from polyloops.core.directions import Direction
 from polyloops.io.examples import load_example
 from polyloops.segment.labellings import chart_indices, fidelity, label_vectors
 from polyloops.segment.merge import merge_options, merges
-from polyloops.segment.run import _candidate, _kept_labelling, _merged
+from polyloops.segment.run import FREE, _candidate, _kept_labelling, _merged
 from polyloops.segment.search import SearchSettings
 from polyloops.segment.surface import surface_of
 from polyloops.segmentation import check_segmentation
@@ -78,9 +78,12 @@ def test_the_l_shape_merges_into_the_box():
     assert steps[0].report.polycube.map.num_corners == 8
 
 
-@pytest.mark.parametrize("price, floor, merged",
-                         [(0.05, None, True), (0.0, None, False), (0.05, 0.95, False)])
-def test_a_run_keeps_a_merge_only_where_it_scores_better_above_the_floor(price, floor, merged):
+@pytest.mark.parametrize("price, floor, lose, merged", [
+    (0.05, None, None, True), (0.0, None, None, False), (0.05, 0.95, None, False),
+    (0.05, None, 0.08, True), (0.05, None, 0.06, False), (0.05, None, FREE, False)])
+def test_a_run_keeps_a_merge_only_where_it_scores_better_above_the_floor(price, floor, lose, merged):
+    """The L's merge into the box loses 0.071 of fidelity and saves two loops: kept only where the
+    price pays for it and neither the floor nor the loss allowed (``lose``) forbids it."""
     m = labelled_mesh_from_polycube(load_example("l-shape"))
     s = surface_of(m.points, m.triangles)
     began = time.monotonic()
@@ -88,7 +91,7 @@ def test_a_run_keeps_a_merge_only_where_it_scores_better_above_the_floor(price, 
     assert best is not None and best.charts == 8
     knobs = SearchSettings(budget=5.0, seed=0, planes=9, price=price)
     row = _candidate(best, knobs, 0.0)
-    got = _merged(best, row, knobs, began, floor)
+    got = _merged(best, row, knobs, began, floor, lose)
     if not merged:
         assert got is None
         return

@@ -61,9 +61,9 @@ def add_command(command: Callable[..., argparse.ArgumentParser]) -> None:
                    "those valid as they are, or also the graph-cut labelling (or the guide) once "
                    "repaired (default; 'valid' lets the price choose a coarser one with fewer loops)")
     p.add_argument("--merge", action="store_true",
-                   help="then relabel whole charts as a neighbour where the loops saved pay for the "
+                   help="relabel whole charts as a neighbour wherever the loops saved pay for the "
                    "fidelity lost (fewer charts and loops, a little less faithful; each merge "
-                   "certified, never below the floor)")
+                   "certified, never below the floor); without it, only where no fidelity is lost")
     p.add_argument("--score-csv", metavar="FILE", help="write one row per start tried: its fidelity, "
                    "agreement with the guide, loops, price, score, charts, corners, seconds, whether it "
                    "converged and was kept, or why it gave nothing")

@@ -227,8 +227,9 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
     compactness made valid (:func:`_other_weights`), scored alike but no floor.  Last, the
     patches of the graph-cut labellings (or of the guide) that keep the result valid and raise
     its score are grafted into it (:func:`_grafted`), for at most :data:`GRAFTING` of the
-    budget; with ``merge``, its charts are then merged where that raises the score
-    (:func:`_merged`), for at most :data:`MERGING` of the budget."""
+    budget; then its charts are merged where that raises the score (:func:`_merged`), for at
+    most :data:`MERGING` of the budget: with ``merge`` at any loss of fidelity the loops saved
+    pay for, else only at none (:data:`FREE`)."""
     began = time.monotonic()
     if guide is not None and len(guide) != len(surface.triangles):
         raise ValueError(f"a guide of {len(guide)} labels for {len(surface.triangles)} triangles")
@@ -263,7 +264,7 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
             " (sections of the polycube-like deformation)" if placed.deformed else "")
         searched = _search_from(surface, (r, loops, list(placed.curves), how), began, knobs, on_step)
         given = _alone(searched, knobs)
-        merged = _merged(given, given.candidates[0], knobs, began, None) if merge else None
+        merged = _merged(given, given.candidates[0], knobs, began, None, None if merge else FREE)
         if merged is None:
             return given
         merged_row, coarser = merged
@@ -362,11 +363,10 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
     if grafted is not None:
         best_c, best = grafted
         rows.append(best_c)
-    if merge:
-        merged = _merged(best, best_c, knobs, began, _floor_of(floor, which, bound))
-        if merged is not None:
-            best_c, best = merged
-            rows.append(best_c)
+    merged = _merged(best, best_c, knobs, began, _floor_of(floor, which, bound), None if merge else FREE)
+    if merged is not None:
+        best_c, best = merged
+        rows.append(best_c)
     return replace(best, seconds=time.monotonic() - began, score=best_c.score,
                    candidates=tuple(replace(c, kept=c is best_c) for c in rows),
                    converged=best.converged and all(c.converged is not False for c, _ in tried))
@@ -412,15 +412,19 @@ def _grafted(surface: Surface, best: SegmentResult, row: Candidate, donors: Sequ
 
 
 MERGING = 0.25  # of the budget, the most the merges of the result's charts take
+# the fidelity a merge may lose without --merge: none that normals computed from single-precision
+# coordinates (STL) can tell, such as a 45-degree face's label turned to its other nearest axis
+FREE = 1e-6
 
 
 def _merged(best: SegmentResult, row: Candidate, knobs: SearchSettings, began: float,
-            floor: float | None) -> tuple[Candidate, SegmentResult] | None:
+            floor: float | None, lose: float | None = None) -> tuple[Candidate, SegmentResult] | None:
     """The run's result with whole charts relabelled as a neighbour, merged
     (:func:`~polyloops.segment.merge.merges`), where that scores better than ``row`` (fewer
     loops on the checker's polycube paying for the fidelity, or the agreement with the guide,
     lost), and its row; ``None`` when no merge does.  No merge aims lower than ``floor``, or
-    than its aim less the price of all the result's loops (it could not score better)."""
+    than its aim less the price of all the result's loops (it could not score better), or
+    less ``lose`` when given."""
     if row.score is None:
         return None
     t0 = time.monotonic()
@@ -428,7 +432,8 @@ def _merged(best: SegmentResult, row: Candidate, knobs: SearchSettings, began: f
     own = Surface(np.asarray(mesh.points, dtype=float), np.asarray(mesh.triangles, dtype=np.int64))
     target = None if knobs.guide is None else knobs.guide[parent]
     aim = _aim((row, best), knobs)
-    least = max(aim - knobs.price * best.loops, -1.0 if floor is None else floor)
+    loss = knobs.price * best.loops if lose is None else min(lose, knobs.price * best.loops)
+    least = max(aim - loss, -1.0 if floor is None else floor)
     chosen, to_beat = None, row.score
     for k, step in enumerate(merges(own, label_indices(mesh.labels), least,
                                     deadline=t0 + MERGING * knobs.budget, target=target), start=1):
@@ -727,10 +732,10 @@ def segment_mesh(points: Sequence[Sequence[float]] | np.ndarray,
     loops, whatever they are): the result is then the best score among the results at least
     as faithful as that labelling (it included, priced by its realising polycube's loops);
     ``bound`` says whether the graph-cut labelling (or the guide) repaired is such a floor
-    (:attr:`Floor.REPAIRED`, the default) or only a candidate (:attr:`Floor.VALID`).  With
-    ``merge``, whole charts of the result are relabelled as a neighbour where the loops saved
-    pay for the fidelity lost (fewer charts and loops, a little less faithful, never below
-    the floor; :mod:`~polyloops.segment.merge`).
+    (:attr:`Floor.REPAIRED`, the default) or only a candidate (:attr:`Floor.VALID`).  Whole
+    charts of the result are relabelled as a neighbour where that costs no fidelity and saves
+    loops; with ``merge``, wherever the loops saved pay for the fidelity lost (fewer charts
+    and loops, a little less faithful, never below the floor; :mod:`~polyloops.segment.merge`).
 
     Raises
     ------
