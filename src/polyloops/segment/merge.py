@@ -9,10 +9,12 @@ The merges are greedy: at each step, of the charts relabelled as a chart beside 
 faithful labellings come first, and the first one the checker finds valid is the step; the next
 step starts from it.  Relabelling chart ``c`` as ``L`` merges it with the ``k`` charts of label
 ``L`` beside it, leaving ``k`` fewer charts, and changes the fidelity by the area-weighted
-``n . L - n . label`` over ``c`` alone, so both are known before any check.  A step's fidelity
-is never above the one before, and ``least`` stops the merges where no fewer loops could pay
+``n . L - n . label`` over ``c`` alone, so both are known before any check.  A step may be
+more faithful than the labelling before it (a chart whose neighbour's label suits its triangles
+better: a search's result is not always at its most faithful), as faithful (a face at 45
+degrees between two axes) or less; ``least`` stops the merges where no fewer loops could pay
 for the fidelity lost (:func:`polyloops.segment.run.segment_surface` passes the fidelity less
-the loops' price times the loops, and the floor).
+the loops' price times the loops, or less a loss it allows, and the floor).
 
 >>> from polyloops.shapes.meshes import ellipsoid
 >>> from polyloops.segment.surface import surface_of
