@@ -256,20 +256,14 @@ def segment_surface(surface: Surface, budget: float = 20.0, seed: int = 0, plane
         found_direct = _direct(surface, began, donors)
         if found_direct is not None:
             kept_direct, which = found_direct
-            if which is Charts.NAIVE:  # no labelling is more faithful
-                return _alone(kept_direct, knobs)
+            if which is Charts.NAIVE:  # no labelling is more faithful: merged only where none is lost
+                return _merged_alone(_alone(kept_direct, knobs), knobs, began, FREE)
     if start is not None:
         r, loops, placed = embed_start(surface, start, GRIDS, budget)
         how = f"the given start, turned by {placed.symmetry}" + (
             " (sections of the polycube-like deformation)" if placed.deformed else "")
         searched = _search_from(surface, (r, loops, list(placed.curves), how), began, knobs, on_step)
-        given = _alone(searched, knobs)
-        merged = _merged(given, given.candidates[0], knobs, began, None, None if merge else FREE)
-        if merged is None:
-            return given
-        merged_row, coarser = merged
-        return replace(coarser, seconds=time.monotonic() - began, score=merged_row.score,
-                       candidates=(replace(given.candidates[0], kept=False), replace(merged_row, kept=True)))
+        return _merged_alone(_alone(searched, knobs), knobs, began, None if merge else FREE)
     tried: list[tuple[Candidate, SegmentResult | None]] = []
     no_start: StartError | None = None
 
@@ -496,6 +490,18 @@ def _lay_out_job(job: tuple[Surface, Scouted, Candidate, float, SearchSettings,
     row = replace(_candidate(result, knobs, scouted.seconds + time.monotonic() - t0),
                   estimate=scouted.estimate, converged=bool(scouted.converged and result.converged))
     return row, replace(result, candidates=())
+
+
+def _merged_alone(given: SegmentResult, knobs: SearchSettings, began: float, lose: float | None
+                  ) -> SegmentResult:
+    """``given``, the only start tried, or its charts merged (:func:`_merged`, no floor) where
+    that scores better: then both are rows, the merged one kept."""
+    merged = _merged(given, given.candidates[0], knobs, began, None, lose)
+    if merged is None:
+        return given
+    row, coarser = merged
+    return replace(coarser, seconds=time.monotonic() - began, score=row.score,
+                   candidates=(replace(given.candidates[0], kept=False), replace(row, kept=True)))
 
 
 def _alone(result: SegmentResult, knobs: SearchSettings) -> SegmentResult:
