@@ -52,12 +52,13 @@ class Merge:
     report: SegmentationReport
 
 
-def merge_options(surface: Surface, labels: np.ndarray, target: np.ndarray | None = None
-                  ) -> list[tuple[float, int, int, int]]:
+def merge_options(surface: Surface, labels: np.ndarray, target: np.ndarray | None = None,
+                  chart: np.ndarray | None = None) -> list[tuple[float, int, int, int]]:
     """Every chart relabelled as a chart beside it: ``(fidelity, charts, chart, label)`` after
     the merge, the most faithful first (then the fewest charts), unchecked; with ``target`` (a
     unit vector per triangle, such as a guide's labels) the agreement with it instead of the
-    fidelity (as :func:`~polyloops.segment.labellings.fidelity`).
+    fidelity (as :func:`~polyloops.segment.labellings.fidelity`).  ``chart``: the labels'
+    :func:`~polyloops.segment.labellings.chart_indices`, when the caller has them.
 
     >>> import numpy as np
     >>> from polyloops.shapes.meshes import ellipsoid
@@ -69,7 +70,7 @@ def merge_options(surface: Surface, labels: np.ndarray, target: np.ndarray | Non
     (24, {5})
     """
     labels = np.asarray(labels, dtype=np.int64)
-    chart = chart_indices(surface, labels)
+    chart = chart_indices(surface, labels) if chart is None else chart
     n = int(chart.max()) + 1
     wanted = surface.normals if target is None else target
     weighted = surface.areas[:, None] * (wanted @ DIRECTION_VECTORS.T)  # per triangle and label
@@ -109,7 +110,7 @@ def merges(surface: Surface, labels: np.ndarray, least: float, steps: int = 6,
     for _ in range(steps):
         chart = chart_indices(surface, current)
         step = None
-        for checked, (after, charts, c, label) in enumerate(merge_options(surface, current, target)):
+        for checked, (after, charts, c, label) in enumerate(merge_options(surface, current, target, chart)):
             if after < least or checked >= CHECKS or (deadline is not None and time.monotonic() > deadline):
                 break
             trial = current.copy()

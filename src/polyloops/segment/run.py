@@ -379,8 +379,7 @@ def _grafted(surface: Surface, best: SegmentResult, row: Candidate, donors: Sequ
     if not donors:
         return None
     t0 = time.monotonic()
-    mesh, parent = best.mesh, np.asarray(best.face_map)
-    own = Surface(np.asarray(mesh.points, dtype=float), np.asarray(mesh.triangles, dtype=np.int64))
+    mesh, parent, own = best.mesh, np.asarray(best.face_map), _own_surface(best)
     target = None if knobs.guide is None else knobs.guide[parent]
     done = graft_labels(own, mesh.labels, [d[parent] for d in donors], knobs.price,
                         t0 + GRAFTING * knobs.budget, target, best.report)
@@ -422,8 +421,7 @@ def _merged(best: SegmentResult, row: Candidate, knobs: SearchSettings, began: f
     if row.score is None:
         return None
     t0 = time.monotonic()
-    mesh, parent = best.mesh, np.asarray(best.face_map)
-    own = Surface(np.asarray(mesh.points, dtype=float), np.asarray(mesh.triangles, dtype=np.int64))
+    mesh, parent, own = best.mesh, np.asarray(best.face_map), _own_surface(best)
     target = None if knobs.guide is None else knobs.guide[parent]
     aim = _aim((row, best), knobs)
     loss = knobs.price * best.loops if lose is None else min(lose, knobs.price * best.loops)
@@ -536,6 +534,12 @@ def _aim(row: tuple[Candidate, SegmentResult], knobs: SearchSettings) -> float:
     return result.fidelity
 
 
+def _own_surface(result: SegmentResult) -> Surface:
+    """The surface of a result's (refined) labelled mesh, for labellings of it."""
+    mesh = result.mesh
+    return Surface(np.asarray(mesh.points, dtype=float), np.asarray(mesh.triangles, dtype=np.int64))
+
+
 def _changed(areas: np.ndarray, wanted: np.ndarray, labels: Sequence[Direction]) -> float:
     """The share of the area whose label is not the one ``wanted`` (a unit vector per
     triangle)."""
@@ -551,9 +555,8 @@ def _candidate(result: SegmentResult, knobs: SearchSettings, seconds: float) -> 
             refined = result.layout.embedded.refined
             agreement = fidelity(refined.surface, result.layout.labels, knobs.guide[refined.parent])
         else:  # a labelling of the mesh itself
-            mesh = result.mesh
-            own = Surface(np.asarray(mesh.points, dtype=float), np.asarray(mesh.triangles, dtype=np.int64))
-            agreement = fidelity(own, mesh.labels, knobs.guide[np.asarray(result.face_map)])
+            own = _own_surface(result)
+            agreement = fidelity(own, result.mesh.labels, knobs.guide[np.asarray(result.face_map)])
     aim = result.fidelity if agreement is None else agreement
     score = result.score if result.score is not None else aim - knobs.price * result.loops
     return Candidate(result.start, True, "", fidelity=result.fidelity, agreement=agreement,
